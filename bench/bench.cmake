@@ -1,0 +1,1 @@
+# Benchmarks (issue 4): sap_bench and Google Benchmark microbenchmarks.

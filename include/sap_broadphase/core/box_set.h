@@ -1,0 +1,73 @@
+// Boxes as a structure of arrays, and the one place where input is validated.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sap_broadphase {
+
+/// Collision group bits a box has when none are given.
+constexpr uint32_t kDefaultGroup = 0x1u;
+/// Groups a box collides with when no mask is given.
+constexpr uint32_t kDefaultMask = 0xFFFFFFFFu;
+
+/// A set of axis-aligned boxes, closed intervals, float64, in structure-of-arrays layout.
+/// Box i is [lo[0][i], hi[0][i]] x [lo[1][i], hi[1][i]] x [lo[2][i], hi[2][i]].
+/// `groups` and `masks` are either empty (defaults above) or one per box.
+struct BoxSet {
+  std::vector<uint32_t> ids;
+  std::vector<double> lo[3];
+  std::vector<double> hi[3];
+  std::vector<uint32_t> groups;
+  std::vector<uint32_t> masks;
+
+  /// Number of boxes.
+  std::size_t size() const { return ids.size(); }
+  /// Removes all boxes, keeping capacity.
+  void clear();
+  /// Reserves room for inCount boxes.
+  void reserve(std::size_t inCount);
+  /// Appends one box with the default group and mask (only valid while groups/masks are empty).
+  void add(uint32_t inId, const double inMin[3], const double inMax[3]);
+  /// Appends one box with an explicit group and mask (fills defaults for earlier boxes).
+  void add(uint32_t inId, const double inMin[3], const double inMax[3], uint32_t inGroup,
+           uint32_t inMask);
+  /// Group bits of box i (default when none are stored).
+  uint32_t group(std::size_t i) const { return groups.empty() ? kDefaultGroup : groups[i]; }
+  /// Mask bits of box i (default when none are stored).
+  uint32_t mask(std::size_t i) const { return masks.empty() ? kDefaultMask : masks[i]; }
+  /// True when any box carries a non-default group or mask.
+  bool hasFilters() const { return !groups.empty() || !masks.empty(); }
+};
+
+/// Why a box set was refused: which box (its index and id) and what is wrong with it.
+struct ValidationError {
+  std::size_t index = 0;  ///< position of the offending box in the set
+  uint32_t id = 0;        ///< its id
+  std::string reason;     ///< e.g. "min_y (3) > max_y (2)" or "NaN in max_x"
+  /// "box 7 (id 42): min_y (3) > max_y (2)"
+  std::string message() const;
+};
+
+/// Checks every box: no NaN, min <= max on every axis, unique ids, groups/masks either empty
+/// or one per box, and equal array lengths. Returns the first problem found, or nothing.
+std::optional<ValidationError> validate(const BoxSet& inBoxes);
+
+/// True when boxes a and b overlap on all three axes (closed intervals: touching overlaps).
+inline bool boxesOverlap(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
+  for (int axis = 0; axis < 3; ++axis) {
+    if (inBoxes.lo[axis][a] > inBoxes.hi[axis][b] || inBoxes.lo[axis][b] > inBoxes.hi[axis][a])
+      return false;
+  }
+  return true;
+}
+
+/// True when the group/mask filter lets a and b collide (both directions must agree).
+inline bool filtersAllow(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
+  return (inBoxes.group(a) & inBoxes.mask(b)) != 0 && (inBoxes.group(b) & inBoxes.mask(a)) != 0;
+}
+
+}  // namespace sap_broadphase

@@ -1,0 +1,87 @@
+// The per-frame pipeline: keys -> parallel radix sort -> candidates -> pairing -> sorted pairs.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
+
+namespace sap_broadphase {
+
+/// Which algorithm computes a frame.
+enum class Method : uint8_t {
+  kAuto,        ///< sequential below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
+  kParallel,    ///< Algorithms 2, 3 and 4 of the paper
+  kSequential,  ///< Algorithm 1 of the paper
+  kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
+};
+
+/// What a caller may tune. Defaults are the exact, adaptive engine.
+struct BroadphaseConfig {
+  int threads = 0;                   ///< worker threads; 0 = all cores (omp_get_max_threads)
+  Method method = Method::kAuto;     ///< algorithm choice
+  int primary_axis = 0;              ///< first sweep axis (0 = x, 1 = y, 2 = z)
+  int secondary_axis = 1;            ///< second sweep axis; must differ from primary_axis
+  bool axis_swapping = true;         ///< swap a clustered sweep axis with the unused one (§5)
+  double axis_swap_threshold = 0.25; ///< dispersion D above which an axis is swapped
+  std::size_t parallel_min_boxes = 4096;  ///< kAuto runs sequentially below this many boxes
+  bool exact_final_test = true;      ///< false: report pairs whose float32 keys overlap (faster,
+                                     ///< may report extra pairs; never misses one)
+};
+
+/// Which path computed a frame.
+enum class FramePath : uint8_t { kEmpty, kSequential, kParallel, kBruteForce };
+
+/// Human-readable name of a path: "empty", "sequential", "parallel", "brute".
+const char* framePathName(FramePath inPath);
+
+/// What one frame cost and how it was computed. Times are milliseconds of wall clock.
+struct FrameStats {
+  std::size_t boxes = 0;
+  std::size_t pairs = 0;
+  int primary_axis = 0;
+  int secondary_axis = 1;
+  double dispersion_primary = 0.0;    ///< D of eq. (1) for the primary-axis sort
+  double dispersion_secondary = 0.0;  ///< D of eq. (1) for the secondary-axis sort
+  bool axes_swapped = false;          ///< an axis swap happened after this frame's sort
+  int threads = 1;
+  FramePath path = FramePath::kEmpty;
+  double ms_keys = 0.0;        ///< float64 -> sortable keys
+  double ms_sort = 0.0;        ///< both axes' radix index sorts
+  double ms_candidates = 0.0;  ///< ranks and candidate ranges on the primary axis
+  double ms_pairing = 0.0;     ///< secondary sweep and exact overlap tests
+  double ms_output = 0.0;      ///< ids and canonical pair order
+  double ms_total = 0.0;
+};
+
+/// The stateful broad phase: keeps partition bounds B and the sweep axes across frames, owns
+/// every buffer (no allocation per frame once sizes are stable). Not thread-safe: one frame at
+/// a time per instance. The input is trusted: validate() it at the edge first.
+class Broadphase {
+ public:
+  explicit Broadphase(const BroadphaseConfig& inConfig = BroadphaseConfig());
+  ~Broadphase();
+  Broadphase(Broadphase&&) noexcept;
+  Broadphase& operator=(Broadphase&&) noexcept;
+
+  /// Computes every overlapping pair of inBoxes (closed intervals, filters honoured), as ids
+  /// with a < b in canonical (a, b) order. The reference stays valid until the next update().
+  const PairList& update(const BoxSet& inBoxes);
+  /// Statistics of the last update().
+  const FrameStats& stats() const;
+  /// The configuration in force (axes change when swapped).
+  const BroadphaseConfig& config() const;
+  /// Forgets temporal state (partition bounds); the next frame starts as a first frame.
+  void reset();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Number of threads that `inRequested` (0 = all cores) resolves to.
+int resolveThreadCount(int inRequested);
+
+}  // namespace sap_broadphase
