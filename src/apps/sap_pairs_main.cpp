@@ -1,0 +1,191 @@
+// sap_pairs: reads boxes as text, prints every overlapping pair (see --help for the contract).
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "cli_args.h"
+#include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/text_io.h"
+
+namespace {
+
+using namespace sap_broadphase;
+
+const char* const kProgram = "sap_pairs";
+const char* const kUsage =
+    "usage: sap_pairs [--threads N] [--method sap|sequential|brute] [--count] [--stats]\n"
+    "                 [FILE|-]\n"
+    "\n"
+    "Reads axis-aligned boxes from FILE (or standard input when FILE is '-' or absent), one\n"
+    "box a line:  id min_x min_y min_z max_x max_y max_z\n"
+    "Fields are separated by blanks (spaces, tabs) and/or one comma; blank lines and anything\n"
+    "after '#' are ignored. Coordinates are read as C strtod reads them (inf, -inf, -0.0,\n"
+    "exponents, hex floats); ids are decimal unsigned 32-bit integers, unique. Boxes are\n"
+    "closed: touching boxes overlap.\n"
+    "\n"
+    "Prints every overlapping pair as 'a b' (a < b), one a line, sorted by (a, b).\n"
+    "\n"
+    "  --threads N   worker threads, N >= 1 (default: all cores)\n"
+    "  --method M    sap: parallel sweep-and-prune, sequential for small inputs (default)\n"
+    "                sequential: the sequential sweep;  brute: test every pair (oracle)\n"
+    "  --count       print only the number of pairs\n"
+    "  --stats       print phase times, sweep axes and dispersion D to stderr\n"
+    "  --help        print this help\n"
+    "\n"
+    "Exit status: 0 success; 2 bad input (then nothing on stdout and 'FILE:LINE: reason' on\n"
+    "stderr; FILE is '<stdin>' for standard input, LINE 0 when the file cannot be read) or bad\n"
+    "usage; 1 unexpected failure (e.g. output not writable).\n";
+
+/// What the command line asked for.
+struct PairsOptions {
+  int threads = 0;  // 0 = all cores
+  Method method = Method::kAuto;
+  bool count_only = false;
+  bool stats = false;
+  bool help = false;
+  std::string path = "-";
+};
+
+/// Parses a --method name.
+bool parseMethodName(const std::string& inName, Method& outMethod) {
+  if (inName == "sap")
+    outMethod = Method::kAuto;
+  else if (inName == "sequential")
+    outMethod = Method::kSequential;
+  else if (inName == "brute")
+    outMethod = Method::kBruteForce;
+  else
+    return false;
+  return true;
+}
+
+/// Fills outOptions from argv; returns an error message, empty on success.
+std::string parseOptions(int inArgc, char** inArgv, PairsOptions& outOptions) {
+  cli::ArgCursor cursor(inArgc, inArgv);
+  bool havePath = false;
+  while (cursor.more()) {
+    std::string arg;
+    std::string value;
+    std::string error;
+    bool isOption = false;
+    cursor.next(arg, isOption);
+    if (arg == "--") continue;
+    if (!isOption) {
+      if (havePath) return "more than one input file given ('" + arg + "')";
+      outOptions.path = arg;
+      havePath = true;
+    } else if (arg == "--threads") {
+      int64_t threads = 0;
+      if (!cursor.takeValue(arg, value, error)) return error;
+      if (!cli::parseInteger(value, 1, 4096, threads))
+        return "bad --threads value '" + value + "' (an integer from 1 to 4096)";
+      outOptions.threads = static_cast<int>(threads);
+    } else if (arg == "--method") {
+      if (!cursor.takeValue(arg, value, error)) return error;
+      if (!parseMethodName(value, outOptions.method))
+        return "bad --method value '" + value + "' (sap, sequential or brute)";
+    } else if (arg == "--count" || arg == "--stats" || arg == "--help" || arg == "-h") {
+      if (cursor.hasAttachedValue()) return arg + " takes no value";
+      if (arg == "--count")
+        outOptions.count_only = true;
+      else if (arg == "--stats")
+        outOptions.stats = true;
+      else
+        outOptions.help = true;
+    } else {
+      return "unknown option '" + arg + "'";
+    }
+  }
+  return "";
+}
+
+/// Reads the boxes of inPath ("-" = stdin); on failure prints the reason and returns false.
+bool readBoxes(const std::string& inPath, BoxSet& outBoxes) {
+  std::optional<ParseError> error;
+  if (inPath == "-") {
+    error = readBoxText(std::cin, "<stdin>", outBoxes);
+  } else {
+    struct stat info;
+    if (stat(inPath.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+      error = ParseError{inPath, 0, "cannot read: is a directory"};
+    } else {
+      std::ifstream file(inPath, std::ios::binary);
+      if (!file) {
+        error = ParseError{inPath, 0, std::string("cannot open: ") + std::strerror(errno)};
+      } else {
+        error = readBoxText(file, inPath, outBoxes);
+      }
+    }
+  }
+  if (!error) return true;
+  std::fprintf(stderr, "%s\n", error->message().c_str());
+  return false;
+}
+
+/// Prints the frame statistics to stderr.
+void printStats(const FrameStats& inStats, double inReadMs) {
+  std::fprintf(stderr,
+               "boxes %zu pairs %zu path %s threads %d\n"
+               "axes primary %s secondary %s swapped %s\n"
+               "dispersion primary %.6f secondary %.6f\n"
+               "ms read %.3f keys %.3f sort %.3f candidates %.3f pairing %.3f output %.3f "
+               "total %.3f\n",
+               inStats.boxes, inStats.pairs, framePathName(inStats.path), inStats.threads,
+               cli::axisName(inStats.primary_axis), cli::axisName(inStats.secondary_axis),
+               inStats.axes_swapped ? "yes" : "no", inStats.dispersion_primary,
+               inStats.dispersion_secondary, inReadMs, inStats.ms_keys, inStats.ms_sort,
+               inStats.ms_candidates, inStats.ms_pairing, inStats.ms_output, inStats.ms_total);
+}
+
+int run(int inArgc, char** inArgv) {
+  PairsOptions options;
+  const std::string usageError = parseOptions(inArgc, inArgv, options);
+  if (!usageError.empty()) return cli::reportUsageError(kProgram, usageError, kUsage);
+  if (options.help) {
+    std::fputs(kUsage, stdout);
+    return cli::kExitOk;
+  }
+  std::ios::sync_with_stdio(false);
+  const auto readStart = std::chrono::steady_clock::now();
+  BoxSet boxes;
+  if (!readBoxes(options.path, boxes)) return cli::kExitBadInput;
+  const double readMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart)
+          .count();
+
+  BroadphaseConfig config;
+  config.threads = options.threads;
+  config.method = options.method;
+  Broadphase broadphase(config);
+  const PairList& pairs = broadphase.update(boxes);
+  if (options.count_only) {
+    std::cout << pairs.size() << '\n';
+  } else {
+    writePairText(std::cout, pairs);
+  }
+  std::cout.flush();
+  if (options.stats) printStats(broadphase.stats(), readMs);
+  if (!std::cout) {
+    std::fprintf(stderr, "%s: cannot write the output\n", kProgram);
+    return cli::kExitFailure;
+  }
+  return cli::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", kProgram, e.what());
+    return cli::kExitFailure;
+  }
+}

@@ -1,0 +1,294 @@
+// The box/pair text format: a line tokenizer, strict number parsing, and buffered writers.
+#include "sap_broadphase/core/text_io.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <istream>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sap_broadphase {
+
+namespace {
+
+constexpr int kFieldCount = 7;  // id min_x min_y min_z max_x max_y max_z
+const char* const kCoordinateNames[6] = {"min_x", "min_y", "min_z", "max_x", "max_y", "max_z"};
+const char* const kAxisNames[3] = {"x", "y", "z"};
+
+/// Whitespace inside a line; '\r' so that CRLF files read like LF files.
+bool isBlank(char inChar) {
+  return inChar == ' ' || inChar == '\t' || inChar == '\r' || inChar == '\v' || inChar == '\f';
+}
+
+/// A field of the current line: [begin, end) offsets into the line buffer.
+struct Field {
+  std::size_t begin;
+  std::size_t end;
+};
+
+/// Splits inLine (up to a '#') into fields. A separator is a run of blanks, or one comma with
+/// optional blanks around it; an empty field (",,", a leading or trailing comma) is an error.
+/// Returns the number of fields found (it may exceed kFieldCount; only the first ones are
+/// stored), or sets outReason.
+std::size_t splitFields(const std::string& inLine, Field outFields[kFieldCount],
+                        std::string& outReason) {
+  std::size_t end = inLine.find('#');
+  if (end == std::string::npos) end = inLine.size();
+  std::size_t pos = 0;
+  std::size_t count = 0;
+  auto skipBlanks = [&]() {
+    while (pos < end && isBlank(inLine[pos])) ++pos;
+  };
+  skipBlanks();
+  if (pos == end) return 0;  // blank or comment-only line
+  while (true) {
+    if (inLine[pos] == ',') {
+      outReason = "empty field " + std::to_string(count + 1) + " (two commas in a row or a " +
+                  "leading comma)";
+      return 0;
+    }
+    const std::size_t begin = pos;
+    while (pos < end && !isBlank(inLine[pos]) && inLine[pos] != ',') ++pos;
+    if (count < static_cast<std::size_t>(kFieldCount)) outFields[count] = Field{begin, pos};
+    ++count;
+    skipBlanks();
+    if (pos == end) return count;
+    if (inLine[pos] == ',') {
+      ++pos;
+      skipBlanks();
+      if (pos == end) {
+        outReason = "empty field " + std::to_string(count + 1) + " after a trailing comma";
+        return 0;
+      }
+    }
+  }
+}
+
+/// The field's text for messages, shortened when long.
+std::string quoteField(const std::string& inLine, const Field& inField) {
+  constexpr std::size_t kMaxShown = 40;
+  const std::size_t length = inField.end - inField.begin;
+  std::string text = inLine.substr(inField.begin, std::min(length, kMaxShown));
+  if (length > kMaxShown) text += "...";
+  return "'" + text + "'";
+}
+
+/// Parses a decimal id in [0, 2^32). Digits only: no sign, no base prefix, no spaces.
+bool parseId(const std::string& inLine, const Field& inField, uint32_t& outId,
+             std::string& outReason) {
+  const char* first = inLine.data() + inField.begin;
+  const char* last = inLine.data() + inField.end;
+  const bool negative = first != last && *first == '-';
+  const char* digits = negative ? first + 1 : first;
+  const bool allDigits =
+      digits != last && std::all_of(digits, last, [](char c) { return c >= '0' && c <= '9'; });
+  if (!allDigits) {
+    outReason = "id is not a decimal integer: " + quoteField(inLine, inField);
+    return false;
+  }
+  uint64_t value = 0;
+  const auto result = std::from_chars(digits, last, value);
+  if (negative || result.ec != std::errc() || value > UINT32_MAX) {
+    outReason = "id out of range (0..4294967295): " + quoteField(inLine, inField);
+    return false;
+  }
+  outId = static_cast<uint32_t>(value);
+  return true;
+}
+
+/// Parses a coordinate as strtod does; the whole field must be consumed. ioLine is the line
+/// buffer: the character after the field is set to '\0' for strtod (fields are known already).
+bool parseCoordinate(std::string& ioLine, const Field& inField, int inIndex, double& outValue,
+                     std::string& outReason) {
+  const char saved = ioLine[inField.end];  // ioLine.size() is valid: std::string ends in '\0'
+  ioLine[inField.end] = '\0';
+  char* parsedEnd = nullptr;
+  const char* first = ioLine.data() + inField.begin;
+  outValue = std::strtod(first, &parsedEnd);  // overflow gives +-inf, underflow 0/subnormal
+  ioLine[inField.end] = saved;
+  if (parsedEnd != ioLine.data() + inField.end) {
+    outReason =
+        std::string(kCoordinateNames[inIndex]) + " is not a number: " + quoteField(ioLine, inField);
+    return false;
+  }
+  if (std::isnan(outValue)) {
+    outReason = std::string("NaN in ") + kCoordinateNames[inIndex];
+    return false;
+  }
+  return true;
+}
+
+/// Shortest text that reads back as exactly inValue ("inf", "-inf", "-0" included).
+std::string formatDouble(double inValue) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), inValue);
+  return std::string(buffer, result.ptr);
+}
+
+/// Parses one non-blank line into a box; the reason is set on failure.
+bool parseBoxLine(std::string& ioLine, const Field inFields[kFieldCount], uint32_t& outId,
+                  double outMin[3], double outMax[3], std::string& outReason) {
+  if (!parseId(ioLine, inFields[0], outId, outReason)) return false;
+  double values[6];
+  for (int k = 0; k < 6; ++k) {
+    if (!parseCoordinate(ioLine, inFields[k + 1], k, values[k], outReason)) return false;
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    outMin[axis] = values[axis];
+    outMax[axis] = values[axis + 3];
+    if (outMin[axis] > outMax[axis]) {
+      outReason = std::string("min_") + kAxisNames[axis] + " (" + formatDouble(outMin[axis]) +
+                  ") > max_" + kAxisNames[axis] + " (" + formatDouble(outMax[axis]) + ")";
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Finds the earliest line (in file order) whose id already appeared on an earlier line.
+/// inLines[i] is the line of box i; lines grow with i. Returns false when ids are unique.
+bool findFirstDuplicate(const std::vector<uint32_t>& inIds, const std::vector<std::size_t>& inLines,
+                        std::size_t& outLine, std::string& outReason) {
+  std::vector<uint64_t> keys(inIds.size());  // id << 32 | index: sorting groups equal ids
+  for (std::size_t i = 0; i < inIds.size(); ++i) keys[i] = (uint64_t{inIds[i]} << 32) | i;
+  std::sort(keys.begin(), keys.end());
+  // Within a group of equal ids the entries are in line order: the group's second entry is
+  // the id's first repetition.
+  std::size_t bestSecond = inIds.size();
+  std::size_t bestFirst = 0;
+  for (std::size_t k = 1; k < keys.size(); ++k) {
+    const bool sameId = (keys[k] >> 32) == (keys[k - 1] >> 32);
+    const bool groupSecond = sameId && (k == 1 || (keys[k - 2] >> 32) != (keys[k] >> 32));
+    const std::size_t second = keys[k] & 0xFFFFFFFFu;
+    if (groupSecond && second < bestSecond) {
+      bestSecond = second;
+      bestFirst = keys[k - 1] & 0xFFFFFFFFu;
+    }
+  }
+  if (bestSecond == inIds.size()) return false;
+  outLine = inLines[bestSecond];
+  outReason = "duplicate id " + std::to_string(inIds[bestSecond]) + " (first on line " +
+              std::to_string(inLines[bestFirst]) + ")";
+  return true;
+}
+
+/// Appends one box to ioBoxes (no groups or masks in the text format).
+void appendBox(BoxSet& ioBoxes, uint32_t inId, const double inMin[3], const double inMax[3]) {
+  ioBoxes.ids.push_back(inId);
+  for (int axis = 0; axis < 3; ++axis) {
+    ioBoxes.lo[axis].push_back(inMin[axis]);
+    ioBoxes.hi[axis].push_back(inMax[axis]);
+  }
+}
+
+/// Collects output text and hands it to the stream in large blocks.
+class BlockWriter {
+ public:
+  explicit BlockWriter(std::ostream& ioOutput) : output_(ioOutput) {}
+  ~BlockWriter() { flush(); }
+  /// Room for at least inBytes more characters; returns where to write them.
+  char* reserve(std::size_t inBytes) {
+    if (used_ + inBytes > sizeof(buffer_)) flush();
+    return buffer_ + used_;
+  }
+  /// Marks the characters up to inEnd as written.
+  void commit(char* inEnd) { used_ = static_cast<std::size_t>(inEnd - buffer_); }
+  void flush() {
+    if (used_ > 0) output_.write(buffer_, static_cast<std::streamsize>(used_));
+    used_ = 0;
+  }
+
+ private:
+  std::ostream& output_;
+  char buffer_[1 << 16];
+  std::size_t used_ = 0;
+};
+
+}  // namespace
+
+std::string ParseError::message() const {
+  return source + ":" + std::to_string(line) + ": " + reason;
+}
+
+std::optional<ParseError> readBoxText(std::istream& ioInput, const std::string& inSource,
+                                      BoxSet& outBoxes) {
+  outBoxes.clear();
+  outBoxes.groups.clear();
+  outBoxes.masks.clear();
+  std::vector<std::size_t> boxLines;  // line of each box, for duplicate-id messages
+  std::string line;
+  std::size_t lineNumber = 0;
+  auto fail = [&](std::size_t inLine, std::string inReason) {
+    // A duplicate id on an earlier line is the first problem in file order.
+    std::size_t duplicateLine = 0;
+    std::string duplicateReason;
+    if (findFirstDuplicate(outBoxes.ids, boxLines, duplicateLine, duplicateReason)) {
+      inLine = duplicateLine;
+      inReason = std::move(duplicateReason);
+    }
+    outBoxes.clear();
+    return ParseError{inSource, inLine, std::move(inReason)};
+  };
+  while (std::getline(ioInput, line)) {
+    ++lineNumber;
+    Field fields[kFieldCount];
+    std::string reason;
+    const std::size_t count = splitFields(line, fields, reason);
+    if (!reason.empty()) return fail(lineNumber, reason);
+    if (count == 0) continue;
+    if (count != static_cast<std::size_t>(kFieldCount)) {
+      return fail(lineNumber, "expected 7 fields (id min_x min_y min_z max_x max_y max_z), found " +
+                                  std::to_string(count));
+    }
+    uint32_t id = 0;
+    double lo[3];
+    double hi[3];
+    if (!parseBoxLine(line, fields, id, lo, hi, reason)) return fail(lineNumber, reason);
+    appendBox(outBoxes, id, lo, hi);
+    boxLines.push_back(lineNumber);
+  }
+  if (ioInput.bad()) return fail(lineNumber + 1, "read error");
+  std::size_t duplicateLine = 0;
+  std::string duplicateReason;
+  if (findFirstDuplicate(outBoxes.ids, boxLines, duplicateLine, duplicateReason)) {
+    outBoxes.clear();
+    return ParseError{inSource, duplicateLine, duplicateReason};
+  }
+  return std::nullopt;
+}
+
+void writeBoxText(std::ostream& ioOutput, const BoxSet& inBoxes) {
+  BlockWriter writer(ioOutput);
+  constexpr std::size_t kMaxLineBytes = 16 + 6 * 32;  // id + six shortest doubles (<= 24 each)
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    char* out = writer.reserve(kMaxLineBytes);
+    out = std::to_chars(out, out + 16, inBoxes.ids[i]).ptr;
+    for (int k = 0; k < 6; ++k) {
+      const double value = k < 3 ? inBoxes.lo[k][i] : inBoxes.hi[k - 3][i];
+      *out++ = ' ';
+      out = std::to_chars(out, out + 31, value).ptr;
+    }
+    *out++ = '\n';
+    writer.commit(out);
+  }
+}
+
+void writePairText(std::ostream& ioOutput, const PairList& inPairs) {
+  BlockWriter writer(ioOutput);
+  constexpr std::size_t kMaxLineBytes = 2 * 11 + 2;
+  for (const IdPair& pair : inPairs) {
+    char* out = writer.reserve(kMaxLineBytes);
+    out = std::to_chars(out, out + 11, pair.a).ptr;
+    *out++ = ' ';
+    out = std::to_chars(out, out + 11, pair.b).ptr;
+    *out++ = '\n';
+    writer.commit(out);
+  }
+}
+
+}  // namespace sap_broadphase
