@@ -13,6 +13,8 @@ namespace sap_broadphase {
 constexpr uint32_t kDefaultGroup = 0x1u;
 /// Groups a box collides with when no mask is given.
 constexpr uint32_t kDefaultMask = 0xFFFFFFFFu;
+/// Most boxes one frame may hold: endpoint indexes 0..2n-1 must fit in 32 bits.
+constexpr std::size_t kMaxBoxes = (std::size_t{1} << 31) - 1;
 
 /// A set of axis-aligned boxes, closed intervals, float64, in structure-of-arrays layout.
 /// Box i is [lo[0][i], hi[0][i]] x [lo[1][i], hi[1][i]] x [lo[2][i], hi[2][i]].
@@ -52,8 +54,9 @@ struct ValidationError {
   std::string message() const;
 };
 
-/// Checks every box: no NaN, min <= max on every axis, unique ids, groups/masks either empty
-/// or one per box, and equal array lengths. Returns the first problem found, or nothing.
+/// Checks every box: no NaN, min <= max on every axis (infinities allowed), unique ids,
+/// groups/masks either empty or one per box, equal array lengths, at most kMaxBoxes boxes.
+/// Returns the first problem found (lowest box index for coordinate problems), or nothing.
 std::optional<ValidationError> validate(const BoxSet& inBoxes);
 
 /// True when boxes a and b overlap on all three axes (closed intervals: touching overlaps).

@@ -12,7 +12,7 @@ namespace sap_broadphase {
 
 /// Which algorithm computes a frame.
 enum class Method : uint8_t {
-  kAuto,        ///< sequential below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
+  kAuto,  ///< sequential below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
   kParallel,    ///< Algorithms 2, 3 and 4 of the paper
   kSequential,  ///< Algorithm 1 of the paper
   kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
@@ -20,15 +20,15 @@ enum class Method : uint8_t {
 
 /// What a caller may tune. Defaults are the exact, adaptive engine.
 struct BroadphaseConfig {
-  int threads = 0;                   ///< worker threads; 0 = all cores (omp_get_max_threads)
-  Method method = Method::kAuto;     ///< algorithm choice
-  int primary_axis = 0;              ///< first sweep axis (0 = x, 1 = y, 2 = z)
-  int secondary_axis = 1;            ///< second sweep axis; must differ from primary_axis
-  bool axis_swapping = true;         ///< swap a clustered sweep axis with the unused one (§5)
-  double axis_swap_threshold = 0.25; ///< dispersion D above which an axis is swapped
+  int threads = 0;                        ///< worker threads; 0 = all cores (omp_get_max_threads)
+  Method method = Method::kAuto;          ///< algorithm choice
+  int primary_axis = 0;                   ///< first sweep axis (0 = x, 1 = y, 2 = z)
+  int secondary_axis = 1;                 ///< second sweep axis; must differ from primary_axis
+  bool axis_swapping = true;              ///< swap a clustered sweep axis with the unused one (§5)
+  double axis_swap_threshold = 0.25;      ///< dispersion D above which an axis is swapped
   std::size_t parallel_min_boxes = 4096;  ///< kAuto runs sequentially below this many boxes
-  bool exact_final_test = true;      ///< false: report pairs whose float32 keys overlap (faster,
-                                     ///< may report extra pairs; never misses one)
+  bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
+                                 ///< may report extra pairs; never misses one)
 };
 
 /// Which path computed a frame.

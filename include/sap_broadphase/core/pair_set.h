@@ -19,7 +19,9 @@ struct IdPair {
 using PairList = std::vector<IdPair>;
 
 /// Makes a < b in the pair (swaps when needed).
-inline IdPair makeIdPair(uint32_t x, uint32_t y) { return x < y ? IdPair{x, y} : IdPair{y, x}; }
+inline IdPair makeIdPair(uint32_t x, uint32_t y) {
+  return x < y ? IdPair{x, y} : IdPair{y, x};
+}
 
 /// Sorts pairs by (a, b) with a stable LSD radix sort on the 64-bit key a<<32|b: the canonical
 /// order used wherever pairs leave the process. ioScratch is reused between calls.

@@ -21,12 +21,12 @@ bool parseSceneKind(const std::string& inName, SceneKind& outKind);
 
 struct SceneConfig {
   SceneKind kind = SceneKind::kUniform;
-  std::size_t n = 1000;    ///< boxes (plane: rounded down to a square grid side^2)
-  double density = 0.05;   ///< uniform: sum of box volumes / world volume
+  std::size_t n = 1000;   ///< boxes (plane: rounded down to a square grid side^2)
+  double density = 0.05;  ///< uniform: sum of box volumes / world volume
   uint64_t seed = 1;
-  int plane_axis = 0;      ///< plane: the axis u that all boxes cross at mid-run
-  int frames = 500;        ///< ball and plane: run length the motion is timed for
-  double speed = 0.05;     ///< uniform: mean distance per frame, in mean box edges
+  int plane_axis = 0;   ///< plane: the axis u that all boxes cross at mid-run
+  int frames = 500;     ///< ball and plane: run length the motion is timed for
+  double speed = 0.05;  ///< uniform: mean distance per frame, in mean box edges
 };
 
 /// A running scene: boxes() is frame frame(); step() advances one frame.
@@ -47,9 +47,9 @@ class SceneSimulator {
 
   SceneConfig config_;
   int frame_ = 0;
-  double world_half_ = 1.0;                // world cube is [-world_half_, world_half_]^3
-  std::vector<double> center_[3];          // uniform: current centre; ball/plane: start centre
-  std::vector<double> velocity_[3];        // uniform: per frame
+  double world_half_ = 1.0;          // world cube is [-world_half_, world_half_]^3
+  std::vector<double> center_[3];    // uniform: current centre; ball/plane: start centre
+  std::vector<double> velocity_[3];  // uniform: per frame
   std::vector<double> half_extent_[3];
   BoxSet boxes_;
 };

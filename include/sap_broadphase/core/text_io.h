@@ -13,8 +13,8 @@ namespace sap_broadphase {
 
 /// Where and why a text input was refused.
 struct ParseError {
-  std::string source;     ///< file name, or "-" for standard input
-  std::size_t line = 0;   ///< 1-based line number (0 when the file could not be read at all)
+  std::string source;    ///< file name, or "-" for standard input
+  std::size_t line = 0;  ///< 1-based line number (0 when the file could not be read at all)
   std::string reason;
   /// "FILE:LINE: reason"
   std::string message() const;

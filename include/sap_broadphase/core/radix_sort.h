@@ -1,0 +1,60 @@
+// Stable LSD radix index sort (paper §4.1) and the partitioned parallel sort of Algorithm 2.
+//
+// Items are packed as (key << 32 | index) so every pass moves one 64-bit word and the index
+// travels with its key. Keys are 32-bit, sorted with 11-bit digits (3 passes at most); a pass
+// whose digit is the same for every item is skipped. Equal keys keep index order, which puts a
+// box's low endpoint (index i) before any high endpoint (index i + n) at the same coordinate:
+// closed-interval semantics.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace sap_broadphase {
+
+/// Packs a key and an index into one sortable word.
+inline uint64_t packKeyIndex(uint32_t inKey, uint32_t inIndex) {
+  return (uint64_t{inKey} << 32) | inIndex;
+}
+
+/// Sorts packed items by key (upper 32 bits), stably. ioScratch must hold inCount items.
+/// Returns the buffer holding the result: ioItems or ioScratch.
+uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount);
+
+/// Stable sequential index sort: outIndex[k] is the index of the k-th smallest key.
+void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex);
+
+/// Partition bounds B of one axis, carried from frame to frame (temporal coherence).
+struct AxisBounds {
+  std::vector<uint32_t> bounds;  ///< m-1 ascending keys: partition p holds keys in [b_{p-1}, b_p)
+  bool from_previous_frame = false;  ///< false: next sort initialises B from the span
+};
+
+/// Algorithm 2: splits the keys into m partitions by B, radix-sorts each partition in parallel,
+/// then updates B from the sorted order and measures the dispersion D of eq. (1).
+class PartitionedSorter {
+ public:
+  /// Sorts inKeys[0..inCount) into outIndex using inPartitions partitions and inThreads
+  /// threads; reads and updates ioBounds. Returns D for this sort.
+  double sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions, int inThreads,
+              AxisBounds& ioBounds, uint32_t* outIndex);
+
+ private:
+  void initialiseBoundsFromSpan(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
+                                int inThreads, AxisBounds& ioBounds);
+  void scatterIntoPartitions(const uint32_t* inKeys, uint32_t inCount, const AxisBounds& inBounds,
+                             int inThreads);
+  void sortPartitionsAndExtract(int inThreads, uint32_t* outIndex);
+  void updateBoundsFromSorted(const uint32_t* inKeys, const uint32_t* inSorted, uint32_t inCount,
+                              AxisBounds& ioBounds) const;
+  double dispersion(uint32_t inCount) const;
+
+  std::vector<uint64_t> items_;
+  std::vector<uint64_t> scratch_;
+  std::vector<uint32_t> counts_;              // [thread][partition]
+  std::vector<std::size_t> partition_begin_;  // m + 1 offsets
+  std::vector<uint32_t> partition_size_;
+};
+
+}  // namespace sap_broadphase

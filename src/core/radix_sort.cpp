@@ -1,0 +1,184 @@
+#include "sap_broadphase/core/radix_sort.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "sap_broadphase/core/sort_keys.h"
+
+namespace sap_broadphase {
+namespace {
+
+constexpr int kDigitBits = 11;
+constexpr uint32_t kDigitValues = 1u << kDigitBits;
+constexpr int kPasses = 3;  // 11 + 11 + 10 bits cover a 32-bit key
+// Below this size a comparison sort beats clearing three 2048-entry histograms.
+constexpr std::size_t kSmallSort = 256;
+
+inline uint32_t digitOf(uint64_t inItem, int inPass) {
+  return static_cast<uint32_t>(inItem >> (32 + inPass * kDigitBits)) & (kDigitValues - 1);
+}
+
+// Index of the partition holding inKey: the number of bounds <= inKey.
+inline int partitionOf(uint32_t inKey, const uint32_t* inBounds, int inBoundCount) {
+  return static_cast<int>(std::upper_bound(inBounds, inBounds + inBoundCount, inKey) - inBounds);
+}
+
+}  // namespace
+
+uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
+  if (inCount < kSmallSort) {
+    // Items are unique (distinct indexes), so sorting whole words is a stable sort by key
+    // provided equal keys arrive in index order, which every caller guarantees.
+    std::sort(ioItems, ioItems + inCount);
+    return ioItems;
+  }
+  std::array<std::array<uint32_t, kDigitValues>, kPasses> histograms;  // 24 KiB, on the stack
+  for (auto& histogram : histograms) histogram.fill(0);
+  for (std::size_t k = 0; k < inCount; ++k)
+    for (int pass = 0; pass < kPasses; ++pass) ++histograms[pass][digitOf(ioItems[k], pass)];
+
+  uint64_t* source = ioItems;
+  uint64_t* target = ioScratch;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    std::array<uint32_t, kDigitValues>& histogram = histograms[pass];
+    // A digit equal for every item would copy the data without reordering it: skip the pass.
+    if (histogram[digitOf(source[0], pass)] == inCount) continue;
+    uint32_t offset = 0;
+    for (uint32_t& bucket : histogram) {
+      const uint32_t bucket_size = bucket;
+      bucket = offset;
+      offset += bucket_size;
+    }
+    for (std::size_t k = 0; k < inCount; ++k) {
+      const uint64_t item = source[k];
+      target[histogram[digitOf(item, pass)]++] = item;
+    }
+    std::swap(source, target);
+  }
+  return source;
+}
+
+void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex) {
+  std::vector<uint64_t> items(inCount), scratch(inCount);
+  for (uint32_t i = 0; i < inCount; ++i) items[i] = packKeyIndex(inKeys[i], i);
+  const uint64_t* sorted =
+      inCount ? radixSortPacked(items.data(), scratch.data(), inCount) : nullptr;
+  for (uint32_t k = 0; k < inCount; ++k) outIndex[k] = static_cast<uint32_t>(sorted[k]);
+}
+
+double PartitionedSorter::sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
+                               int inThreads, AxisBounds& ioBounds, uint32_t* outIndex) {
+  if (inCount == 0) return 0.0;
+  const int partitions = std::max(1, inPartitions);
+  if (!ioBounds.from_previous_frame ||
+      ioBounds.bounds.size() != static_cast<std::size_t>(partitions - 1))
+    initialiseBoundsFromSpan(inKeys, inCount, partitions, inThreads, ioBounds);
+  items_.resize(inCount);
+  scratch_.resize(inCount);
+  scatterIntoPartitions(inKeys, inCount, ioBounds, inThreads);
+  sortPartitionsAndExtract(inThreads, outIndex);
+  updateBoundsFromSorted(inKeys, outIndex, inCount, ioBounds);
+  return dispersion(inCount);
+}
+
+// First frame (or after an axis swap): b_p = min + p * span / m over the finite coordinates.
+void PartitionedSorter::initialiseBoundsFromSpan(const uint32_t* inKeys, uint32_t inCount,
+                                                 int inPartitions, int inThreads,
+                                                 AxisBounds& ioBounds) {
+  float lowest = std::numeric_limits<float>::infinity();
+  float highest = -std::numeric_limits<float>::infinity();
+#pragma omp parallel for num_threads(inThreads) reduction(min : lowest) reduction(max : highest)
+  for (uint32_t k = 0; k < inCount; ++k) {
+    const float value = keyToFloat(inKeys[k]);
+    if (std::isfinite(value)) {
+      lowest = std::min(lowest, value);
+      highest = std::max(highest, value);
+    }
+  }
+  ioBounds.bounds.resize(inPartitions - 1);
+  const bool have_span = lowest <= highest;
+  for (int p = 1; p < inPartitions; ++p) {
+    const double fraction = static_cast<double>(p) / inPartitions;
+    ioBounds.bounds[p - 1] =
+        have_span ? floatToKey(static_cast<float>(lowest + fraction * (double(highest) - lowest)))
+                  : static_cast<uint32_t>(fraction * 4294967295.0);
+  }
+  ioBounds.from_previous_frame = false;
+}
+
+// Algorithm 2, lines 1-3: each thread counts, then places, its contiguous slice of the keys,
+// so every partition receives its items in index order (the sort stays stable).
+void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t inCount,
+                                              const AxisBounds& inBounds, int inThreads) {
+  const int partitions = static_cast<int>(inBounds.bounds.size()) + 1;
+  const int bound_count = partitions - 1;
+  const uint32_t* bounds = inBounds.bounds.data();
+  counts_.assign(static_cast<std::size_t>(inThreads) * partitions, 0);
+  partition_begin_.assign(partitions + 1, 0);
+  partition_size_.assign(partitions, 0);
+#pragma omp parallel num_threads(inThreads)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    const uint32_t begin = static_cast<uint32_t>(uint64_t{inCount} * thread / team);
+    const uint32_t end = static_cast<uint32_t>(uint64_t{inCount} * (thread + 1) / team);
+    uint32_t* my_counts = &counts_[static_cast<std::size_t>(thread) * partitions];
+    for (uint32_t k = begin; k < end; ++k) ++my_counts[partitionOf(inKeys[k], bounds, bound_count)];
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t offset = 0;
+      for (int p = 0; p < partitions; ++p) {
+        partition_begin_[p] = offset;
+        for (int t = 0; t < team; ++t) {
+          uint32_t& slot = counts_[static_cast<std::size_t>(t) * partitions + p];
+          const uint32_t size = slot;
+          slot = static_cast<uint32_t>(offset);
+          offset += size;
+        }
+        partition_size_[p] = static_cast<uint32_t>(offset - partition_begin_[p]);
+      }
+      partition_begin_[partitions] = offset;
+    }
+    for (uint32_t k = begin; k < end; ++k) {
+      const int p = partitionOf(inKeys[k], bounds, bound_count);
+      items_[my_counts[p]++] = packKeyIndex(inKeys[k], k);
+    }
+  }
+}
+
+// Algorithm 2, lines 4-5: the partitions are independent; larger ones are handed out first.
+void PartitionedSorter::sortPartitionsAndExtract(int inThreads, uint32_t* outIndex) {
+  const int partitions = static_cast<int>(partition_size_.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(inThreads)
+  for (int p = 0; p < partitions; ++p) {
+    const std::size_t begin = partition_begin_[p];
+    const std::size_t size = partition_size_[p];
+    if (size == 0) continue;
+    const uint64_t* sorted = radixSortPacked(&items_[begin], &scratch_[begin], size);
+    for (std::size_t k = 0; k < size; ++k) outIndex[begin + k] = static_cast<uint32_t>(sorted[k]);
+  }
+}
+
+// Algorithm 2, lines 6-7: next frame's bounds are this frame's keys at ranks p * floor(2n/m).
+void PartitionedSorter::updateBoundsFromSorted(const uint32_t* inKeys, const uint32_t* inSorted,
+                                               uint32_t inCount, AxisBounds& ioBounds) const {
+  const std::size_t partitions = ioBounds.bounds.size() + 1;
+  const std::size_t step = inCount / partitions;
+  for (std::size_t p = 1; p < partitions; ++p) ioBounds.bounds[p - 1] = inKeys[inSorted[p * step]];
+  ioBounds.from_previous_frame = true;
+}
+
+// Eq. (1): D = sum_p |x_p - mu| / (2n), with mu the ideal partition size.
+double PartitionedSorter::dispersion(uint32_t inCount) const {
+  const double ideal = static_cast<double>(inCount) / partition_size_.size();
+  double deviation = 0.0;
+  for (uint32_t size : partition_size_) deviation += std::abs(size - ideal);
+  return deviation / inCount;
+}
+
+}  // namespace sap_broadphase

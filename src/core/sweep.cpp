@@ -1,0 +1,201 @@
+#include "sap_broadphase/core/sweep.h"
+
+#include <omp.h>
+
+#include <algorithm>
+
+namespace sap_broadphase {
+namespace {
+
+// The exact closed-interval test on all three axes, on float64 values.
+inline bool overlaps(const RankedBox& inA, const RankedBox& inB) {
+  return inA.lo[0] <= inB.hi[0] && inB.lo[0] <= inA.hi[0] && inA.lo[1] <= inB.hi[1] &&
+         inB.lo[1] <= inA.hi[1] && inA.lo[2] <= inB.hi[2] && inB.lo[2] <= inA.hi[2];
+}
+
+// The keys-only test: outward-rounded float32 keys (a superset of the exact pairs).
+inline bool overlaps(const RankedKeys& inA, const RankedKeys& inB) {
+  return inA.lo[0] <= inB.hi[0] && inB.lo[0] <= inA.hi[0] && inA.lo[1] <= inB.hi[1] &&
+         inB.lo[1] <= inA.hi[1] && inA.lo[2] <= inB.hi[2] && inB.lo[2] <= inA.hi[2];
+}
+
+inline bool filtersAllow(const RankedFilter& inA, const RankedFilter& inB) {
+  return (inA.group & inB.mask) != 0 && (inB.group & inA.mask) != 0;
+}
+
+// Tests object `object` (rank `object_rank`) against the active ranks of `active` in
+// [inBegin, inEnd) (local coordinates; add `rank_offset` for global ranks).
+template <typename Ranked>
+inline void testCandidates(const PairingInput& inInput, const Ranked* inRanked,
+                           const SuccTree& inActive, uint32_t inRankOffset, uint32_t inBegin,
+                           uint32_t inEnd, uint32_t inObject, uint32_t inObjectRank,
+                           PairList& outPairs) {
+  const Ranked& box = inRanked[inObjectRank];
+  const RankedFilter* filters = inInput.filters;
+  const uint32_t* object_of_rank = inInput.ranges->object_of_rank.data();
+  inActive.forEachInRange(inBegin, inEnd, [&](uint32_t inLocalRank) {
+    const uint32_t other_rank = inLocalRank + inRankOffset;
+    if (!overlaps(box, inRanked[other_rank])) return;
+    if (filters && !filtersAllow(filters[inObjectRank], filters[other_rank])) return;
+    outPairs.push_back(makeIdPair(inInput.ids[inObject], inInput.ids[object_of_rank[other_rank]]));
+  });
+}
+
+template <typename Ranked>
+void pairPartition(const PairingInput& inInput, const Ranked* inRanked, uint32_t inRankBegin,
+                   uint32_t inRankEnd, SuccTree& ioActive, PairList& outPairs) {
+  const uint32_t n = inInput.objects;
+  const RankRange* ranges = inInput.ranges->of_object.data();
+  const uint32_t* order = inInput.secondary_order;
+  for (uint32_t k = 0; k < 2 * n; ++k) {
+    const uint32_t endpoint = order[k];
+    if (endpoint < n) {
+      const RankRange& range = ranges[endpoint];
+      // Algorithm 4, lines 10-12: clip the candidate range to this partition's ranks.
+      if (range.low < inRankEnd && inRankBegin < range.high) {
+        const uint32_t begin = std::max(range.low, inRankBegin) - inRankBegin;
+        const uint32_t end = std::min(range.high, inRankEnd) - inRankBegin;
+        testCandidates(inInput, inRanked, ioActive, inRankBegin, begin, end, endpoint, range.rank,
+                       outPairs);
+      }
+      if (range.rank >= inRankBegin && range.rank < inRankEnd)
+        ioActive.insert(range.rank - inRankBegin);
+    } else {
+      const uint32_t rank = ranges[endpoint - n].rank;
+      if (rank >= inRankBegin && rank < inRankEnd) ioActive.erase(rank - inRankBegin);
+    }
+  }
+}
+
+void pairRankRange(const PairingInput& inInput, uint32_t inRankBegin, uint32_t inRankEnd,
+                   SuccTree& ioActive, PairList& outPairs) {
+  if (inInput.boxes)
+    pairPartition(inInput, inInput.boxes, inRankBegin, inRankEnd, ioActive, outPairs);
+  else
+    pairPartition(inInput, inInput.keys, inRankBegin, inRankEnd, ioActive, outPairs);
+}
+
+// Sweeps order[inBegin, inEnd) of the primary axis from the active set ioActive and the rank
+// counter inLowsBefore, writing L and U (Algorithm 1, lines 6-14 without rank assignment).
+void sweepCandidateSlice(const uint32_t* inOrder, uint32_t inObjects, std::size_t inBegin,
+                         std::size_t inEnd, uint32_t inLowsBefore, SuccTree& ioActive,
+                         RankRange* ioRanges) {
+  uint32_t lows_seen = inLowsBefore;
+  for (std::size_t k = inBegin; k < inEnd; ++k) {
+    const uint32_t endpoint = inOrder[k];
+    if (endpoint < inObjects) {
+      RankRange& range = ioRanges[endpoint];
+      range.low = ioActive.empty() ? range.rank : ioActive.min();
+      ioActive.insert(range.rank);
+      ++lows_seen;
+    } else {
+      RankRange& range = ioRanges[endpoint - inObjects];
+      range.high = lows_seen;
+      ioActive.erase(range.rank);
+    }
+  }
+}
+
+}  // namespace
+
+void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObjects,
+                                 SuccTree& ioActive, CandidateRanges& outRanges) {
+  outRanges.of_object.resize(inObjects);
+  outRanges.object_of_rank.resize(inObjects);
+  uint32_t next_rank = 0;
+  for (std::size_t k = 0; k < 2 * std::size_t{inObjects}; ++k) {
+    const uint32_t endpoint = inPrimaryOrder[k];
+    if (endpoint < inObjects) {
+      outRanges.of_object[endpoint].rank = next_rank;
+      outRanges.object_of_rank[next_rank++] = endpoint;
+    }
+  }
+  ioActive.resize(inObjects);
+  sweepCandidateSlice(inPrimaryOrder, inObjects, 0, 2 * std::size_t{inObjects}, 0, ioActive,
+                      outRanges.of_object.data());
+}
+
+void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
+                               SweepWorkspace& ioWork, CandidateRanges& outRanges) {
+  const int slices = std::max(1, inThreads);
+  const std::size_t endpoints = 2 * std::size_t{inObjects};
+  outRanges.of_object.resize(inObjects);
+  outRanges.object_of_rank.resize(inObjects);
+  ioWork.partition_local.resize(slices);
+  ioWork.partition_start.resize(slices);
+  ioWork.lows_before.assign(slices + 1, 0);
+  RankRange* ranges = outRanges.of_object.data();
+  uint32_t* object_of_rank = outRanges.object_of_rank.data();
+#pragma omp parallel num_threads(slices)
+  {
+    const int slice = omp_get_thread_num();
+    const std::size_t begin = endpoints * slice / slices;
+    const std::size_t end = endpoints * (slice + 1) / slices;
+    // Lines 4-7: count the lows of each slice, then an exclusive prefix sum gives rank bases.
+    uint32_t lows = 0;
+    for (std::size_t k = begin; k < end; ++k) lows += inPrimaryOrder[k] < inObjects;
+    ioWork.lows_before[slice + 1] = lows;
+#pragma omp barrier
+#pragma omp single
+    for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
+    // Lines 8-11: ranks.
+    uint32_t next_rank = ioWork.lows_before[slice];
+    for (std::size_t k = begin; k < end; ++k) {
+      const uint32_t endpoint = inPrimaryOrder[k];
+      if (endpoint < inObjects) {
+        ranges[endpoint].rank = next_rank;
+        object_of_rank[next_rank++] = endpoint;
+      }
+    }
+    // Lines 12-14: each slice's own tree keeps the ranks with one endpoint inside the slice.
+    SuccTree& local = ioWork.partition_local[slice];
+    if (local.size() != inObjects) local.resize(inObjects);
+#pragma omp barrier
+    for (std::size_t k = begin; k < end; ++k) {
+      const uint32_t endpoint = inPrimaryOrder[k];
+      local.toggle(ranges[endpoint < inObjects ? endpoint : endpoint - inObjects].rank);
+    }
+#pragma omp barrier
+    // Line 15: the active set at the start of the slice is the ⊕ of all earlier slices' trees.
+    SuccTree& active = ioWork.partition_start[slice];
+    if (active.size() != inObjects)
+      active.resize(inObjects);
+    else
+      active.clear();
+    for (int earlier = 0; earlier < slice; ++earlier)
+      active.symmetricDifference(ioWork.partition_local[earlier]);
+    // Lines 16-23.
+    sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice], active,
+                        ranges);
+#pragma omp barrier
+    local.clear();  // leave both trees empty for the next frame
+    active.clear();
+  }
+}
+
+void pairSequential(const PairingInput& inInput, SuccTree& ioActive, PairList& outPairs) {
+  ioActive.resize(inInput.objects);
+  pairRankRange(inInput, 0, inInput.objects, ioActive, outPairs);
+}
+
+void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
+                  std::vector<PairList>& outPairsPerThread) {
+  const int partitions = std::max(1, inThreads);
+  const uint32_t n = inInput.objects;
+  const uint32_t partition_size = (n + partitions - 1) / partitions;  // Δ of Algorithm 4
+  ioWork.pairing.resize(partitions);
+  outPairsPerThread.resize(partitions);
+#pragma omp parallel num_threads(partitions)
+  {
+    const int partition = omp_get_thread_num();
+    const uint32_t rank_begin = std::min<uint64_t>(n, uint64_t{partition_size} * partition);
+    const uint32_t rank_end = std::min<uint64_t>(n, uint64_t{rank_begin} + partition_size);
+    SuccTree& active = ioWork.pairing[partition];
+    if (active.size() != partition_size) active.resize(partition_size);
+    PairList& pairs = outPairsPerThread[partition];
+    pairs.clear();
+    if (rank_begin < rank_end) pairRankRange(inInput, rank_begin, rank_end, active, pairs);
+  }
+}
+
+}  // namespace sap_broadphase
