@@ -1,0 +1,36 @@
+// Messages <-> engine types: the only place where ROS messages meet the core.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <std_msgs/Header.h>
+
+#include "sap_broadphase/BoxArray.h"
+#include "sap_broadphase/PairArray.h"
+#include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
+
+namespace sap_broadphase {
+
+/// Cheap O(1) check of the array lengths of a BoxArray: bounds 6 per box, ids/groups/masks
+/// empty or one per box. Returns the reason of a refusal, or nothing when the shape is right.
+std::optional<std::string> checkBoxArrayShape(const BoxArray& inMsg);
+
+/// Converts a BoxArray into outBoxes (replaced; capacity reused) and validates it fully: shape,
+/// NaN, min > max, duplicate ids. Empty `ids` number the boxes 0..n-1. Returns the reason of a
+/// refusal naming the box, e.g. "box 3 (id 17): min_y (3) > max_y (2)", or nothing.
+std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes);
+
+/// Fills outMsg (replaced) with inPairs as consecutive id pairs, header copied from inHeader.
+void pairListToPairArray(const PairList& inPairs, const std_msgs::Header& inHeader,
+                         PairArray& outMsg);
+
+/// Fills outMsg (replaced) with the boxes of inBoxes; ids are always written.
+void boxSetToBoxArray(const BoxSet& inBoxes, const std_msgs::Header& inHeader, BoxArray& outMsg);
+
+/// Reads the pairs of a PairArray back into outPairs (replaced). Returns false when the array
+/// has an odd length.
+bool pairArrayToPairList(const PairArray& inMsg, PairList& outPairs);
+
+}  // namespace sap_broadphase

@@ -1,0 +1,46 @@
+// rviz wireframes of a frame's boxes: colliding boxes, optionally the others and pair links.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include <std_msgs/ColorRGBA.h>
+#include <std_msgs/Header.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
+
+namespace sap_broadphase {
+
+/// What the marker array shows. Colours are RGBA in [0, 1].
+struct MarkerOptions {
+  std::size_t max_boxes = 5000;         ///< boxes drawn at most (colliding first, then the others)
+  bool show_non_colliding = false;      ///< also draw boxes without any pair
+  bool show_pair_links = false;         ///< a line between the centres of each drawn pair
+  double line_width = 0.0;              ///< metres; 0 = 5 % of the mean edge of the drawn boxes
+  std_msgs::ColorRGBA colliding_color;  ///< default red
+  std_msgs::ColorRGBA non_colliding_color;  ///< default translucent green
+  std_msgs::ColorRGBA pair_link_color;      ///< default yellow
+  MarkerOptions();
+};
+
+/// How many boxes a marker array shows and how many colliding ones the cap left out.
+struct MarkerCounts {
+  uint32_t drawn = 0;
+  uint32_t colliding_omitted = 0;
+};
+
+/// Namespaces of the markers, one LINE_LIST each.
+constexpr const char* kCollidingNamespace = "colliding";
+constexpr const char* kNonCollidingNamespace = "non_colliding";
+constexpr const char* kPairLinkNamespace = "pair_links";
+
+/// Fills outMarkers (replaced): a DELETEALL, then the colliding boxes of inPairs as one
+/// LINE_LIST (24 points a box, always present, maybe empty), then, if enabled and not empty,
+/// the non-colliding boxes and the pair links. Header (frame and stamp) from inHeader.
+MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
+                          const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
+                          visualization_msgs::MarkerArray& outMarkers);
+
+}  // namespace sap_broadphase

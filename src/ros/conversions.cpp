@@ -1,0 +1,107 @@
+// Messages <-> engine types.
+#include "sap_broadphase/ros/conversions.h"
+
+#include <cstddef>
+
+namespace sap_broadphase {
+
+namespace {
+
+std::string lengthError(const char* inField, std::size_t inLength, std::size_t inBoxes) {
+  return std::string(inField) + " has " + std::to_string(inLength) + " entries, expected 0 or " +
+         std::to_string(inBoxes) + " (one per box)";
+}
+
+}  // namespace
+
+std::optional<std::string> checkBoxArrayShape(const BoxArray& inMsg) {
+  if (inMsg.bounds.size() % 6 != 0) {
+    return "bounds has " + std::to_string(inMsg.bounds.size()) +
+           " values, expected 6 per box (min_x min_y min_z max_x max_y max_z)";
+  }
+  const std::size_t count = inMsg.bounds.size() / 6;
+  if (!inMsg.ids.empty() && inMsg.ids.size() != count)
+    return lengthError("ids", inMsg.ids.size(), count);
+  if (!inMsg.groups.empty() && inMsg.groups.size() != count)
+    return lengthError("groups", inMsg.groups.size(), count);
+  if (!inMsg.masks.empty() && inMsg.masks.size() != count)
+    return lengthError("masks", inMsg.masks.size(), count);
+  return std::nullopt;
+}
+
+std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes) {
+  if (auto shapeError = checkBoxArrayShape(inMsg)) return shapeError;
+  const std::size_t count = inMsg.bounds.size() / 6;
+  if (inMsg.ids.empty()) {
+    outBoxes.ids.resize(count);
+    for (std::size_t i = 0; i < count; ++i) outBoxes.ids[i] = static_cast<uint32_t>(i);
+  } else {
+    outBoxes.ids.assign(inMsg.ids.begin(), inMsg.ids.end());
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    outBoxes.lo[axis].resize(count);
+    outBoxes.hi[axis].resize(count);
+  }
+  const double* bounds = inMsg.bounds.data();
+  for (std::size_t i = 0; i < count; ++i) {
+    const double* box = bounds + 6 * i;
+    for (int axis = 0; axis < 3; ++axis) {
+      outBoxes.lo[axis][i] = box[axis];
+      outBoxes.hi[axis][i] = box[3 + axis];
+    }
+  }
+  // Partial filters are completed with the defaults so the engine sees one per box or none.
+  const bool filtered = !inMsg.groups.empty() || !inMsg.masks.empty();
+  if (filtered) {
+    if (inMsg.groups.empty())
+      outBoxes.groups.assign(count, kDefaultGroup);
+    else
+      outBoxes.groups.assign(inMsg.groups.begin(), inMsg.groups.end());
+    if (inMsg.masks.empty())
+      outBoxes.masks.assign(count, kDefaultMask);
+    else
+      outBoxes.masks.assign(inMsg.masks.begin(), inMsg.masks.end());
+  } else {
+    outBoxes.groups.clear();
+    outBoxes.masks.clear();
+  }
+  if (auto error = validate(outBoxes)) return error->message();
+  return std::nullopt;
+}
+
+void pairListToPairArray(const PairList& inPairs, const std_msgs::Header& inHeader,
+                         PairArray& outMsg) {
+  outMsg.header = inHeader;
+  outMsg.pairs.resize(2 * inPairs.size());
+  uint32_t* out = outMsg.pairs.data();
+  for (const IdPair& pair : inPairs) {
+    *out++ = pair.a;
+    *out++ = pair.b;
+  }
+}
+
+void boxSetToBoxArray(const BoxSet& inBoxes, const std_msgs::Header& inHeader, BoxArray& outMsg) {
+  const std::size_t count = inBoxes.size();
+  outMsg.header = inHeader;
+  outMsg.ids.assign(inBoxes.ids.begin(), inBoxes.ids.end());
+  outMsg.bounds.resize(6 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    double* box = outMsg.bounds.data() + 6 * i;
+    for (int axis = 0; axis < 3; ++axis) {
+      box[axis] = inBoxes.lo[axis][i];
+      box[3 + axis] = inBoxes.hi[axis][i];
+    }
+  }
+  outMsg.groups.assign(inBoxes.groups.begin(), inBoxes.groups.end());
+  outMsg.masks.assign(inBoxes.masks.begin(), inBoxes.masks.end());
+}
+
+bool pairArrayToPairList(const PairArray& inMsg, PairList& outPairs) {
+  if (inMsg.pairs.size() % 2 != 0) return false;
+  outPairs.resize(inMsg.pairs.size() / 2);
+  for (std::size_t i = 0; i < outPairs.size(); ++i)
+    outPairs[i] = IdPair{inMsg.pairs[2 * i], inMsg.pairs[2 * i + 1]};
+  return true;
+}
+
+}  // namespace sap_broadphase

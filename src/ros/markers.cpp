@@ -1,0 +1,178 @@
+// rviz wireframes of a frame's boxes.
+#include "sap_broadphase/ros/markers.h"
+
+#include <unordered_map>
+#include <vector>
+
+#include <geometry_msgs/Point.h>
+
+namespace sap_broadphase {
+
+namespace {
+
+std_msgs::ColorRGBA makeColor(float inRed, float inGreen, float inBlue, float inAlpha) {
+  std_msgs::ColorRGBA color;
+  color.r = inRed;
+  color.g = inGreen;
+  color.b = inBlue;
+  color.a = inAlpha;
+  return color;
+}
+
+geometry_msgs::Point makePoint(double inX, double inY, double inZ) {
+  geometry_msgs::Point point;
+  point.x = inX;
+  point.y = inY;
+  point.z = inZ;
+  return point;
+}
+
+visualization_msgs::Marker makeLineList(const std_msgs::Header& inHeader, const char* inNamespace,
+                                        const std_msgs::ColorRGBA& inColor) {
+  visualization_msgs::Marker marker;
+  marker.header = inHeader;
+  marker.ns = inNamespace;
+  marker.id = 0;
+  marker.type = visualization_msgs::Marker::LINE_LIST;
+  marker.action = visualization_msgs::Marker::ADD;
+  marker.pose.orientation.w = 1.0;
+  marker.color = inColor;
+  return marker;
+}
+
+/// Appends the 12 edges (24 points) of box i to ioPoints.
+void appendWireframe(const BoxSet& inBoxes, std::size_t i,
+                     std::vector<geometry_msgs::Point>& ioPoints) {
+  const double x[2] = {inBoxes.lo[0][i], inBoxes.hi[0][i]};
+  const double y[2] = {inBoxes.lo[1][i], inBoxes.hi[1][i]};
+  const double z[2] = {inBoxes.lo[2][i], inBoxes.hi[2][i]};
+  for (int a = 0; a < 2; ++a) {
+    for (int b = 0; b < 2; ++b) {
+      ioPoints.push_back(makePoint(x[0], y[a], z[b]));  // edge along x
+      ioPoints.push_back(makePoint(x[1], y[a], z[b]));
+      ioPoints.push_back(makePoint(x[a], y[0], z[b]));  // edge along y
+      ioPoints.push_back(makePoint(x[a], y[1], z[b]));
+      ioPoints.push_back(makePoint(x[a], y[b], z[0]));  // edge along z
+      ioPoints.push_back(makePoint(x[a], y[b], z[1]));
+    }
+  }
+}
+
+geometry_msgs::Point boxCenter(const BoxSet& inBoxes, std::size_t i) {
+  return makePoint(0.5 * (inBoxes.lo[0][i] + inBoxes.hi[0][i]),
+                   0.5 * (inBoxes.lo[1][i] + inBoxes.hi[1][i]),
+                   0.5 * (inBoxes.lo[2][i] + inBoxes.hi[2][i]));
+}
+
+/// Maps box ids to indices; ids 0..n-1 in order (the common case) need no table.
+class IdIndex {
+ public:
+  explicit IdIndex(const BoxSet& inBoxes) {
+    const std::size_t count = inBoxes.size();
+    for (std::size_t i = 0; i < count && identity_; ++i) identity_ = inBoxes.ids[i] == i;
+    if (identity_) return;
+    table_.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) table_.emplace(inBoxes.ids[i], i);
+  }
+  /// Index of the box with id inId (the id must exist).
+  std::size_t operator()(uint32_t inId) const { return identity_ ? inId : table_.at(inId); }
+
+ private:
+  bool identity_ = true;
+  std::unordered_map<uint32_t, std::size_t> table_;
+};
+
+double meanEdge(const BoxSet& inBoxes, const std::vector<std::size_t>& inDrawn) {
+  double sum = 0.0;
+  for (std::size_t i : inDrawn) {
+    for (int axis = 0; axis < 3; ++axis) sum += inBoxes.hi[axis][i] - inBoxes.lo[axis][i];
+  }
+  return inDrawn.empty() ? 0.0 : sum / (3.0 * static_cast<double>(inDrawn.size()));
+}
+
+}  // namespace
+
+MarkerOptions::MarkerOptions()
+    : colliding_color(makeColor(1.0f, 0.0f, 0.0f, 1.0f)),
+      non_colliding_color(makeColor(0.2f, 0.8f, 0.3f, 0.5f)),
+      pair_link_color(makeColor(1.0f, 0.9f, 0.1f, 1.0f)) {}
+
+MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
+                          const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
+                          visualization_msgs::MarkerArray& outMarkers) {
+  outMarkers.markers.clear();
+  visualization_msgs::Marker clear_all;
+  clear_all.header = inHeader;
+  clear_all.action = visualization_msgs::Marker::DELETEALL;
+  clear_all.pose.orientation.w = 1.0;
+  outMarkers.markers.push_back(clear_all);
+
+  const std::size_t count = inBoxes.size();
+  const IdIndex index_of(inBoxes);
+  std::vector<char> colliding(count, 0);
+  for (const IdPair& pair : inPairs) {
+    colliding[index_of(pair.a)] = 1;
+    colliding[index_of(pair.b)] = 1;
+  }
+  std::vector<char> drawn(count, 0);
+  std::vector<std::size_t> drawn_colliding, drawn_other;
+  MarkerCounts counts;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!colliding[i]) continue;
+    if (drawn_colliding.size() < inOptions.max_boxes) {
+      drawn_colliding.push_back(i);
+      drawn[i] = 1;
+    } else {
+      ++counts.colliding_omitted;
+    }
+  }
+  if (inOptions.show_non_colliding) {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (colliding[i]) continue;
+      if (drawn_colliding.size() + drawn_other.size() >= inOptions.max_boxes) break;
+      drawn_other.push_back(i);
+    }
+  }
+  counts.drawn = static_cast<uint32_t>(drawn_colliding.size() + drawn_other.size());
+
+  double width = inOptions.line_width;
+  if (width <= 0.0) {
+    width = 0.05 * meanEdge(inBoxes, drawn_colliding.empty() ? drawn_other : drawn_colliding);
+    if (!(width > 0.0)) width = 0.01;
+  }
+
+  visualization_msgs::Marker colliding_marker =
+      makeLineList(inHeader, kCollidingNamespace, inOptions.colliding_color);
+  colliding_marker.scale.x = width;
+  colliding_marker.points.reserve(24 * drawn_colliding.size());
+  for (std::size_t i : drawn_colliding) appendWireframe(inBoxes, i, colliding_marker.points);
+  outMarkers.markers.push_back(std::move(colliding_marker));
+
+  if (!drawn_other.empty()) {
+    visualization_msgs::Marker other_marker =
+        makeLineList(inHeader, kNonCollidingNamespace, inOptions.non_colliding_color);
+    other_marker.scale.x = 0.5 * width;
+    other_marker.points.reserve(24 * drawn_other.size());
+    for (std::size_t i : drawn_other) appendWireframe(inBoxes, i, other_marker.points);
+    outMarkers.markers.push_back(std::move(other_marker));
+  }
+
+  if (inOptions.show_pair_links) {
+    visualization_msgs::Marker link_marker =
+        makeLineList(inHeader, kPairLinkNamespace, inOptions.pair_link_color);
+    link_marker.scale.x = 0.5 * width;
+    std::size_t links = 0;
+    for (const IdPair& pair : inPairs) {
+      if (links >= inOptions.max_boxes) break;
+      const std::size_t a = index_of(pair.a), b = index_of(pair.b);
+      if (!drawn[a] || !drawn[b]) continue;
+      link_marker.points.push_back(boxCenter(inBoxes, a));
+      link_marker.points.push_back(boxCenter(inBoxes, b));
+      ++links;
+    }
+    if (!link_marker.points.empty()) outMarkers.markers.push_back(std::move(link_marker));
+  }
+  return counts;
+}
+
+}  // namespace sap_broadphase

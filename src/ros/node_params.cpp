@@ -1,0 +1,102 @@
+// The node's private parameters.
+#include "sap_broadphase/ros/node_params.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+namespace sap_broadphase {
+
+namespace {
+
+/// Reads an axis parameter given as a name or an integer; keeps ioAxis when absent.
+std::string readAxis(const ros::NodeHandle& inPrivate, const std::string& inName, int& ioAxis) {
+  XmlRpc::XmlRpcValue value;
+  if (!inPrivate.getParam(inName, value)) return "";
+  std::string text;
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeInt)
+    text = std::to_string(static_cast<int>(value));
+  else if (value.getType() == XmlRpc::XmlRpcValue::TypeString)
+    text = static_cast<std::string>(value);
+  if (!parseAxisName(text, ioAxis)) return "~" + inName + " must be x, y, z (or 0, 1, 2)";
+  return "";
+}
+
+/// Reads a non-negative integer parameter; keeps ioValue when absent.
+template <typename Integer>
+std::string readCount(const ros::NodeHandle& inPrivate, const std::string& inName,
+                      Integer& ioValue) {
+  int value = 0;
+  if (!inPrivate.getParam(inName, value)) return "";
+  if (value < 0) return "~" + inName + " must not be negative";
+  ioValue = static_cast<Integer>(value);
+  return "";
+}
+
+}  // namespace
+
+bool parseAxisName(const std::string& inName, int& outAxis) {
+  std::string name = inName;
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  static const char* kNames[3][2] = {{"x", "0"}, {"y", "1"}, {"z", "2"}};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (name == kNames[axis][0] || name == kNames[axis][1]) {
+      outAxis = axis;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool parseMethodName(const std::string& inName, Method& outMethod) {
+  if (inName == "auto")
+    outMethod = Method::kAuto;
+  else if (inName == "parallel")
+    outMethod = Method::kParallel;
+  else if (inName == "sequential")
+    outMethod = Method::kSequential;
+  else if (inName == "brute")
+    outMethod = Method::kBruteForce;
+  else
+    return false;
+  return true;
+}
+
+std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams) {
+  BroadphaseConfig& engine = outParams.engine;
+  MarkerOptions& markers = outParams.markers;
+  std::string error;
+  if (!(error = readCount(inPrivate, "threads", engine.threads)).empty()) return error;
+  std::string method = "auto";
+  inPrivate.param<std::string>("method", method, method);
+  if (!parseMethodName(method, engine.method))
+    return "~method must be auto, parallel, sequential or brute, not '" + method + "'";
+  if (!(error = readAxis(inPrivate, "primary_axis", engine.primary_axis)).empty()) return error;
+  if (!(error = readAxis(inPrivate, "secondary_axis", engine.secondary_axis)).empty()) return error;
+  if (engine.primary_axis == engine.secondary_axis)
+    return "~primary_axis and ~secondary_axis must differ";
+  inPrivate.param("axis_swapping", engine.axis_swapping, engine.axis_swapping);
+  inPrivate.param("axis_swap_threshold", engine.axis_swap_threshold, engine.axis_swap_threshold);
+  if (!(error = readCount(inPrivate, "parallel_min_boxes", engine.parallel_min_boxes)).empty())
+    return error;
+  inPrivate.param("exact_final_test", engine.exact_final_test, engine.exact_final_test);
+
+  inPrivate.param("publish_markers", outParams.publish_markers, outParams.publish_markers);
+  if (!(error = readCount(inPrivate, "max_marker_boxes", markers.max_boxes)).empty()) return error;
+  inPrivate.param("show_non_colliding", markers.show_non_colliding, markers.show_non_colliding);
+  inPrivate.param("show_pair_links", markers.show_pair_links, markers.show_pair_links);
+  inPrivate.param("marker_line_width", markers.line_width, markers.line_width);
+
+  if (!(error = readCount(inPrivate, "boxes_queue_size", outParams.boxes_queue_size)).empty())
+    return error;
+  if (!(error = readCount(inPrivate, "pairs_queue_size", outParams.pairs_queue_size)).empty())
+    return error;
+  if (!(error = readCount(inPrivate, "refusal_log_period", outParams.refusal_log_period)).empty())
+    return error;
+  outParams.boxes_queue_size = std::max(outParams.boxes_queue_size, 1);
+  return "";
+}
+
+}  // namespace sap_broadphase
