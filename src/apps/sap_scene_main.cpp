@@ -28,7 +28,7 @@ const char* const kUsage =
     "  --frame F     frame to write, >= 0 (default 0)\n"
     "  --seed S      random seed, unsigned 64-bit (default 1)\n"
     "  --axis A      plane: the axis u all boxes cross at mid-run, x, y or z (default x)\n"
-    "  --frames T    ball and plane: run length the motion is timed for, >= 1 (default 500)\n"
+    "  --frames T    ball and plane: run length the motion is timed for, >= 2 (default 500)\n"
     "  --help        print this help\n"
     "\n"
     "Exit status: 0 success; 2 bad usage; 1 unexpected failure (e.g. output not writable).\n";
@@ -60,8 +60,8 @@ std::string parseOptions(int inArgc, char** inArgv, SceneConfig& ioConfig, int& 
     if (arg == "--scene") {
       if (!parseSceneKind(value, ioConfig.kind)) return bad + " (uniform, ball or plane)";
     } else if (arg == "--n") {
-      if (!cli::parseInteger(value, 0, int64_t{UINT32_MAX} + 1, integer))
-        return bad + " (an integer from 0 to 4294967296)";
+      if (!cli::parseInteger(value, 0, static_cast<int64_t>(kMaxBoxes), integer))
+        return bad + " (an integer from 0 to " + std::to_string(kMaxBoxes) + ")";
       ioConfig.n = static_cast<std::size_t>(integer);
     } else if (arg == "--density") {
       if (!cli::parseFiniteDouble(value, ioConfig.density) || !(ioConfig.density > 0.0))
@@ -75,7 +75,7 @@ std::string parseOptions(int inArgc, char** inArgv, SceneConfig& ioConfig, int& 
     } else if (arg == "--axis") {
       if (!cli::parseAxisName(value, ioConfig.plane_axis)) return bad + " (x, y or z)";
     } else {  // --frames
-      if (!cli::parseInteger(value, 1, INT32_MAX, integer)) return bad + " (an integer >= 1)";
+      if (!cli::parseInteger(value, 2, INT32_MAX, integer)) return bad + " (an integer >= 2)";
       ioConfig.frames = static_cast<int>(integer);
     }
   }

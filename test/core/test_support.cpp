@@ -1,0 +1,172 @@
+// Shared helpers of the core tests.
+#include "test_support.h"
+
+#include "sap_broadphase/core/brute_force.h"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <unordered_set>
+
+namespace sap_broadphase::test_support {
+
+BoxSet randomBoxes(std::size_t inCount, double inWorld, double inMaxEdge, uint64_t inSeed) {
+  TestRandom random(inSeed);
+  BoxSet boxes;
+  boxes.reserve(inCount);
+  for (std::size_t i = 0; i < inCount; ++i) {
+    double lo[3];
+    double hi[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      lo[axis] = random.between(0.0, inWorld);
+      hi[axis] = lo[axis] + random.between(0.0, inMaxEdge);
+    }
+    boxes.add(static_cast<uint32_t>(i), lo, hi);
+  }
+  return boxes;
+}
+
+BoxSet latticeBoxes(std::size_t inCount, int inCells, int inMaxEdge, uint64_t inSeed) {
+  TestRandom random(inSeed);
+  BoxSet boxes;
+  boxes.reserve(inCount);
+  for (std::size_t i = 0; i < inCount; ++i) {
+    double lo[3];
+    double hi[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      lo[axis] = static_cast<double>(random.below(static_cast<uint64_t>(inCells)));
+      hi[axis] = lo[axis] + static_cast<double>(random.below(static_cast<uint64_t>(inMaxEdge) + 1));
+    }
+    boxes.add(static_cast<uint32_t>(i), lo, hi);
+  }
+  return boxes;
+}
+
+BoxSet shuffledSubset(const BoxSet& inBoxes, double inKeep, bool inSparseIds, uint64_t inSeed) {
+  TestRandom random(inSeed);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < inBoxes.size(); ++i)
+    if (random.unit() < inKeep) kept.push_back(i);
+  for (std::size_t k = kept.size(); k > 1; --k) std::swap(kept[k - 1], kept[random.below(k)]);
+  std::unordered_set<uint32_t> used;
+  BoxSet subset;
+  subset.reserve(kept.size());
+  for (std::size_t i : kept) {
+    uint32_t id = inBoxes.ids[i];
+    if (inSparseIds) {
+      do id = static_cast<uint32_t>(random.bits());
+      while (!used.insert(id).second);
+    }
+    const double lo[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
+    const double hi[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    if (inBoxes.hasFilters())
+      subset.add(id, lo, hi, inBoxes.group(i), inBoxes.mask(i));
+    else
+      subset.add(id, lo, hi);
+  }
+  return subset;
+}
+
+void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
+  TestRandom random(inSeed);
+  ioBoxes.groups.resize(ioBoxes.size());
+  ioBoxes.masks.resize(ioBoxes.size());
+  for (std::size_t i = 0; i < ioBoxes.size(); ++i) {
+    ioBoxes.groups[i] = 1u << random.below(3);
+    ioBoxes.masks[i] = static_cast<uint32_t>(random.below(8));  // 0 collides with nothing
+  }
+}
+
+BroadphaseConfig engineConfig(Method inMethod, int inThreads, int inPrimary, int inSecondary) {
+  BroadphaseConfig config;
+  config.method = inMethod;
+  config.threads = inThreads;
+  config.primary_axis = inPrimary;
+  config.secondary_axis = inSecondary;
+  return config;
+}
+
+std::vector<std::pair<int, int>> allAxisPairs() {
+  return {{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}};
+}
+
+::testing::AssertionResult samePairs(const PairList& inExpected, const PairList& inActual) {
+  if (inExpected == inActual) return ::testing::AssertionSuccess();
+  std::ostringstream message;
+  message << "expected " << inExpected.size() << " pairs, got " << inActual.size();
+  PairList missing;
+  PairList extra;
+  PairList expectedSorted = inExpected;
+  PairList actualSorted = inActual;
+  std::sort(expectedSorted.begin(), expectedSorted.end());
+  std::sort(actualSorted.begin(), actualSorted.end());
+  std::set_difference(expectedSorted.begin(), expectedSorted.end(), actualSorted.begin(),
+                      actualSorted.end(), std::back_inserter(missing));
+  std::set_difference(actualSorted.begin(), actualSorted.end(), expectedSorted.begin(),
+                      expectedSorted.end(), std::back_inserter(extra));
+  message << "; missing " << missing.size() << ", extra " << extra.size();
+  for (std::size_t k = 0; k < missing.size() && k < 5; ++k)
+    message << "; missing (" << missing[k].a << "," << missing[k].b << ")";
+  for (std::size_t k = 0; k < extra.size() && k < 5; ++k)
+    message << "; extra (" << extra[k].a << "," << extra[k].b << ")";
+  if (missing.empty() && extra.empty()) {
+    const bool sorted = std::is_sorted(inActual.begin(), inActual.end());
+    const bool unique =
+        std::adjacent_find(actualSorted.begin(), actualSorted.end()) == actualSorted.end();
+    message << "; same set but " << (sorted ? "" : "not sorted ")
+            << (unique ? "" : "with duplicates");
+  }
+  return ::testing::AssertionFailure() << message.str();
+}
+
+uint64_t hashPairs(const PairList& inPairs) {
+  uint64_t hash = 1469598103934665603ull;
+  for (const IdPair& pair : inPairs) {
+    for (uint32_t value : {pair.a, pair.b}) {
+      for (int byte = 0; byte < 4; ++byte) {
+        hash ^= (value >> (8 * byte)) & 0xFFu;
+        hash *= 1099511628211ull;
+      }
+    }
+  }
+  return hash;
+}
+
+const std::vector<int>& testThreadCounts() {
+  static const std::vector<int> kThreads = {1, 2, 3, 4, 7};
+  return kThreads;
+}
+
+void expectAllConfigsMatch(const BoxSet& inBoxes, const PairList& inOracle,
+                           const std::string& inLabel) {
+  std::vector<BroadphaseConfig> configs;
+  for (const auto& [primary, secondary] : allAxisPairs()) {
+    for (int threads : testThreadCounts())
+      configs.push_back(engineConfig(Method::kParallel, threads, primary, secondary));
+    configs.push_back(engineConfig(Method::kSequential, 1, primary, secondary));
+    configs.push_back(engineConfig(Method::kAuto, 2, primary, secondary));
+  }
+  configs.push_back(engineConfig(Method::kAuto, 1, 0, 1));
+  configs.push_back(engineConfig(Method::kBruteForce, 1, 0, 1));
+  for (const BroadphaseConfig& config : configs) {
+    Broadphase broadphase(config);
+    EXPECT_TRUE(samePairs(inOracle, broadphase.update(inBoxes)))
+        << inLabel << " (" << inBoxes.size() << " boxes), " << describe(config);
+  }
+}
+
+void expectAllConfigsMatch(const BoxSet& inBoxes, const std::string& inLabel) {
+  expectAllConfigsMatch(inBoxes, bruteForcePairs(inBoxes), inLabel);
+}
+
+std::string describe(const BroadphaseConfig& inConfig) {
+  static const char* const kMethods[] = {"auto", "parallel", "sequential", "brute"};
+  std::ostringstream text;
+  text << "method " << kMethods[static_cast<int>(inConfig.method)] << ", threads "
+       << inConfig.threads << ", axes " << inConfig.primary_axis << "/" << inConfig.secondary_axis
+       << (inConfig.axis_swapping ? "" : ", no swapping");
+  return text.str();
+}
+
+}  // namespace sap_broadphase::test_support
