@@ -1,1 +1,11 @@
-# rostests of the node (issue 3).
+# rostests of the node (issue 3); included by test/tests.cmake under CATKIN_ENABLE_TESTING.
+# Each test launches its own roscore on a loopback port chosen by rostest; every <test> has a
+# time-limit and no test asserts on wall-clock speed.
+find_package(rostest REQUIRED)
+
+# Topic round trips and the service against the oracle, refusals, a burst, markers.
+add_rostest_gtest(test_node test/ros/node.test
+  test/ros/test_node.cpp test/ros/node_client.cpp test/ros/test_frames.cpp)
+target_include_directories(test_node PRIVATE test/ros)
+target_link_libraries(test_node ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
+add_dependencies(test_node ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)
