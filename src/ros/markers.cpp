@@ -137,7 +137,7 @@ MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
 
   double width = inOptions.line_width;
   if (width <= 0.0) {
-    width = 0.05 * meanEdge(inBoxes, drawn_colliding.empty() ? drawn_other : drawn_colliding);
+    width = 0.1 * meanEdge(inBoxes, drawn_colliding.empty() ? drawn_other : drawn_colliding);
     if (!(width > 0.0)) width = 0.01;
   }
 

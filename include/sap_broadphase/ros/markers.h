@@ -18,7 +18,7 @@ struct MarkerOptions {
   std::size_t max_boxes = 5000;         ///< boxes drawn at most (colliding first, then the others)
   bool show_non_colliding = false;      ///< also draw boxes without any pair
   bool show_pair_links = false;         ///< a line between the centres of each drawn pair
-  double line_width = 0.0;              ///< metres; 0 = 5 % of the mean edge of the drawn boxes
+  double line_width = 0.0;              ///< metres; 0 = 10 % of the mean edge of the drawn boxes
   std_msgs::ColorRGBA colliding_color;  ///< default red
   std_msgs::ColorRGBA non_colliding_color;  ///< default translucent green
   std_msgs::ColorRGBA pair_link_color;      ///< default yellow
