@@ -1,0 +1,48 @@
+// Small timing helpers: a wall-clock stopwatch and medians.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace sap_bench {
+
+/// Wall-clock stopwatch in milliseconds.
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  /// Milliseconds since construction or the last restart().
+  double ms() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+        .count();
+  }
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+/// Median of the values (mean of the two middle ones for even counts); 0 when empty.
+inline double median(std::vector<double> inValues) {
+  if (inValues.empty()) return 0.0;
+  const std::size_t mid = inValues.size() / 2;
+  std::nth_element(inValues.begin(), inValues.begin() + mid, inValues.end());
+  const double upper = inValues[mid];
+  if (inValues.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(inValues.begin(), inValues.begin() + mid));
+}
+
+/// Largest value; 0 when empty.
+inline double maximum(const std::vector<double>& inValues) {
+  return inValues.empty() ? 0.0 : *std::max_element(inValues.begin(), inValues.end());
+}
+
+/// Arithmetic mean; 0 when empty.
+inline double mean(const std::vector<double>& inValues) {
+  if (inValues.empty()) return 0.0;
+  double sum = 0.0;
+  for (double value : inValues) sum += value;
+  return sum / static_cast<double>(inValues.size());
+}
+
+}  // namespace sap_bench

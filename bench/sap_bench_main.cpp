@@ -1,0 +1,92 @@
+// sap_bench: the paper's experiments, the accuracy/speed trade-off and the peers (issue 4).
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "bench_machine.h"
+#include "bench_options.h"
+#include "bench_output.h"
+#include "bench_stats.h"
+#include "experiments.h"
+#include "sap_broadphase/core/broadphase.h"
+
+namespace sap_bench {
+
+const std::vector<Experiment>& allExperiments() {
+  static const std::vector<Experiment> kExperiments = {
+      {"fig1_sort", "Fig. 1: sort time, sequential vs parallel, vs n (d = 0.35)", runFig1Sort},
+      {"fig23_phases", "Figs. 2-3: candidates and pairing time and speedup vs n and d",
+       runFig23Phases},
+      {"fig4_stacked", "Fig. 4: parallel phase times stacked over density, three sizes",
+       runFig4Stacked},
+      {"dispersion", "Sort dispersion D per frame in steady state (uniform scene)", runDispersion},
+      {"fig5_ball", "Fig. 5: ball cluster, per-frame time, parallel and sequential", runFig5Ball},
+      {"fig6_plane", "Fig. 6: plane cluster, u = x / u = y, with and without axis swapping",
+       runFig6Plane},
+      {"threads", "Speedup per phase, 1 thread vs all cores", runThreads},
+      {"pareto", "Run time against error (missed/extra pairs) per engine mode", runPareto},
+      {"peers", "CGAL, Bullet, FCL and a uniform grid on the same boxes", runPeers},
+      {"memory", "Peak memory of the engine per box and per pair", runMemory},
+  };
+  return kExperiments;
+}
+
+namespace {
+
+const Experiment* findExperiment(const std::string& inName) {
+  for (const Experiment& experiment : allExperiments()) {
+    if (inName == experiment.name) return &experiment;
+  }
+  return nullptr;
+}
+
+void printList() {
+  for (const Experiment& experiment : allExperiments()) {
+    std::printf("%-14s %s\n", experiment.name, experiment.summary);
+  }
+}
+
+}  // namespace
+}  // namespace sap_bench
+
+int main(int argc, char** argv) {
+  using namespace sap_bench;
+  Options options;
+  int exitCode = 0;
+  if (!parseOptions(argc, argv, options, exitCode)) return exitCode;
+  if (options.list) {
+    printList();
+    return 0;
+  }
+  std::vector<const Experiment*> chosen;
+  for (const std::string& name : options.experiments) {
+    if (name == "all") {
+      for (const Experiment& experiment : allExperiments()) chosen.push_back(&experiment);
+    } else if (const Experiment* experiment = findExperiment(name)) {
+      chosen.push_back(experiment);
+    } else {
+      std::cerr << "sap_bench: unknown experiment '" << name << "'; known:\n";
+      printList();
+      return 2;
+    }
+  }
+  if (!makeOutputDir(options.out_dir)) {
+    std::cerr << "sap_bench: cannot create " << options.out_dir << "\n";
+    return 1;
+  }
+  const std::string header = "sap_bench: " + machineSummary() + ", threads: " +
+                             std::to_string(sap_broadphase::resolveThreadCount(options.threads)) +
+                             (options.quick ? ", quick" : "") + ", load at start: " + loadAverage();
+  std::cout << header << "\n";
+  std::ofstream machine(options.out_dir + "/machine.txt", std::ios::app);
+  machine << header << "\n";
+  for (const Experiment* experiment : chosen) {
+    std::cerr << "== " << experiment->name << ": " << experiment->summary << "\n";
+    Stopwatch clock;
+    experiment->run(options);
+    std::cerr << "== " << experiment->name << " done in " << clock.ms() / 1000.0 << " s\n";
+    machine << experiment->name << ": " << clock.ms() / 1000.0
+            << " s, load after: " << loadAverage() << "\n";
+  }
+  return 0;
+}
