@@ -15,3 +15,6 @@ add_rostest(test/ros/hz.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_s
 
 # rviz in Xvfb with rviz/demo.rviz: the screenshot shows the colliding-box colour.
 add_rostest(test/ros/rviz.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_scene_publisher)
+
+# rosbag record of boxes and pairs; rosbag play of the boxes gives the same pairs again.
+add_rostest(test/ros/rosbag.test DEPENDENCIES ${PROJECT_NAME}_node)

@@ -1,0 +1,145 @@
+#!/usr/bin/python3
+"""rosbag with the node: `rosbag record boxes pairs` captures frames and their pairs, and
+`rosbag play` of the boxes alone makes the node answer with the same pairs and stamps.
+
+Every process this test starts (rosbag record, rosbag play) is stopped by its PID.
+"""
+import os
+import random
+import subprocess
+import threading
+import time
+import unittest
+import xmlrpc.client
+
+import rosbag
+import rosgraph
+import rospy
+import rostest
+from sap_broadphase.msg import BoxArray, PairArray
+
+PACKAGE = "sap_broadphase"
+REPO = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
+ARTIFACTS = os.path.join(REPO, "build", "artifacts")
+FRAMES = 10
+WAIT = 60.0  # seconds; a bound on waiting, never a speed check
+
+
+def stop(process, timeout=5.0):
+    if process.poll() is None:
+        process.terminate()
+        try:
+            process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+
+
+def random_frame(seed, count=300):
+    rng = random.Random(seed)
+    msg = BoxArray()
+    msg.header.frame_id = "bag_frame"
+    for _ in range(count):
+        low = [rng.uniform(0.0, 10.0) for _ in range(3)]
+        msg.bounds.extend(low + [v + rng.uniform(0.0, 1.2) for v in low])
+    return msg
+
+
+class RosbagTest(unittest.TestCase):
+    def setUp(self):
+        self.processes = []
+        self.lock = threading.Lock()
+        self.pairs = {}
+        os.makedirs(ARTIFACTS, exist_ok=True)
+        rospy.init_node("test_rosbag", anonymous=True)
+        self.publisher = rospy.Publisher("boxes", BoxArray, queue_size=100)
+        rospy.Subscriber("pairs", PairArray, self.on_pairs, queue_size=100)
+
+    def tearDown(self):
+        for process in reversed(self.processes):
+            stop(process)
+
+    def on_pairs(self, msg):
+        with self.lock:
+            self.pairs[msg.header.stamp] = list(msg.pairs)
+
+    def wait_until(self, ready, timeout=WAIT):
+        end = time.monotonic() + timeout
+        while time.monotonic() < end and not rospy.is_shutdown():
+            if ready():
+                return True
+            time.sleep(0.1)
+        return False
+
+    def subscribed(self, topic, prefix):
+        _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+        return any(name == topic and any(n.startswith(prefix) for n in nodes)
+                   for name, nodes in subscribers)
+
+    def node_sends_to(self, node, topic, subscriber):
+        """True once node has an outbound connection on topic to subscriber."""
+        master = rosgraph.Master(rospy.get_name())
+        try:
+            info = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(
+                rospy.get_name())[2]
+        except (rosgraph.MasterError, OSError):
+            return False
+        return any(len(c) > 4 and c[2] == "o" and c[4] == topic and c[1] == subscriber
+                   for c in info)
+
+    def test_record_then_play_boxes(self):
+        bag = os.path.join(ARTIFACTS, "rosbag_test.bag")
+        if os.path.exists(bag):
+            os.remove(bag)
+        log = open(os.path.join(ARTIFACTS, "rosbag_record.log"), "w")
+        record = subprocess.Popen(
+            ["rosbag", "record", "--limit=%d" % FRAMES, "-O", bag, "boxes", "pairs",
+             "__name:=bag_recorder"], stdout=log, stderr=log)
+        self.processes.append(record)
+        self.assertTrue(self.wait_until(lambda: self.subscribed(rospy.resolve_name("boxes"),
+                                                                "/bag_recorder")
+                                        and self.subscribed(rospy.resolve_name("pairs"),
+                                                            "/bag_recorder")),
+                        "rosbag record never subscribed")
+        self.assertTrue(self.wait_until(lambda: self.publisher.get_num_connections() >= 2),
+                        "the node and the recorder did not connect to boxes")
+        self.assertTrue(self.wait_until(lambda: self.node_sends_to(
+            rospy.resolve_name("sap_broadphase"), rospy.resolve_name("pairs"), "/bag_recorder")),
+            "the node never connected to the recorder's pairs subscriber")
+
+        stamps = []
+        for i in range(FRAMES):
+            msg = random_frame(i)
+            msg.header.stamp = rospy.Time(1000 + i, 0)
+            stamps.append(msg.header.stamp)
+            self.publisher.publish(msg)
+            self.assertTrue(self.wait_until(lambda: msg.header.stamp in self.pairs),
+                            "no pairs for frame %d" % i)
+        recorded = dict(self.pairs)
+        record.wait(WAIT)  # --limit ends it after FRAMES messages on each topic
+        self.assertEqual(record.returncode, 0)
+
+        boxes_in_bag, pairs_in_bag = [], {}
+        with rosbag.Bag(bag) as reader:
+            for topic, msg, _ in reader.read_messages():
+                if topic.endswith("boxes"):
+                    boxes_in_bag.append(msg.header.stamp)
+                else:
+                    pairs_in_bag[msg.header.stamp] = list(msg.pairs)
+        self.assertEqual(boxes_in_bag, stamps)
+        self.assertEqual(pairs_in_bag, recorded)
+
+        with self.lock:
+            self.pairs.clear()
+        log = open(os.path.join(ARTIFACTS, "rosbag_play.log"), "w")
+        play = subprocess.Popen(["rosbag", "play", "-q", bag, "--topics", "boxes"],
+                                stdout=log, stderr=log)
+        self.processes.append(play)
+        self.assertTrue(self.wait_until(lambda: len(self.pairs) == FRAMES),
+                        "replayed boxes did not all come back as pairs")
+        self.assertEqual(play.wait(WAIT), 0)
+        self.assertEqual(self.pairs, recorded)
+
+
+if __name__ == "__main__":
+    rostest.rosrun(PACKAGE, "rosbag", RosbagTest)
