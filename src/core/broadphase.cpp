@@ -34,6 +34,8 @@ void checkConfig(const BroadphaseConfig& inConfig) {
       inConfig.primary_axis == inConfig.secondary_axis)
     throw std::invalid_argument("primary and secondary axes must be distinct values in 0..2");
   if (inConfig.threads < 0) throw std::invalid_argument("threads must be >= 0");
+  if (inConfig.third_axis_slabs < 0 || inConfig.third_axis_slabs > kMaxSlabs)
+    throw std::invalid_argument("third_axis_slabs must be in 0..64");
 }
 
 }  // namespace
@@ -68,11 +70,14 @@ struct Broadphase::Impl {
   std::vector<RankedBox> ranked_boxes;
   std::vector<RankedKeys> ranked_keys;
   std::vector<RankedFilter> ranked_filters;
+  std::vector<RankedSlabs> ranked_slabs;
+  std::vector<SecondaryEndpoint> secondary_stream;
+  SlabGrid slab_grid;
   SweepWorkspace workspace;
   SuccTree sequential_tree;
   std::vector<PairList> pairs_per_thread;
   PairList pairs;
-  PairList pair_scratch;
+  PairSortScratch pair_scratch;
 
   FramePath choosePath(std::size_t inBoxes, int inThreads) const;
   double sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
@@ -105,6 +110,7 @@ double Broadphase::Impl::sortAxis(const BoxSet& inBoxes, int inAxis, int inThrea
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const double* low = inBoxes.lo[inAxis].data();
   const double* high = inBoxes.hi[inAxis].data();
+  const Clock::time_point start = Clock::now();
   keys.resize(2 * std::size_t{n});
   outOrder.resize(2 * std::size_t{n});
 #pragma omp parallel for num_threads(inThreads) schedule(static)
@@ -112,6 +118,7 @@ double Broadphase::Impl::sortAxis(const BoxSet& inBoxes, int inAxis, int inThrea
     keys[i] = lowKey(low[i]);
     keys[i + n] = highKey(high[i]);
   }
+  stats.ms_keys += millisecondsSince(start);
   const int partitions = keys.size() >= kMinPartitionedEndpoints ? kSortPartitions : 1;
   return sorter.sort(keys.data(), 2 * n, partitions, inThreads, bounds[inAxis], outOrder.data());
 }
@@ -126,9 +133,18 @@ void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
   else
     ranked_keys.resize(n);
   ranked_filters.resize(filtered ? n : 0);
+  const int third_axis = unusedAxis(config.primary_axis, config.secondary_axis);
+  slab_grid = chooseSlabGrid(inBoxes, third_axis, config.third_axis_slabs, inThreads);
+  const bool slabbed = slab_grid.count > 1;
+  ranked_slabs.resize(slabbed ? n : 0);
+  const double* third_low = inBoxes.lo[third_axis].data();
+  const double* third_high = inBoxes.hi[third_axis].data();
 #pragma omp parallel for num_threads(inThreads) schedule(static)
   for (uint32_t rank = 0; rank < n; ++rank) {
     const uint32_t i = object_of_rank[rank];
+    if (slabbed)
+      ranked_slabs[rank] = {static_cast<uint8_t>(slab_grid.slabOf(third_low[i])),
+                            static_cast<uint8_t>(slab_grid.slabOf(third_high[i]))};
     for (int axis = 0; axis < 3; ++axis) {
       if (config.exact_final_test) {
         ranked_boxes[rank].lo[axis] = inBoxes.lo[axis][i];
@@ -143,17 +159,23 @@ void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
 }
 
 void Broadphase::Impl::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
+  buildSecondaryStream(secondary_order.data(), static_cast<uint32_t>(inBoxes.size()), ranges,
+                       ranked_slabs.empty() ? nullptr : ranked_slabs.data(), inThreads,
+                       secondary_stream);
   PairingInput input;
-  input.secondary_order = secondary_order.data();
+  input.stream = secondary_stream.data();
   input.objects = static_cast<uint32_t>(inBoxes.size());
-  input.ranges = &ranges;
+  input.object_of_rank = ranges.object_of_rank.data();
   input.boxes = config.exact_final_test ? ranked_boxes.data() : nullptr;
   input.keys = config.exact_final_test ? nullptr : ranked_keys.data();
   input.filters = ranked_filters.empty() ? nullptr : ranked_filters.data();
   input.ids = inBoxes.ids.data();
+  input.slabs = ranked_slabs.empty() ? nullptr : ranked_slabs.data();
+  input.slab_count = slab_grid.count;
+  stats.slabs = slab_grid.count;
   pairs.clear();
   if (inPath == FramePath::kSequential) {
-    pairSequential(input, sequential_tree, pairs);
+    pairSequential(input, workspace, pairs);
     return;
   }
   pairParallel(input, inThreads, workspace, pairs_per_thread);
@@ -177,7 +199,7 @@ void Broadphase::Impl::sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, in
   stats.dispersion_primary = sortAxis(inBoxes, config.primary_axis, sort_threads, primary_order);
   stats.dispersion_secondary =
       sortAxis(inBoxes, config.secondary_axis, sort_threads, secondary_order);
-  stats.ms_sort = millisecondsSince(phase);
+  stats.ms_sort = millisecondsSince(phase) - stats.ms_keys;
 
   phase = Clock::now();
   if (inPath == FramePath::kParallel) {

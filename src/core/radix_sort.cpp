@@ -22,9 +22,18 @@ inline uint32_t digitOf(uint64_t inItem, int inPass) {
   return static_cast<uint32_t>(inItem >> (32 + inPass * kDigitBits)) & (kDigitValues - 1);
 }
 
-// Index of the partition holding inKey: the number of bounds <= inKey.
-inline int partitionOf(uint32_t inKey, const uint32_t* inBounds, int inBoundCount) {
-  return static_cast<int>(std::upper_bound(inBounds, inBounds + inBoundCount, inKey) - inBounds);
+// Index of the partition holding inKey: the number of bounds <= inKey. Branch-free binary
+// search (the compiler emits conditional moves), since keys land in partitions at random.
+inline uint8_t partitionOf(uint32_t inKey, const uint32_t* inBounds, int inBoundCount) {
+  if (inBoundCount == 0) return 0;
+  const uint32_t* base = inBounds;
+  int remaining = inBoundCount;
+  while (remaining > 1) {
+    const int half = remaining / 2;
+    base = (base[half] <= inKey) ? base + half : base;
+    remaining -= half;
+  }
+  return static_cast<uint8_t>((base - inBounds) + (*base <= inKey));
 }
 
 }  // namespace
@@ -73,7 +82,7 @@ void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex
 double PartitionedSorter::sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
                                int inThreads, AxisBounds& ioBounds, uint32_t* outIndex) {
   if (inCount == 0) return 0.0;
-  const int partitions = std::max(1, inPartitions);
+  const int partitions = std::clamp(inPartitions, 1, kMaxSortPartitions);
   if (!ioBounds.from_previous_frame ||
       ioBounds.bounds.size() != static_cast<std::size_t>(partitions - 1))
     initialiseBoundsFromSpan(inKeys, inCount, partitions, inThreads, ioBounds);
@@ -118,6 +127,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t i
   const int bound_count = partitions - 1;
   const uint32_t* bounds = inBounds.bounds.data();
   counts_.assign(static_cast<std::size_t>(inThreads) * partitions, 0);
+  partition_of_.resize(inCount);
   partition_begin_.assign(partitions + 1, 0);
   partition_size_.assign(partitions, 0);
 #pragma omp parallel num_threads(inThreads)
@@ -127,7 +137,11 @@ void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t i
     const uint32_t begin = static_cast<uint32_t>(uint64_t{inCount} * thread / team);
     const uint32_t end = static_cast<uint32_t>(uint64_t{inCount} * (thread + 1) / team);
     uint32_t* my_counts = &counts_[static_cast<std::size_t>(thread) * partitions];
-    for (uint32_t k = begin; k < end; ++k) ++my_counts[partitionOf(inKeys[k], bounds, bound_count)];
+    uint8_t* partition_of = partition_of_.data();
+    for (uint32_t k = begin; k < end; ++k) {
+      partition_of[k] = partitionOf(inKeys[k], bounds, bound_count);
+      ++my_counts[partition_of[k]];
+    }
 #pragma omp barrier
 #pragma omp single
     {
@@ -144,10 +158,8 @@ void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t i
       }
       partition_begin_[partitions] = offset;
     }
-    for (uint32_t k = begin; k < end; ++k) {
-      const int p = partitionOf(inKeys[k], bounds, bound_count);
-      items_[my_counts[p]++] = packKeyIndex(inKeys[k], k);
-    }
+    for (uint32_t k = begin; k < end; ++k)
+      items_[my_counts[partition_of[k]]++] = packKeyIndex(inKeys[k], k);
   }
 }
 

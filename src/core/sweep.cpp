@@ -23,56 +23,73 @@ inline bool filtersAllow(const RankedFilter& inA, const RankedFilter& inB) {
   return (inA.group & inB.mask) != 0 && (inB.group & inA.mask) != 0;
 }
 
-// Tests object `object` (rank `object_rank`) against the active ranks of `active` in
-// [inBegin, inEnd) (local coordinates; add `rank_offset` for global ranks).
+// Tests object inObject (rank inObjectRank) against the active ranks of one slab's tree in
+// [inBegin, inEnd) (local ranks; add inRankOffset for global ranks).
 template <typename Ranked>
 inline void testCandidates(const PairingInput& inInput, const Ranked* inRanked,
-                           const SuccTree& inActive, uint32_t inRankOffset, uint32_t inBegin,
-                           uint32_t inEnd, uint32_t inObject, uint32_t inObjectRank,
-                           PairList& outPairs) {
+                           const SuccTree& inActive, int inSlab, uint32_t inRankOffset,
+                           uint32_t inBegin, uint32_t inEnd, uint32_t inObject,
+                           uint32_t inObjectRank, PairList& outPairs) {
   const Ranked& box = inRanked[inObjectRank];
   const RankedFilter* filters = inInput.filters;
-  const uint32_t* object_of_rank = inInput.ranges->object_of_rank.data();
+  const RankedSlabs* slabs = inInput.slabs;
+  const uint32_t* object_of_rank = inInput.object_of_rank;
   inActive.forEachInRange(inBegin, inEnd, [&](uint32_t inLocalRank) {
     const uint32_t other_rank = inLocalRank + inRankOffset;
+    // A pair sharing several slabs is reported only in the slab of the larger low end.
+    if (slabs && inSlab != std::max(slabs[inObjectRank].first, slabs[other_rank].first)) return;
     if (!overlaps(box, inRanked[other_rank])) return;
     if (filters && !filtersAllow(filters[inObjectRank], filters[other_rank])) return;
     outPairs.push_back(makeIdPair(inInput.ids[inObject], inInput.ids[object_of_rank[other_rank]]));
   });
 }
 
+// Algorithm 4 for the ranks [inRankBegin, inRankEnd), with one active tree per slab.
 template <typename Ranked>
 void pairPartition(const PairingInput& inInput, const Ranked* inRanked, uint32_t inRankBegin,
-                   uint32_t inRankEnd, SuccTree& ioActive, PairList& outPairs) {
-  const uint32_t n = inInput.objects;
-  const RankRange* ranges = inInput.ranges->of_object.data();
-  const uint32_t* order = inInput.secondary_order;
-  for (uint32_t k = 0; k < 2 * n; ++k) {
-    const uint32_t endpoint = order[k];
-    if (endpoint < n) {
-      const RankRange& range = ranges[endpoint];
-      // Algorithm 4, lines 10-12: clip the candidate range to this partition's ranks.
-      if (range.low < inRankEnd && inRankBegin < range.high) {
-        const uint32_t begin = std::max(range.low, inRankBegin) - inRankBegin;
-        const uint32_t end = std::min(range.high, inRankEnd) - inRankBegin;
-        testCandidates(inInput, inRanked, ioActive, inRankBegin, begin, end, endpoint, range.rank,
-                       outPairs);
-      }
-      if (range.rank >= inRankBegin && range.rank < inRankEnd)
-        ioActive.insert(range.rank - inRankBegin);
-    } else {
-      const uint32_t rank = ranges[endpoint - n].rank;
-      if (rank >= inRankBegin && rank < inRankEnd) ioActive.erase(rank - inRankBegin);
+                   uint32_t inRankEnd, SuccTree* ioActive, PairList& outPairs) {
+  const SecondaryEndpoint* stream = inInput.stream;
+  const std::size_t endpoints = 2 * std::size_t{inInput.objects};
+  for (std::size_t k = 0; k < endpoints; ++k) {
+    const SecondaryEndpoint& endpoint = stream[k];
+    const uint32_t rank = endpoint.rank_and_kind & ~SecondaryEndpoint::kHighBit;
+    const bool mine = rank >= inRankBegin && rank < inRankEnd;
+    if (endpoint.rank_and_kind & SecondaryEndpoint::kHighBit) {
+      if (mine)
+        for (int slab = endpoint.slabs.first; slab <= endpoint.slabs.last; ++slab)
+          ioActive[slab].erase(rank - inRankBegin);
+      continue;
     }
+    // Algorithm 4, lines 10-12: clip the candidate range to this partition's ranks.
+    if (endpoint.low < inRankEnd && inRankBegin < endpoint.high) {
+      const uint32_t begin = std::max(endpoint.low, inRankBegin) - inRankBegin;
+      const uint32_t end = std::min(endpoint.high, inRankEnd) - inRankBegin;
+      const uint32_t object = inInput.object_of_rank[rank];
+      for (int slab = endpoint.slabs.first; slab <= endpoint.slabs.last; ++slab)
+        testCandidates(inInput, inRanked, ioActive[slab], slab, inRankBegin, begin, end, object,
+                       rank, outPairs);
+    }
+    if (mine)
+      for (int slab = endpoint.slabs.first; slab <= endpoint.slabs.last; ++slab)
+        ioActive[slab].insert(rank - inRankBegin);
   }
 }
 
 void pairRankRange(const PairingInput& inInput, uint32_t inRankBegin, uint32_t inRankEnd,
-                   SuccTree& ioActive, PairList& outPairs) {
+                   SuccTree* ioActive, PairList& outPairs) {
   if (inInput.boxes)
     pairPartition(inInput, inInput.boxes, inRankBegin, inRankEnd, ioActive, outPairs);
   else
     pairPartition(inInput, inInput.keys, inRankBegin, inRankEnd, ioActive, outPairs);
+}
+
+// Makes trees [inFirst, inFirst + inCount) of ioTrees empty trees over inSize ranks.
+void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCount,
+                  uint32_t inSize) {
+  for (int t = 0; t < inCount; ++t) {
+    SuccTree& tree = ioTrees[inFirst + t];
+    if (tree.size() != inSize) tree.resize(inSize);  // same size: left empty by the last sweep
+  }
 }
 
 // Sweeps order[inBegin, inEnd) of the primary axis from the active set ioActive and the rank
@@ -81,17 +98,22 @@ void sweepCandidateSlice(const uint32_t* inOrder, uint32_t inObjects, std::size_
                          std::size_t inEnd, uint32_t inLowsBefore, SuccTree& ioActive,
                          RankRange* ioRanges) {
   uint32_t lows_seen = inLowsBefore;
+  // Ranks are handed out in sweep order, so an insert never lowers the minimum: it only
+  // changes when the minimum itself leaves, and is cached in between.
+  uint32_t minimum = ioActive.min();
   for (std::size_t k = inBegin; k < inEnd; ++k) {
     const uint32_t endpoint = inOrder[k];
     if (endpoint < inObjects) {
       RankRange& range = ioRanges[endpoint];
-      range.low = ioActive.empty() ? range.rank : ioActive.min();
+      if (minimum == SuccTree::kNone) minimum = range.rank;
+      range.low = minimum;
       ioActive.insert(range.rank);
       ++lows_seen;
     } else {
       RankRange& range = ioRanges[endpoint - inObjects];
       range.high = lows_seen;
       ioActive.erase(range.rank);
+      if (range.rank == minimum) minimum = ioActive.next(range.rank);
     }
   }
 }
@@ -173,9 +195,29 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
   }
 }
 
-void pairSequential(const PairingInput& inInput, SuccTree& ioActive, PairList& outPairs) {
-  ioActive.resize(inInput.objects);
-  pairRankRange(inInput, 0, inInput.objects, ioActive, outPairs);
+void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
+                          const CandidateRanges& inRanges, const RankedSlabs* inSlabs,
+                          int inThreads, std::vector<SecondaryEndpoint>& outStream) {
+  const std::size_t endpoints = 2 * std::size_t{inObjects};
+  outStream.resize(endpoints);
+  const RankRange* ranges = inRanges.of_object.data();
+#pragma omp parallel for num_threads(inThreads) schedule(static)
+  for (std::size_t k = 0; k < endpoints; ++k) {
+    const uint32_t endpoint = inSecondaryOrder[k];
+    const bool is_high = endpoint >= inObjects;
+    const RankRange& range = ranges[is_high ? endpoint - inObjects : endpoint];
+    SecondaryEndpoint& out = outStream[k];
+    out.rank_and_kind = range.rank | (is_high ? SecondaryEndpoint::kHighBit : 0u);
+    out.low = range.low;
+    out.high = range.high;
+    out.slabs = inSlabs ? inSlabs[range.rank] : RankedSlabs{0, 0};
+  }
+}
+
+void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairList& outPairs) {
+  ioWork.pairing.resize(std::max<std::size_t>(ioWork.pairing.size(), inInput.slab_count));
+  prepareTrees(ioWork.pairing, 0, inInput.slab_count, inInput.objects);
+  pairRankRange(inInput, 0, inInput.objects, ioWork.pairing.data(), outPairs);
 }
 
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
@@ -183,18 +225,21 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   const int partitions = std::max(1, inThreads);
   const uint32_t n = inInput.objects;
   const uint32_t partition_size = (n + partitions - 1) / partitions;  // Δ of Algorithm 4
-  ioWork.pairing.resize(partitions);
+  const int slab_count = inInput.slab_count;
+  ioWork.pairing.resize(
+      std::max<std::size_t>(ioWork.pairing.size(), std::size_t(partitions) * slab_count));
   outPairsPerThread.resize(partitions);
 #pragma omp parallel num_threads(partitions)
   {
     const int partition = omp_get_thread_num();
     const uint32_t rank_begin = std::min<uint64_t>(n, uint64_t{partition_size} * partition);
     const uint32_t rank_end = std::min<uint64_t>(n, uint64_t{rank_begin} + partition_size);
-    SuccTree& active = ioWork.pairing[partition];
-    if (active.size() != partition_size) active.resize(partition_size);
+    const std::size_t first_tree = std::size_t(partition) * slab_count;
+    prepareTrees(ioWork.pairing, first_tree, slab_count, partition_size);
     PairList& pairs = outPairsPerThread[partition];
     pairs.clear();
-    if (rank_begin < rank_end) pairRankRange(inInput, rank_begin, rank_end, active, pairs);
+    if (rank_begin < rank_end)
+      pairRankRange(inInput, rank_begin, rank_end, &ioWork.pairing[first_tree], pairs);
   }
 }
 

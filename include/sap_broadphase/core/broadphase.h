@@ -27,6 +27,8 @@ struct BroadphaseConfig {
   bool axis_swapping = true;              ///< swap a clustered sweep axis with the unused one (§5)
   double axis_swap_threshold = 0.25;      ///< dispersion D above which an axis is swapped
   std::size_t parallel_min_boxes = 4096;  ///< kAuto runs sequentially below this many boxes
+  int third_axis_slabs = 0;               ///< active lists per slab of the unused axis: 0 = auto,
+                                          ///< 1 = the paper's single list, k = k slabs (max 64)
   bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
                                  ///< may report extra pairs; never misses one)
 };
@@ -47,9 +49,10 @@ struct FrameStats {
   double dispersion_secondary = 0.0;  ///< D of eq. (1) for the secondary-axis sort
   bool axes_swapped = false;          ///< an axis swap happened after this frame's sort
   int threads = 1;
+  int slabs = 1;  ///< third-axis slabs used by pairing
   FramePath path = FramePath::kEmpty;
   double ms_keys = 0.0;        ///< float64 -> sortable keys
-  double ms_sort = 0.0;        ///< both axes' radix index sorts
+  double ms_sort = 0.0;        ///< both axes' radix index sorts (keys excluded)
   double ms_candidates = 0.0;  ///< ranks and candidate ranges on the primary axis
   double ms_pairing = 0.0;     ///< secondary sweep and exact overlap tests
   double ms_output = 0.0;      ///< ids and canonical pair order

@@ -23,10 +23,17 @@ inline IdPair makeIdPair(uint32_t x, uint32_t y) {
   return x < y ? IdPair{x, y} : IdPair{y, x};
 }
 
-/// Sorts pairs by (a, b) with a stable LSD radix sort on the 64-bit key a<<32|b: the canonical
-/// order used wherever pairs leave the process. ioScratch is reused between calls.
-void sortPairsCanonical(PairList& ioPairs, PairList& ioScratch);
-/// Convenience overload with a temporary scratch buffer.
+/// Buffers reused by sortPairsCanonical between calls.
+struct PairSortScratch {
+  PairList pairs;
+  std::vector<uint32_t> offsets;
+};
+
+/// Sorts pairs by (a, b): the canonical order used wherever pairs leave the process.
+/// Dense ids (largest a below a few times the pair count): a counting sort on a, then each
+/// a's short list sorted by b. Sparse ids: an LSD radix sort on the 64-bit key a<<32|b.
+void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch);
+/// Convenience overload with temporary buffers.
 void sortPairsCanonical(PairList& ioPairs);
 
 }  // namespace sap_broadphase

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sap_broadphase/core/pair_set.h"
+#include "sap_broadphase/core/slab_grid.h"
 #include "sap_broadphase/core/succ_tree.h"
 
 namespace sap_broadphase {
@@ -45,15 +46,39 @@ struct RankedKeys {
   uint32_t hi[3];
 };
 
+/// First and last slab a box touches, in rank order.
+struct RankedSlabs {
+  uint8_t first;
+  uint8_t last;
+};
+
+/// One endpoint of the secondary-axis order with all that pairing reads about its box, laid
+/// out in sweep order: every pairing thread streams through it instead of looking boxes up
+/// at random (one gather pass builds it for all threads).
+struct SecondaryEndpoint {
+  uint32_t rank_and_kind;  ///< primary rank; bit 31 set for a high endpoint
+  uint32_t low;            ///< L of the box
+  uint32_t high;           ///< U of the box
+  RankedSlabs slabs;       ///< third-axis slabs of the box ({0, 0} without slabs)
+  static constexpr uint32_t kHighBit = 0x80000000u;
+};
+
+/// Builds the secondary stream from the sorted secondary order (inThreads threads).
+void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
+                          const CandidateRanges& inRanges, const RankedSlabs* inSlabs,
+                          int inThreads, std::vector<SecondaryEndpoint>& outStream);
+
 /// What pairing needs to know about the boxes, all indexed by rank.
 struct PairingInput {
-  const uint32_t* secondary_order = nullptr;  ///< 2n sorted endpoint indexes, secondary axis
+  const SecondaryEndpoint* stream = nullptr;  ///< 2n endpoints in secondary-axis order
   uint32_t objects = 0;                       ///< n
-  const CandidateRanges* ranges = nullptr;
-  const RankedBox* boxes = nullptr;       ///< exact test (null in keys-only mode)
-  const RankedKeys* keys = nullptr;       ///< keys-only test (null in exact mode)
-  const RankedFilter* filters = nullptr;  ///< null when no box has a group or mask
-  const uint32_t* ids = nullptr;          ///< box ids, by object index
+  const uint32_t* object_of_rank = nullptr;   ///< R^-
+  const RankedBox* boxes = nullptr;           ///< exact test (null in keys-only mode)
+  const RankedKeys* keys = nullptr;           ///< keys-only test (null in exact mode)
+  const RankedFilter* filters = nullptr;      ///< null when no box has a group or mask
+  const uint32_t* ids = nullptr;              ///< box ids, by object index
+  const RankedSlabs* slabs = nullptr;         ///< null when slab_count is 1
+  int slab_count = 1;
 };
 
 /// Reusable SuccTrees of the parallel phases.
@@ -74,7 +99,7 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);
 
 /// Algorithm 1, lines 15-23: every pair, found once, by one thread. Appends to outPairs.
-void pairSequential(const PairingInput& inInput, SuccTree& ioActive, PairList& outPairs);
+void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairList& outPairs);
 
 /// Algorithm 4: rank space split into inThreads partitions, each swept by its own thread with
 /// its own SuccTree; each pair is found by exactly one thread, without locks or reduction.
