@@ -21,7 +21,10 @@ while [ $# -gt 0 ]; do
   esac
 done
 
+mkdir -p "$ROOT/build"
+echo "demo: set-up and build (first run: several minutes; log in build/demo_setup.log)"
 "$ROOT/scripts/setup.sh" >"$ROOT/build/demo_setup.log" 2>&1 || {
+  tail -n 20 "$ROOT/build/demo_setup.log" >&2
   echo "demo: set-up failed, see $ROOT/build/demo_setup.log" >&2; exit 1; }
 source "$ROOT/scripts/env.sh"
 

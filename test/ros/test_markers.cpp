@@ -1,0 +1,90 @@
+// Unit tests of the marker builder (no ROS master needed).
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "sap_broadphase/core/brute_force.h"
+#include "sap_broadphase/ros/markers.h"
+#include "test_frames.h"
+
+namespace sap_broadphase {
+namespace {
+
+using visualization_msgs::Marker;
+
+const Marker* findNamespace(const visualization_msgs::MarkerArray& inMarkers, const char* inNs) {
+  for (const Marker& marker : inMarkers.markers)
+    if (marker.ns == inNs) return &marker;
+  return nullptr;
+}
+
+TEST(Markers, DeleteAllFirstThenCollidingWireframes) {
+  const BoxSet boxes = test::touchingGrid(2, 100);  // 8 cubes, all touching each other
+  std_msgs::Header header;
+  header.frame_id = "world";
+  header.stamp = ros::Time(5, 6);
+  visualization_msgs::MarkerArray markers;
+  const MarkerCounts counts =
+      buildMarkers(boxes, bruteForcePairs(boxes), header, MarkerOptions(), markers);
+  ASSERT_EQ(markers.markers.size(), 2u);
+  EXPECT_EQ(markers.markers[0].action, Marker::DELETEALL);
+  const Marker& colliding = markers.markers[1];
+  EXPECT_EQ(colliding.type, Marker::LINE_LIST);
+  EXPECT_EQ(colliding.ns, kCollidingNamespace);
+  EXPECT_EQ(colliding.header.frame_id, "world");
+  EXPECT_EQ(colliding.header.stamp, ros::Time(5, 6));
+  EXPECT_EQ(colliding.points.size(), 24u * 8u);
+  EXPECT_EQ(colliding.pose.orientation.w, 1.0);
+  EXPECT_GT(colliding.scale.x, 0.0);
+  EXPECT_EQ(counts.drawn, 8u);
+  EXPECT_EQ(counts.colliding_omitted, 0u);
+  // The 12 edges of the first cube each have length 1 along one axis.
+  for (std::size_t k = 0; k < 24; k += 2) {
+    const auto& a = colliding.points[k];
+    const auto& b = colliding.points[k + 1];
+    EXPECT_DOUBLE_EQ(std::abs(a.x - b.x) + std::abs(a.y - b.y) + std::abs(a.z - b.z), 1.0);
+  }
+}
+
+TEST(Markers, NoPairsGiveAnEmptyCollidingList) {
+  BoxSet boxes;
+  const double lo_a[3] = {0, 0, 0}, hi_a[3] = {1, 1, 1}, lo_b[3] = {5, 5, 5}, hi_b[3] = {6, 6, 6};
+  boxes.add(7, lo_a, hi_a);
+  boxes.add(9, lo_b, hi_b);
+  visualization_msgs::MarkerArray markers;
+  MarkerOptions options;
+  options.show_non_colliding = true;
+  const MarkerCounts counts = buildMarkers(boxes, {}, std_msgs::Header(), options, markers);
+  ASSERT_EQ(markers.markers.size(), 3u);
+  EXPECT_TRUE(markers.markers[1].points.empty());
+  const Marker* others = findNamespace(markers, kNonCollidingNamespace);
+  ASSERT_NE(others, nullptr);
+  EXPECT_EQ(others->points.size(), 48u);
+  EXPECT_EQ(counts.drawn, 2u);
+}
+
+TEST(Markers, CapCountsWhatWasLeftOutAndLinksOnlyDrawnBoxes) {
+  const BoxSet boxes = test::randomBoxes(400, 1.5, true, 8);
+  const PairList pairs = bruteForcePairs(boxes);
+  MarkerOptions options;
+  options.max_boxes = 10;
+  options.show_non_colliding = true;
+  options.show_pair_links = true;
+  visualization_msgs::MarkerArray markers;
+  const MarkerCounts counts = buildMarkers(boxes, pairs, std_msgs::Header(), options, markers);
+  std::set<uint32_t> colliding_ids;
+  for (const IdPair& pair : pairs) colliding_ids.insert({pair.a, pair.b});
+  ASSERT_GT(colliding_ids.size(), 10u);
+  EXPECT_EQ(counts.drawn, 10u);
+  EXPECT_EQ(counts.colliding_omitted, colliding_ids.size() - 10);
+  EXPECT_EQ(findNamespace(markers, kCollidingNamespace)->points.size(), 240u);
+  EXPECT_EQ(findNamespace(markers, kNonCollidingNamespace), nullptr);
+  if (const Marker* links = findNamespace(markers, kPairLinkNamespace)) {
+    EXPECT_EQ(links->points.size() % 2, 0u);
+    EXPECT_LE(links->points.size(), 2u * options.max_boxes);
+  }
+}
+
+}  // namespace
+}  // namespace sap_broadphase

@@ -1,0 +1,7 @@
+// main() of the ROS layer's unit tests.
+#include <gtest/gtest.h>
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
