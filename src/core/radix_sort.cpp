@@ -36,6 +36,29 @@ inline uint8_t partitionOf(uint32_t inKey, const uint32_t* inBounds, int inBound
   return static_cast<uint8_t>((base - inBounds) + (*base <= inKey));
 }
 
+// Most keys share their top 16 bits with no bound: a table indexed by those bits names their
+// partition outright, and only keys in a prefix that a bound splits need the search.
+constexpr int kPrefixShift = 16;
+constexpr uint8_t kSplitPrefix = 0xFF;
+
+void buildPrefixTable(const uint32_t* inBounds, int inBoundCount, std::vector<uint8_t>& outTable) {
+  outTable.resize(std::size_t{1} << (32 - kPrefixShift));
+  int below_first = 0;  // bounds <= the prefix's first key
+  for (uint32_t prefix = 0; prefix < outTable.size(); ++prefix) {
+    const uint32_t first = prefix << kPrefixShift;
+    const uint32_t last = first | ((1u << kPrefixShift) - 1);
+    while (below_first < inBoundCount && inBounds[below_first] <= first) ++below_first;
+    const bool split = below_first < inBoundCount && inBounds[below_first] <= last;
+    outTable[prefix] = split ? kSplitPrefix : static_cast<uint8_t>(below_first);
+  }
+}
+
+inline uint8_t lookupPartition(uint32_t inKey, const uint8_t* inTable, const uint32_t* inBounds,
+                               int inBoundCount) {
+  const uint8_t partition = inTable[inKey >> kPrefixShift];
+  return partition != kSplitPrefix ? partition : partitionOf(inKey, inBounds, inBoundCount);
+}
+
 }  // namespace
 
 uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
@@ -128,6 +151,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t i
   const uint32_t* bounds = inBounds.bounds.data();
   counts_.assign(static_cast<std::size_t>(inThreads) * partitions, 0);
   partition_of_.resize(inCount);
+  buildPrefixTable(bounds, bound_count, prefix_table_);
   partition_begin_.assign(partitions + 1, 0);
   partition_size_.assign(partitions, 0);
 #pragma omp parallel num_threads(inThreads)
@@ -139,7 +163,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t i
     uint32_t* my_counts = &counts_[static_cast<std::size_t>(thread) * partitions];
     uint8_t* partition_of = partition_of_.data();
     for (uint32_t k = begin; k < end; ++k) {
-      partition_of[k] = partitionOf(inKeys[k], bounds, bound_count);
+      partition_of[k] = lookupPartition(inKeys[k], prefix_table_.data(), bounds, bound_count);
       ++my_counts[partition_of[k]];
     }
 #pragma omp barrier

@@ -46,11 +46,11 @@ inline void testCandidates(const PairingInput& inInput, const Ranked* inRanked,
 
 // Algorithm 4 for the ranks [inRankBegin, inRankEnd), with one active tree per slab.
 template <typename Ranked>
-void pairPartition(const PairingInput& inInput, const Ranked* inRanked, uint32_t inRankBegin,
+void pairPartition(const PairingInput& inInput, const Ranked* inRanked,
+                   const SecondaryEndpoint* inStream, std::size_t inEndpoints, uint32_t inRankBegin,
                    uint32_t inRankEnd, SuccTree* ioActive, PairList& outPairs) {
-  const SecondaryEndpoint* stream = inInput.stream;
-  const std::size_t endpoints = 2 * std::size_t{inInput.objects};
-  for (std::size_t k = 0; k < endpoints; ++k) {
+  const SecondaryEndpoint* stream = inStream;
+  for (std::size_t k = 0; k < inEndpoints; ++k) {
     const SecondaryEndpoint& endpoint = stream[k];
     const uint32_t rank = endpoint.rank_and_kind & ~SecondaryEndpoint::kHighBit;
     const bool mine = rank >= inRankBegin && rank < inRankEnd;
@@ -75,12 +75,73 @@ void pairPartition(const PairingInput& inInput, const Ranked* inRanked, uint32_t
   }
 }
 
-void pairRankRange(const PairingInput& inInput, uint32_t inRankBegin, uint32_t inRankEnd,
+void pairRankRange(const PairingInput& inInput, const SecondaryEndpoint* inStream,
+                   std::size_t inEndpoints, uint32_t inRankBegin, uint32_t inRankEnd,
                    SuccTree* ioActive, PairList& outPairs) {
   if (inInput.boxes)
-    pairPartition(inInput, inInput.boxes, inRankBegin, inRankEnd, ioActive, outPairs);
+    pairPartition(inInput, inInput.boxes, inStream, inEndpoints, inRankBegin, inRankEnd, ioActive,
+                  outPairs);
   else
-    pairPartition(inInput, inInput.keys, inRankBegin, inRankEnd, ioActive, outPairs);
+    pairPartition(inInput, inInput.keys, inStream, inEndpoints, inRankBegin, inRankEnd, ioActive,
+                  outPairs);
+}
+
+// The rank partitions an endpoint matters to: its own (insert, erase) and, for a low endpoint,
+// every partition its candidate range [L, U) reaches (which includes its own: L <= R < U).
+inline void partitionsOf(const SecondaryEndpoint& inEndpoint, uint32_t inPartitionSize,
+                         uint32_t& outFirst, uint32_t& outLast) {
+  const uint32_t rank = inEndpoint.rank_and_kind & ~SecondaryEndpoint::kHighBit;
+  if (inEndpoint.rank_and_kind & SecondaryEndpoint::kHighBit) {
+    outFirst = outLast = rank / inPartitionSize;
+  } else {
+    outFirst = std::min(inEndpoint.low, rank) / inPartitionSize;
+    outLast = (std::max(inEndpoint.high, rank + 1) - 1) / inPartitionSize;
+  }
+}
+
+// Copies each endpoint of the stream to the streams of the partitions it matters to, keeping
+// sweep order within each (threads take contiguous slices; counts, then placement).
+void scatterToPartitions(const PairingInput& inInput, int inThreads, uint32_t inPartitionSize,
+                         uint32_t inPartitions, SweepWorkspace& ioWork) {
+  const std::size_t endpoints = 2 * std::size_t{inInput.objects};
+  const SecondaryEndpoint* stream = inInput.stream;
+  std::vector<std::size_t>& counts = ioWork.scatter_counts;
+  counts.assign(std::size_t(inThreads) * inPartitions, 0);
+  ioWork.partition_offsets.assign(inPartitions + 1, 0);
+#pragma omp parallel num_threads(inThreads)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    const std::size_t begin = endpoints * thread / team;
+    const std::size_t end = endpoints * (thread + 1) / team;
+    std::size_t* my_counts = &counts[std::size_t(thread) * inPartitions];
+    uint32_t first = 0, last = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      partitionsOf(stream[k], inPartitionSize, first, last);
+      for (uint32_t p = first; p <= last; ++p) ++my_counts[p];
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t offset = 0;
+      for (uint32_t p = 0; p < inPartitions; ++p) {
+        ioWork.partition_offsets[p] = offset;
+        for (int t = 0; t < team; ++t) {
+          std::size_t& slot = counts[std::size_t(t) * inPartitions + p];
+          const std::size_t size = slot;
+          slot = offset;
+          offset += size;
+        }
+      }
+      ioWork.partition_offsets[inPartitions] = offset;
+      ioWork.partition_streams.resize(offset);
+    }
+    SecondaryEndpoint* out = ioWork.partition_streams.data();
+    for (std::size_t k = begin; k < end; ++k) {
+      partitionsOf(stream[k], inPartitionSize, first, last);
+      for (uint32_t p = first; p <= last; ++p) out[my_counts[p]++] = stream[k];
+    }
+  }
 }
 
 // Makes trees [inFirst, inFirst + inCount) of ioTrees empty trees over inSize ranks.
@@ -217,29 +278,39 @@ void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairList& outPairs) {
   ioWork.pairing.resize(std::max<std::size_t>(ioWork.pairing.size(), inInput.slab_count));
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, inInput.objects);
-  pairRankRange(inInput, 0, inInput.objects, ioWork.pairing.data(), outPairs);
+  pairRankRange(inInput, inInput.stream, 2 * std::size_t{inInput.objects}, 0, inInput.objects,
+                ioWork.pairing.data(), outPairs);
 }
 
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairList>& outPairsPerThread) {
-  const int partitions = std::max(1, inThreads);
+  const int threads = std::max(1, inThreads);
   const uint32_t n = inInput.objects;
-  const uint32_t partition_size = (n + partitions - 1) / partitions;  // Δ of Algorithm 4
+  const uint32_t wanted =
+      std::max<uint32_t>(threads, (n + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
+  const uint32_t partition_size = std::max<uint32_t>(1, (n + wanted - 1) / wanted);  // Δ
+  const uint32_t partitions = (n + partition_size - 1) / partition_size;
+  scatterToPartitions(inInput, threads, partition_size, partitions, ioWork);
   const int slab_count = inInput.slab_count;
   ioWork.pairing.resize(
-      std::max<std::size_t>(ioWork.pairing.size(), std::size_t(partitions) * slab_count));
-  outPairsPerThread.resize(partitions);
-#pragma omp parallel num_threads(partitions)
+      std::max<std::size_t>(ioWork.pairing.size(), std::size_t(threads) * slab_count));
+  outPairsPerThread.resize(threads);
+#pragma omp parallel num_threads(threads)
   {
-    const int partition = omp_get_thread_num();
-    const uint32_t rank_begin = std::min<uint64_t>(n, uint64_t{partition_size} * partition);
-    const uint32_t rank_end = std::min<uint64_t>(n, uint64_t{rank_begin} + partition_size);
-    const std::size_t first_tree = std::size_t(partition) * slab_count;
-    prepareTrees(ioWork.pairing, first_tree, slab_count, partition_size);
-    PairList& pairs = outPairsPerThread[partition];
+    const int thread = omp_get_thread_num();
+    SuccTree* trees = &ioWork.pairing[std::size_t(thread) * slab_count];
+    prepareTrees(ioWork.pairing, std::size_t(thread) * slab_count, slab_count, partition_size);
+    PairList& pairs = outPairsPerThread[thread];
     pairs.clear();
-    if (rank_begin < rank_end)
-      pairRankRange(inInput, rank_begin, rank_end, &ioWork.pairing[first_tree], pairs);
+#pragma omp for schedule(dynamic, 1)
+    for (uint32_t p = 0; p < partitions; ++p) {
+      const uint32_t rank_begin = p * partition_size;
+      const uint32_t rank_end = std::min(n, rank_begin + partition_size);
+      const std::size_t begin = ioWork.partition_offsets[p];
+      const std::size_t end = ioWork.partition_offsets[p + 1];
+      pairRankRange(inInput, ioWork.partition_streams.data() + begin, end - begin, rank_begin,
+                    rank_end, trees, pairs);
+    }
   }
 }
 

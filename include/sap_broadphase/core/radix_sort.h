@@ -25,8 +25,8 @@ uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t in
 /// Stable sequential index sort: outIndex[k] is the index of the k-th smallest key.
 void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex);
 
-/// Most partitions of Algorithm 2 (partition numbers are stored in 8 bits).
-constexpr int kMaxSortPartitions = 256;
+/// Most partitions of Algorithm 2 (partition numbers are stored in 8 bits, 0xFF reserved).
+constexpr int kMaxSortPartitions = 255;
 
 /// Partition bounds B of one axis, carried from frame to frame (temporal coherence).
 struct AxisBounds {
@@ -56,6 +56,7 @@ class PartitionedSorter {
   std::vector<uint64_t> items_;
   std::vector<uint64_t> scratch_;
   std::vector<uint8_t> partition_of_;         // partition of each key, found once
+  std::vector<uint8_t> prefix_table_;         // partition by the key's top 16 bits
   std::vector<uint32_t> counts_;              // [thread][partition]
   std::vector<std::size_t> partition_begin_;  // m + 1 offsets
   std::vector<uint32_t> partition_size_;

@@ -81,12 +81,18 @@ struct PairingInput {
   int slab_count = 1;
 };
 
+/// Largest rank partition of the parallel pairing: its slab trees stay cache-resident.
+constexpr uint32_t kPairingPartitionRanks = 1u << 16;
+
 /// Reusable SuccTrees of the parallel phases.
 struct SweepWorkspace {
   std::vector<SuccTree> partition_local;  ///< Algorithm 3: toggled within each partition
   std::vector<SuccTree> partition_start;  ///< Algorithm 3: ⊕-prefix, active at partition start
-  std::vector<SuccTree> pairing;          ///< Algorithm 4: one per rank partition
-  std::vector<uint32_t> lows_before;      ///< Algorithm 3: rank counter at partition start
+  std::vector<SuccTree> pairing;          ///< Algorithm 4: slab_count trees per thread
+  std::vector<SecondaryEndpoint> partition_streams;  ///< Algorithm 4: endpoints by partition
+  std::vector<std::size_t> partition_offsets;        ///< start of each partition's stream, m + 1
+  std::vector<std::size_t> scatter_counts;           ///< [thread][partition] placement counters
+  std::vector<uint32_t> lows_before;  ///< Algorithm 3: rank counter at partition start
 };
 
 /// Algorithm 1, lines 5-14: ranks and candidate ranges from the primary-axis order, one thread.
@@ -101,9 +107,13 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
 /// Algorithm 1, lines 15-23: every pair, found once, by one thread. Appends to outPairs.
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairList& outPairs);
 
-/// Algorithm 4: rank space split into inThreads partitions, each swept by its own thread with
-/// its own SuccTree; each pair is found by exactly one thread, without locks or reduction.
-/// outPairsPerThread[t] receives thread t's pairs.
+/// Algorithm 4: rank space split into partitions of at most kPairingPartitionRanks ranks (and at
+/// least one per thread), each swept by one thread with its own SuccTrees; each pair is found in
+/// exactly one partition, without locks or reduction. Unlike the paper, where every thread reads
+/// all 2n endpoints, one scatter pass first hands each partition only the endpoints that touch
+/// it (those whose rank or candidate range falls in it), in sweep order: partitions then fit in
+/// cache and there may be many more of them than threads. outPairsPerThread[t] receives
+/// thread t's pairs.
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairList>& outPairsPerThread);
 
