@@ -83,7 +83,7 @@ echo "bench.sh: results in $out"
 if [ "$micro" -eq 1 ] && [ -x "$bin/sap_microbench" ]; then
   micro_args=(--benchmark_out="$out/microbench.json" --benchmark_out_format=json)
   # Quick: the small sizes only, briefly.
-  [ "$quick" -eq 1 ] && micro_args+=(--benchmark_min_time=0.01 "--benchmark_filter=/(1024|8192|65536|32768|131072)(/|$)|SuccTreeRange")
+  [ "$quick" -eq 1 ] && micro_args+=(--benchmark_min_time=0.01 "--benchmark_filter=[/:](1024|8192|32768|65536|131072)(/|$)|SuccTreeRange")
   "$bin/sap_microbench" "${micro_args[@]}" | tee "$out/microbench.txt"
 fi
 echo "bench.sh: done; results in $out"

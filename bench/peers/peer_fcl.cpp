@@ -34,6 +34,11 @@ fcl::Vector3d centre(const BoxSet& inBoxes, std::size_t i) {
                        0.5 * (inBoxes.lo[2][i] + inBoxes.hi[2][i]));
 }
 
+/// Equal up to rounding: centre +- half of an unchanged box may differ by an ulp per frame.
+bool sameSize(const fcl::Vector3d& inA, const fcl::Vector3d& inB) {
+  return ((inA - inB).cwiseAbs().array() <= 1e-9 * inA.cwiseAbs().array()).all();
+}
+
 class FclPeer : public Peer {
  public:
   std::string name() const override { return "fcl_dynamic_aabb"; }
@@ -56,25 +61,19 @@ class FclPeer : public Peer {
   void begin() override {
     manager_.reset();
     steady_objects_.clear();
+    one_shot_objects_.clear();
   }
 
   PeerResult step(const BoxSet& inBoxes) override {
-    if (!manager_ || steady_objects_.size() != inBoxes.size()) {
-      syncObjects(inBoxes, steady_objects_);
-      Stopwatch clock;
+    Stopwatch clock;
+    // Objects that changed size are new objects: the manager is then rebuilt (timed).
+    if (syncObjects(inBoxes, steady_objects_) || !manager_) {
       manager_ = std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
       manager_->registerObjects(pointers(steady_objects_));
       manager_->setup();
-      CountData data{&inBoxes, 0};
-      manager_->collide(&data, countPair);
-      return {data.count, clock.ms()};
+    } else {
+      manager_->update();
     }
-    Stopwatch clock;
-    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-      steady_objects_[i]->setTranslation(centre(inBoxes, i));
-      steady_objects_[i]->computeAABB();
-    }
-    manager_->update();
     CountData data{&inBoxes, 0};
     manager_->collide(&data, countPair);
     return {data.count, clock.ms()};
@@ -83,25 +82,30 @@ class FclPeer : public Peer {
  private:
   using Objects = std::vector<std::unique_ptr<fcl::CollisionObjectd>>;
 
-  /// Makes one object per box (or moves the existing ones when the count is unchanged).
-  static void syncObjects(const BoxSet& inBoxes, Objects& ioObjects) {
-    if (ioObjects.size() != inBoxes.size()) {
-      ioObjects.clear();
-      for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-        auto shape = std::make_shared<fcl::Boxd>(inBoxes.hi[0][i] - inBoxes.lo[0][i],
-                                                 inBoxes.hi[1][i] - inBoxes.lo[1][i],
-                                                 inBoxes.hi[2][i] - inBoxes.lo[2][i]);
-        fcl::Transform3d pose = fcl::Transform3d::Identity();
-        pose.translation() = centre(inBoxes, i);
-        ioObjects.push_back(std::make_unique<fcl::CollisionObjectd>(shape, pose));
-        ioObjects.back()->setUserData(reinterpret_cast<void*>(i));
-      }
-      return;
-    }
+  /// Makes one object per box; later calls move the objects and remake those whose box
+  /// changed size (an fcl::Box cannot be resized). Returns true when any object was remade.
+  static bool syncObjects(const BoxSet& inBoxes, Objects& ioObjects) {
+    bool remade = false;
+    if (ioObjects.size() != inBoxes.size()) ioObjects.clear();
+    ioObjects.resize(inBoxes.size());
     for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-      ioObjects[i]->setTranslation(centre(inBoxes, i));
-      ioObjects[i]->computeAABB();
+      const fcl::Vector3d side(inBoxes.hi[0][i] - inBoxes.lo[0][i],
+                               inBoxes.hi[1][i] - inBoxes.lo[1][i],
+                               inBoxes.hi[2][i] - inBoxes.lo[2][i]);
+      auto& object = ioObjects[i];
+      if (object &&
+          sameSize(static_cast<const fcl::Boxd&>(*object->collisionGeometry()).side, side)) {
+        object->setTranslation(centre(inBoxes, i));
+        object->computeAABB();
+        continue;
+      }
+      fcl::Transform3d pose = fcl::Transform3d::Identity();
+      pose.translation() = centre(inBoxes, i);
+      object = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl::Boxd>(side), pose);
+      object->setUserData(reinterpret_cast<void*>(i));
+      remade = true;
     }
+    return remade;
   }
 
   static std::vector<fcl::CollisionObjectd*> pointers(const Objects& inObjects) {
