@@ -30,6 +30,7 @@ void fillEngineStats(const EngineFrameStats& inEngine, FrameStats& outStats) {
   outStats.axes_swapped = inEngine.axes_swapped;
   outStats.path = framePathName(inEngine.path);
   outStats.threads = static_cast<uint32_t>(inEngine.threads);
+  outStats.slabs = static_cast<uint32_t>(inEngine.slabs);
   outStats.ms_sort = inEngine.ms_keys + inEngine.ms_sort;
   outStats.ms_candidates = inEngine.ms_candidates;
   outStats.ms_pairing = inEngine.ms_pairing;

@@ -81,6 +81,9 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
   inPrivate.param("axis_swap_threshold", engine.axis_swap_threshold, engine.axis_swap_threshold);
   if (!(error = readCount(inPrivate, "parallel_min_boxes", engine.parallel_min_boxes)).empty())
     return error;
+  if (!(error = readCount(inPrivate, "third_axis_slabs", engine.third_axis_slabs)).empty())
+    return error;
+  if (engine.third_axis_slabs > 64) return "~third_axis_slabs must be at most 64";
   inPrivate.param("exact_final_test", engine.exact_final_test, engine.exact_final_test);
 
   inPrivate.param("publish_markers", outParams.publish_markers, outParams.publish_markers);

@@ -60,11 +60,20 @@ class RvizScreenshotTest(unittest.TestCase):
             pass_fds=(write_end,), stdout=log, stderr=log)
         self.processes.append(xvfb)
         os.close(write_end)
-        ready, _, _ = select.select([read_end], [], [], 20.0)
-        self.assertTrue(ready, "Xvfb did not report a display within 20 s")
-        display = int(os.read(read_end, 16).decode().strip())
+        # Xvfb writes the number, then a newline: read both before closing our end, or its
+        # second write fails and it exits.
+        reported = b""
+        end = time.monotonic() + 20.0
+        while not reported.endswith(b"\n") and time.monotonic() < end:
+            ready, _, _ = select.select([read_end], [], [], max(0.0, end - time.monotonic()))
+            chunk = os.read(read_end, 16) if ready else b""
+            if not chunk:
+                break
+            reported += chunk
         os.close(read_end)
-        return display
+        self.assertTrue(reported.endswith(b"\n"),
+                        "Xvfb did not report a display (see build/artifacts/xvfb.log)")
+        return int(reported.decode().strip())
 
     def start_rviz(self, display):
         env = dict(os.environ, DISPLAY=":%d" % display, LIBGL_ALWAYS_SOFTWARE="1")
