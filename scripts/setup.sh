@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
 # Installs whatever the project needs that is missing (Debian 12 packages), then builds the
-# catkin workspace in build/ws, where src/sap_broadphase links back to this repository.
+# catkin workspace in build/ws (or $SAP_WS), whose src/sap_broadphase mirrors this repository.
+#
+# The sources are mirrored (rsync, mtimes kept, so make rebuilds only what changed), not
+# symlinked: roslaunch searches a package's directory following links, and a link from
+# build/ws/src back to the repository, which contains build/, would be an endless loop.
 # Usage: scripts/setup.sh [extra catkin_make arguments, e.g. tests]
 set -eo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -23,7 +27,9 @@ install_missing_packages() {
 
 build_workspace() {
   mkdir -p "$WS/src"
-  ln -sfn "$ROOT" "$WS/src/sap_broadphase"
+  local mirror="$WS/src/sap_broadphase"
+  [ -L "$mirror" ] && rm -f "$mirror"
+  rsync -a --delete --exclude=/build/ --exclude=/.git/ --exclude=/artifacts/ "$ROOT/" "$mirror/"
   # Debian's ROS needs the system python, not a pyenv shim that may come first in PATH.
   export PYENV_VERSION=system
   catkin_make -C "$WS" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
