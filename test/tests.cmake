@@ -6,6 +6,10 @@
 # candidate generation.
 catkin_add_gtest(test_core
   test/core/test_text_io.cpp
+  test/core/test_box_set.cpp
+  test/core/test_succ_tree.cpp
+  test/core/test_radix_sort.cpp
+  test/core/test_sweep.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp
 )
@@ -16,6 +20,10 @@ target_link_libraries(test_core ${PROJECT_NAME}_core)
 # sequences, determinism across thread counts and axes, axis swapping.
 catkin_add_gtest(test_engine
   test/core/test_engine_random.cpp
+  test/core/test_engine_edge_cases.cpp
+  test/core/test_engine_scenes.cpp
+  test/core/test_determinism.cpp
+  test/core/test_axis_swap.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp
 )
