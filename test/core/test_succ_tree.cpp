@@ -249,6 +249,24 @@ TEST(SuccTree, AllPrefixSymmetricDifferenceOfPartitions) {
   expectSame(prefix, active);
 }
 
+TEST(SuccTree, DefaultConstructedTreeIsAnEmptySizeZeroTree) {
+  // Run in a child process: a crash fails this test instead of ending the whole suite. The
+  // child re-executes the binary ("threadsafe"): OpenMP's thread pool does not survive fork().
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        SuccTree a;
+        SuccTree b;
+        bool ok = a.size() == 0 && a.empty() && a.min() == SuccTree::kNone;
+        a.forEachInRange(0, 0, [&](uint32_t) { ok = false; });
+        a.symmetricDifference(b);
+        a.clear();
+        ok = ok && a.empty();
+        std::exit(ok ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
 TEST(SuccTree, ClearAndResizeEmpty) {
   SuccTree tree(100000);
   for (uint32_t v = 0; v < 100000; v += 997) tree.insert(v);

@@ -89,5 +89,22 @@ TEST(Candidates, ParallelEqualsSequentialForEveryThreadCount) {
   }
 }
 
+TEST(Candidates, ZeroObjectsWithAFreshWorkspace) {
+  // Run in a child process: a crash fails this test instead of ending the whole suite. The
+  // child re-executes the binary ("threadsafe"): OpenMP's thread pool does not survive fork().
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        SuccTree active;
+        CandidateRanges sequential;
+        computeCandidatesSequential(nullptr, 0, active, sequential);
+        SweepWorkspace work;
+        CandidateRanges parallel;
+        computeCandidatesParallel(nullptr, 0, 3, work, parallel);
+        std::exit(sequential.of_object.empty() && parallel.of_object.empty() ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
 }  // namespace
 }  // namespace sap_broadphase
