@@ -19,10 +19,12 @@ using test_support::samePairs;
 /// Engines that persist across frames: parallel at several thread counts and axes, sequential,
 /// and the adaptive default.
 std::vector<BroadphaseConfig> persistentConfigs() {
-  return {engineConfig(Method::kParallel, 1, 0, 1), engineConfig(Method::kParallel, 2, 1, 2),
-          engineConfig(Method::kParallel, 3, 2, 0), engineConfig(Method::kParallel, 4, 0, 2),
-          engineConfig(Method::kParallel, 7, 2, 1), engineConfig(Method::kSequential, 1, 1, 0),
-          engineConfig(Method::kAuto, 2, 0, 1)};
+  return {
+      engineConfig(Method::kParallel, 1, 0, 1),    engineConfig(Method::kParallel, 2, 1, 2),
+      engineConfig(Method::kParallel, 3, 2, 0),    engineConfig(Method::kParallel, 4, 0, 2),
+      engineConfig(Method::kParallel, 7, 2, 1),    engineConfig(Method::kSequential, 1, 1, 0),
+      engineConfig(Method::kAuto, 2, 0, 1),        engineConfig(Method::kParallel, 2, 0, 1, 1),
+      engineConfig(Method::kParallel, 3, 1, 0, 9), engineConfig(Method::kSequential, 1, 0, 1, 64)};
 }
 
 /// Feeds every frame of inFrames to one engine per config, expecting the oracle every time.

@@ -78,8 +78,10 @@ void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
   }
 }
 
-BroadphaseConfig engineConfig(Method inMethod, int inThreads, int inPrimary, int inSecondary) {
+BroadphaseConfig engineConfig(Method inMethod, int inThreads, int inPrimary, int inSecondary,
+                              int inSlabs) {
   BroadphaseConfig config;
+  config.third_axis_slabs = inSlabs;
   config.method = inMethod;
   config.threads = inThreads;
   config.primary_axis = inPrimary;
@@ -147,12 +149,18 @@ void expectAllConfigsMatch(const BoxSet& inBoxes, const PairList& inOracle,
     configs.push_back(engineConfig(Method::kSequential, 1, primary, secondary));
     configs.push_back(engineConfig(Method::kAuto, 2, primary, secondary));
   }
+  for (int slabs : {1, 2, 5, 64}) {
+    configs.push_back(engineConfig(Method::kParallel, 3, 1, 2, slabs));
+    configs.push_back(engineConfig(Method::kSequential, 1, 2, 0, slabs));
+  }
   configs.push_back(engineConfig(Method::kAuto, 1, 0, 1));
   configs.push_back(engineConfig(Method::kBruteForce, 1, 0, 1));
   for (const BroadphaseConfig& config : configs) {
     Broadphase broadphase(config);
     EXPECT_TRUE(samePairs(inOracle, broadphase.update(inBoxes)))
         << inLabel << " (" << inBoxes.size() << " boxes), " << describe(config);
+    const int slabs = broadphase.stats().slabs;
+    EXPECT_TRUE(slabs >= 1 && slabs <= 64) << slabs << " slabs";
   }
 }
 
@@ -165,6 +173,7 @@ std::string describe(const BroadphaseConfig& inConfig) {
   std::ostringstream text;
   text << "method " << kMethods[static_cast<int>(inConfig.method)] << ", threads "
        << inConfig.threads << ", axes " << inConfig.primary_axis << "/" << inConfig.secondary_axis
+       << ", slabs " << inConfig.third_axis_slabs
        << (inConfig.axis_swapping ? "" : ", no swapping");
   return text.str();
 }

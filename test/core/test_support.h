@@ -47,8 +47,10 @@ BoxSet shuffledSubset(const BoxSet& inBoxes, double inKeep, bool inSparseIds, ui
 /// Gives box i a random group and mask (from a few bits, so some pairs are filtered out).
 void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed);
 
-/// An engine configuration for one method, thread count and axis pair.
-BroadphaseConfig engineConfig(Method inMethod, int inThreads, int inPrimary, int inSecondary);
+/// An engine configuration for one method, thread count, axis pair and third-axis slab count
+/// (0 = the engine's choice, 1 = the paper's single active list).
+BroadphaseConfig engineConfig(Method inMethod, int inThreads, int inPrimary, int inSecondary,
+                              int inSlabs = 0);
 /// The six ordered (primary, secondary) axis pairs.
 std::vector<std::pair<int, int>> allAxisPairs();
 
