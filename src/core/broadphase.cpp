@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -50,6 +51,8 @@ const char* framePathName(FramePath inPath) {
       return "parallel";
     case FramePath::kBruteForce:
       return "brute";
+    case FramePath::kReused:
+      return "reused";
   }
   return "unknown";
 }
@@ -78,6 +81,13 @@ struct Broadphase::Impl {
   std::vector<PairList> pairs_per_thread;
   PairList pairs;
   PairSortScratch pair_scratch;
+  BoxSet collidable;                   // the frame without boxes that can collide with nothing
+  std::vector<uint32_t> previous_ids;  // ids of the last swept frame, by object index
+  bool previous_reusable = false;      // the last frame's buffers describe its boxes exactly
+
+  bool sameAsPreviousFrame(const BoxSet& inBoxes) const;
+  void rememberFrame(const BoxSet& inBoxes, FramePath inPath);
+  const BoxSet& dropBoxesThatCollideWithNothing(const BoxSet& inBoxes);
 
   FramePath choosePath(std::size_t inBoxes, int inThreads) const;
   double sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
@@ -230,6 +240,56 @@ void Broadphase::Impl::decideAxes(bool inWarm) {
   config.secondary_axis = decision.secondary;
 }
 
+// A box with group 0 or mask 0 passes no filter: it is left out before the sweep. The copy is
+// made only when such boxes exist.
+const BoxSet& Broadphase::Impl::dropBoxesThatCollideWithNothing(const BoxSet& inBoxes) {
+  if (!inBoxes.hasFilters()) return inBoxes;
+  std::size_t excluded = 0;
+  for (std::size_t i = 0; i < inBoxes.size(); ++i)
+    excluded += inBoxes.group(i) == 0 || inBoxes.mask(i) == 0;
+  stats.boxes_filtered_out = excluded;
+  if (excluded == 0) return inBoxes;
+  collidable.clear();
+  collidable.reserve(inBoxes.size() - excluded);
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;
+    const double low[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
+    const double high[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    collidable.add(inBoxes.ids[i], low, high, inBoxes.group(i), inBoxes.mask(i));
+  }
+  return collidable;
+}
+
+// Exact comparison with the last swept frame, through the rank-ordered copies the pipeline
+// keeps anyway (bounds, filters) plus the previous ids: no second copy of the input is held.
+bool Broadphase::Impl::sameAsPreviousFrame(const BoxSet& inBoxes) const {
+  const std::size_t n = inBoxes.size();
+  if (!previous_reusable || previous_ids.size() != n) return false;
+  if (inBoxes.hasFilters() != !ranked_filters.empty()) return false;
+  if (!std::equal(previous_ids.begin(), previous_ids.end(), inBoxes.ids.begin())) return false;
+  const uint32_t* object_of_rank = ranges.object_of_rank.data();
+  for (std::size_t rank = 0; rank < n; ++rank) {
+    const uint32_t i = object_of_rank[rank];
+    const RankedBox& box = ranked_boxes[rank];
+    for (int axis = 0; axis < 3; ++axis) {
+      // Bitwise equality: -0.0 and 0.0 give the same pairs, but a changed bit is a change.
+      if (std::memcmp(&box.lo[axis], &inBoxes.lo[axis][i], sizeof(double)) != 0 ||
+          std::memcmp(&box.hi[axis], &inBoxes.hi[axis][i], sizeof(double)) != 0)
+        return false;
+    }
+    if (!ranked_filters.empty() && (ranked_filters[rank].group != inBoxes.group(i) ||
+                                    ranked_filters[rank].mask != inBoxes.mask(i)))
+      return false;
+  }
+  return true;
+}
+
+void Broadphase::Impl::rememberFrame(const BoxSet& inBoxes, FramePath inPath) {
+  previous_reusable = config.reuse_unchanged_frames && config.exact_final_test &&
+                      (inPath == FramePath::kSequential || inPath == FramePath::kParallel);
+  if (previous_reusable) previous_ids.assign(inBoxes.ids.begin(), inBoxes.ids.end());
+}
+
 Broadphase::Broadphase(const BroadphaseConfig& inConfig) : impl_(std::make_unique<Impl>()) {
   checkConfig(inConfig);
   impl_->config = inConfig;
@@ -244,32 +304,45 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
   const Clock::time_point start = Clock::now();
   const int threads = resolveThreadCount(impl.config.threads);
   FrameStats& stats = impl.stats;
+  const FrameStats previous_stats = stats;
   stats = FrameStats();
   stats.boxes = inBoxes.size();
+  const BoxSet& boxes = impl.dropBoxesThatCollideWithNothing(inBoxes);
   stats.primary_axis = impl.config.primary_axis;
   stats.secondary_axis = impl.config.secondary_axis;
-  stats.path = impl.choosePath(inBoxes.size(), threads);
+  stats.path = impl.choosePath(boxes.size(), threads);
   stats.threads = stats.path == FramePath::kParallel ? threads : 1;
+  if ((stats.path == FramePath::kSequential || stats.path == FramePath::kParallel) &&
+      impl.sameAsPreviousFrame(boxes)) {
+    stats.path = FramePath::kReused;
+    stats.threads = 1;
+    stats.dispersion_primary = previous_stats.dispersion_primary;
+    stats.dispersion_secondary = previous_stats.dispersion_secondary;
+    stats.slabs = previous_stats.slabs;
+  }
 
   switch (stats.path) {
     case FramePath::kEmpty:
       impl.pairs.clear();
       break;
+    case FramePath::kReused:
+      break;  // impl.pairs still holds this very frame's pairs
     case FramePath::kBruteForce: {
       const Clock::time_point phase = Clock::now();
-      impl.pairs = bruteForcePairs(inBoxes);
+      impl.pairs = bruteForcePairs(boxes);
       stats.ms_pairing = millisecondsSince(phase);
       break;
     }
     case FramePath::kSequential:
     case FramePath::kParallel: {
-      impl.sweepAndPrune(inBoxes, stats.path, threads);
+      impl.sweepAndPrune(boxes, stats.path, threads);
       const Clock::time_point phase = Clock::now();
       sortPairsCanonical(impl.pairs, impl.pair_scratch);
       stats.ms_output = millisecondsSince(phase);
       break;
     }
   }
+  if (stats.path != FramePath::kReused) impl.rememberFrame(boxes, stats.path);
   stats.pairs = impl.pairs.size();
   stats.ms_total = millisecondsSince(start);
   return impl.pairs;
@@ -284,6 +357,7 @@ const BroadphaseConfig& Broadphase::config() const {
 
 void Broadphase::reset() {
   for (AxisBounds& axis_bounds : impl_->bounds) axis_bounds.from_previous_frame = false;
+  impl_->previous_reusable = false;
 }
 
 }  // namespace sap_broadphase

@@ -29,19 +29,28 @@ struct BroadphaseConfig {
   std::size_t parallel_min_boxes = 4096;  ///< kAuto runs sequentially below this many boxes
   int third_axis_slabs = 0;               ///< active lists per slab of the unused axis: 0 = auto,
                                           ///< 1 = the paper's single list, k = k slabs (max 64)
+  bool reuse_unchanged_frames = true;     ///< a frame equal to the previous one (ids, bounds,
+                                          ///< groups, masks) returns the previous pairs
   bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
                                  ///< may report extra pairs; never misses one)
 };
 
 /// Which path computed a frame.
-enum class FramePath : uint8_t { kEmpty, kSequential, kParallel, kBruteForce };
+enum class FramePath : uint8_t {
+  kEmpty,       ///< fewer than two boxes take part
+  kSequential,  ///< Algorithm 1
+  kParallel,    ///< Algorithms 2, 3, 4
+  kBruteForce,  ///< the oracle
+  kReused,      ///< same boxes as the previous frame: its pairs returned without a sweep
+};
 
-/// Human-readable name of a path: "empty", "sequential", "parallel", "brute".
+/// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused".
 const char* framePathName(FramePath inPath);
 
 /// What one frame cost and how it was computed. Times are milliseconds of wall clock.
 struct FrameStats {
   std::size_t boxes = 0;
+  std::size_t boxes_filtered_out = 0;  ///< boxes with group 0 or mask 0: never swept
   std::size_t pairs = 0;
   int primary_axis = 0;
   int secondary_axis = 1;

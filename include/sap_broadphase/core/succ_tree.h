@@ -16,7 +16,8 @@ class SuccTree {
   /// Value returned by next()/min() when there is no such element.
   static constexpr uint32_t kNone = 0xFFFFFFFFu;
 
-  SuccTree() = default;
+  /// An empty tree over the empty universe (one zero word, so every operation is defined).
+  SuccTree() { resize(0); }
   /// An empty tree over {0, ..., inSize-1}.
   explicit SuccTree(uint32_t inSize) { resize(inSize); }
 
@@ -27,7 +28,7 @@ class SuccTree {
   /// Universe size.
   uint32_t size() const { return size_; }
   /// True when no element is present.
-  bool empty() const { return levels_.empty() || levels_.back()[0] == 0; }
+  bool empty() const { return levels_.back()[0] == 0; }
 
   /// Adds inValue (no effect if present).
   void insert(uint32_t inValue);
