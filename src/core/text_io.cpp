@@ -101,17 +101,27 @@ bool parseId(const std::string& inLine, const Field& inField, uint32_t& outId,
   return true;
 }
 
-/// Parses a coordinate as strtod does; the whole field must be consumed. ioLine is the line
-/// buffer: the character after the field is set to '\0' for strtod (fields are known already).
-bool parseCoordinate(std::string& ioLine, const Field& inField, int inIndex, double& outValue,
-                     std::string& outReason) {
+/// Reads a whole field as strtod does. std::from_chars (correctly rounded, like glibc's strtod,
+/// and several times faster) takes the common decimal spellings; whatever it does not take
+/// completely (a '+' sign, hex floats, out-of-range values) goes to strtod, the reference.
+/// ioLine is the line buffer: the character after the field is set to '\0' for strtod.
+bool readNumber(std::string& ioLine, const Field& inField, double& outValue) {
+  const char* first = ioLine.data() + inField.begin;
+  const char* last = ioLine.data() + inField.end;
+  const auto fast = std::from_chars(first, last, outValue);
+  if (fast.ec == std::errc() && fast.ptr == last) return true;
   const char saved = ioLine[inField.end];  // ioLine.size() is valid: std::string ends in '\0'
   ioLine[inField.end] = '\0';
   char* parsedEnd = nullptr;
-  const char* first = ioLine.data() + inField.begin;
   outValue = std::strtod(first, &parsedEnd);  // overflow gives +-inf, underflow 0/subnormal
   ioLine[inField.end] = saved;
-  if (parsedEnd != ioLine.data() + inField.end) {
+  return parsedEnd == last;
+}
+
+/// Parses coordinate inIndex (0..5 = min_x..max_z); NaN and non-numbers set outReason.
+bool parseCoordinate(std::string& ioLine, const Field& inField, int inIndex, double& outValue,
+                     std::string& outReason) {
+  if (!readNumber(ioLine, inField, outValue)) {
     outReason =
         std::string(kCoordinateNames[inIndex]) + " is not a number: " + quoteField(ioLine, inField);
     return false;
@@ -245,6 +255,8 @@ std::optional<ParseError> readBoxText(std::istream& ioInput, const std::string& 
       return fail(lineNumber, "expected 7 fields (id min_x min_y min_z max_x max_y max_z), found " +
                                   std::to_string(count));
     }
+    if (outBoxes.size() == kMaxBoxes)
+      return fail(lineNumber, "more than " + std::to_string(kMaxBoxes) + " boxes");
     uint32_t id = 0;
     double lo[3];
     double hi[3];

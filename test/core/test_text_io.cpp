@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "sap_broadphase/core/text_io.h"
 
@@ -131,6 +132,41 @@ TEST(TextIo, NumbersAsStrtodReadsThem) {
   EXPECT_EQ(boxes.lo[0][5], 0.1);
   EXPECT_EQ(boxes.hi[0][5], 0.30000000000000004);
   EXPECT_EQ(boxes.ids[6], 4294967295u);
+}
+
+TEST(TextIo, EveryNumberReadsBitForBitAsStrtodReadsIt) {
+  // Long mantissas, near-halfway digit strings, extreme exponents, signs and spellings.
+  std::mt19937_64 random(7);
+  std::vector<std::string> numbers = {"+1.5",
+                                      "-.5e-3",
+                                      "0x1p-1074",
+                                      "0x1.000001p0",
+                                      "1e-400",
+                                      "-1e400",
+                                      "2.4703282292062328e-324",
+                                      "INF",
+                                      "-Infinity",
+                                      "1E0",
+                                      "00012.500",
+                                      "9007199254740993"};
+  for (int k = 0; k < 20000; ++k) {
+    std::string text = (random() % 3 == 0) ? "-" : "";
+    const int digits = 1 + static_cast<int>(random() % 40);
+    for (int d = 0; d < digits; ++d) text += static_cast<char>('0' + random() % 10);
+    if (random() % 2) text.insert(text.size() - static_cast<std::size_t>(random() % digits), ".");
+    if (text.back() == '.' || text == "-" || text.find('.') == 0) text += "5";
+    if (random() % 4 != 0) text += "e" + std::to_string(static_cast<int>(random() % 700) - 350);
+    numbers.push_back(text);
+  }
+  std::string input;
+  for (std::size_t k = 0; k < numbers.size(); ++k)
+    input += std::to_string(k) + " " + numbers[k] + " 0 0 inf 0 0\n";
+  const BoxSet boxes = parseOk(input);
+  ASSERT_EQ(boxes.size(), numbers.size());
+  for (std::size_t k = 0; k < numbers.size(); ++k) {
+    const double expected = std::strtod(numbers[k].c_str(), nullptr);
+    ASSERT_TRUE(sameBits(boxes.lo[0][k], expected)) << numbers[k];
+  }
 }
 
 TEST(TextIo, OverflowReadsAsInfinityLikeStrtod) {
