@@ -22,6 +22,7 @@ catkin_add_gtest(test_engine
   test/core/test_engine_random.cpp
   test/core/test_engine_edge_cases.cpp
   test/core/test_engine_scenes.cpp
+  test/core/test_engine_reuse.cpp
   test/core/test_determinism.cpp
   test/core/test_axis_swap.cpp
   test/core/test_support.cpp
