@@ -66,24 +66,24 @@ struct Broadphase::Impl {
   FrameStats stats;
   AxisBounds bounds[3];
   PartitionedSorter sorter;
-  std::vector<uint32_t> keys;
+  // 4n words: packed (key, index) items and the sort's scratch while sorting, then the
+  // secondary stream (2 words per endpoint) while pairing.
+  std::vector<uint64_t> endpoint_words;
   std::vector<uint32_t> primary_order;
   std::vector<uint32_t> secondary_order;
   CandidateRanges ranges;
-  std::vector<RankedBox> ranked_boxes;
   std::vector<RankedKeys> ranked_keys;
   std::vector<RankedFilter> ranked_filters;
   std::vector<RankedSlabs> ranked_slabs;
-  std::vector<SecondaryEndpoint> secondary_stream;
   SlabGrid slab_grid;
   SweepWorkspace workspace;
   SuccTree sequential_tree;
   std::vector<PairList> pairs_per_thread;
   PairList pairs;
   PairSortScratch pair_scratch;
-  BoxSet collidable;                   // the frame without boxes that can collide with nothing
-  std::vector<uint32_t> previous_ids;  // ids of the last swept frame, by object index
-  bool previous_reusable = false;      // the last frame's buffers describe its boxes exactly
+  BoxSet collidable;               // the frame without boxes that can collide with nothing
+  BoxSet previous_boxes;           // the last swept frame, to recognise an unchanged one
+  bool previous_reusable = false;  // pairs still holds previous_boxes' pairs
 
   bool sameAsPreviousFrame(const BoxSet& inBoxes) const;
   void rememberFrame(const BoxSet& inBoxes, FramePath inPath);
@@ -114,23 +114,27 @@ FramePath Broadphase::Impl::choosePath(std::size_t inBoxes, int inThreads) const
   return FramePath::kSequential;
 }
 
-// Keys of one axis (lows at i, highs at i + n), then Algorithm 2. Returns D.
+// Keys of one axis (lows at i, highs at i + n), packed with their indexes, then Algorithm 2.
+// Returns D.
 double Broadphase::Impl::sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
                                   std::vector<uint32_t>& outOrder) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
+  const std::size_t endpoints = 2 * std::size_t{n};
   const double* low = inBoxes.lo[inAxis].data();
   const double* high = inBoxes.hi[inAxis].data();
   const Clock::time_point start = Clock::now();
-  keys.resize(2 * std::size_t{n});
-  outOrder.resize(2 * std::size_t{n});
+  endpoint_words.resize(2 * endpoints);
+  outOrder.resize(endpoints);
+  uint64_t* packed = endpoint_words.data();
 #pragma omp parallel for num_threads(inThreads) schedule(static)
   for (uint32_t i = 0; i < n; ++i) {
-    keys[i] = lowKey(low[i]);
-    keys[i + n] = highKey(high[i]);
+    packed[i] = packKeyIndex(lowKey(low[i]), i);
+    packed[i + n] = packKeyIndex(highKey(high[i]), i + n);
   }
   stats.ms_keys += millisecondsSince(start);
-  const int partitions = keys.size() >= kMinPartitionedEndpoints ? kSortPartitions : 1;
-  return sorter.sort(keys.data(), 2 * n, partitions, inThreads, bounds[inAxis], outOrder.data());
+  const int partitions = endpoints >= kMinPartitionedEndpoints ? kSortPartitions : 1;
+  return sorter.sortPacked(packed, packed + endpoints, static_cast<uint32_t>(endpoints), partitions,
+                           inThreads, bounds[inAxis], outOrder.data());
 }
 
 // Box data in primary-rank order, so a candidate range is a contiguous stretch of memory.
@@ -138,10 +142,7 @@ void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const uint32_t* object_of_rank = ranges.object_of_rank.data();
   const bool filtered = inBoxes.hasFilters();
-  if (config.exact_final_test)
-    ranked_boxes.resize(n);
-  else
-    ranked_keys.resize(n);
+  ranked_keys.resize(n);
   ranked_filters.resize(filtered ? n : 0);
   const int third_axis = unusedAxis(config.primary_axis, config.secondary_axis);
   slab_grid = chooseSlabGrid(inBoxes, third_axis, config.third_axis_slabs, inThreads);
@@ -152,51 +153,38 @@ void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
 #pragma omp parallel for num_threads(inThreads) schedule(static)
   for (uint32_t rank = 0; rank < n; ++rank) {
     const uint32_t i = object_of_rank[rank];
+    for (int axis = 0; axis < 3; ++axis) {
+      ranked_keys[rank].lo[axis] = lowKey(inBoxes.lo[axis][i]);
+      ranked_keys[rank].hi[axis] = highKey(inBoxes.hi[axis][i]);
+    }
     if (slabbed)
       ranked_slabs[rank] = {static_cast<uint8_t>(slab_grid.slabOf(third_low[i])),
                             static_cast<uint8_t>(slab_grid.slabOf(third_high[i]))};
-    for (int axis = 0; axis < 3; ++axis) {
-      if (config.exact_final_test) {
-        ranked_boxes[rank].lo[axis] = inBoxes.lo[axis][i];
-        ranked_boxes[rank].hi[axis] = inBoxes.hi[axis][i];
-      } else {
-        ranked_keys[rank].lo[axis] = lowKey(inBoxes.lo[axis][i]);
-        ranked_keys[rank].hi[axis] = highKey(inBoxes.hi[axis][i]);
-      }
-    }
     if (filtered) ranked_filters[rank] = {inBoxes.group(i), inBoxes.mask(i)};
   }
 }
 
 void Broadphase::Impl::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
-  buildSecondaryStream(secondary_order.data(), static_cast<uint32_t>(inBoxes.size()), ranges,
-                       ranked_slabs.empty() ? nullptr : ranked_slabs.data(), inThreads,
-                       secondary_stream);
+  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
+  buildSecondaryStream(secondary_order.data(), n, ranges, inThreads, endpoint_words.data());
   PairingInput input;
-  input.stream = secondary_stream.data();
-  input.objects = static_cast<uint32_t>(inBoxes.size());
+  input.stream = endpoint_words.data();
+  input.objects = n;
   input.object_of_rank = ranges.object_of_rank.data();
-  input.boxes = config.exact_final_test ? ranked_boxes.data() : nullptr;
-  input.keys = config.exact_final_test ? nullptr : ranked_keys.data();
+  input.keys = ranked_keys.data();
+  input.boxes = config.exact_final_test ? &inBoxes : nullptr;
   input.filters = ranked_filters.empty() ? nullptr : ranked_filters.data();
   input.ids = inBoxes.ids.data();
   input.slabs = ranked_slabs.empty() ? nullptr : ranked_slabs.data();
   input.slab_count = slab_grid.count;
   stats.slabs = slab_grid.count;
-  pairs.clear();
   if (inPath == FramePath::kSequential) {
-    pairSequential(input, workspace, pairs);
-    return;
+    pairs_per_thread.resize(1);
+    pairs_per_thread[0].clear();
+    pairSequential(input, workspace, pairs_per_thread[0]);
+  } else {
+    pairParallel(input, inThreads, workspace, pairs_per_thread);
   }
-  pairParallel(input, inThreads, workspace, pairs_per_thread);
-  // Each thread's pairs are disjoint from the others': concatenation is the whole set.
-  std::vector<std::size_t> offsets(pairs_per_thread.size() + 1, 0);
-  for (std::size_t t = 0; t < pairs_per_thread.size(); ++t)
-    offsets[t + 1] = offsets[t] + pairs_per_thread[t].size();
-  pairs.resize(offsets.back());
-#pragma omp parallel for num_threads(inThreads) schedule(static, 1)
-  for (std::size_t t = 0; t < pairs_per_thread.size(); ++t)
-    std::copy(pairs_per_thread[t].begin(), pairs_per_thread[t].end(), pairs.begin() + offsets[t]);
 }
 
 void Broadphase::Impl::sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
@@ -224,7 +212,7 @@ void Broadphase::Impl::sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, in
   pair(inBoxes, inPath, sort_threads);
   stats.ms_pairing = millisecondsSince(phase);
 
-  decideAxes(warm && config.axis_swapping && keys.size() >= kMinPartitionedEndpoints);
+  decideAxes(warm && config.axis_swapping && 2 * std::size_t{n} >= kMinPartitionedEndpoints);
 }
 
 void Broadphase::Impl::decideAxes(bool inWarm) {
@@ -260,34 +248,27 @@ const BoxSet& Broadphase::Impl::dropBoxesThatCollideWithNothing(const BoxSet& in
   return collidable;
 }
 
-// Exact comparison with the last swept frame, through the rank-ordered copies the pipeline
-// keeps anyway (bounds, filters) plus the previous ids: no second copy of the input is held.
+// Bitwise comparison with the last swept frame (so -0.0 after 0.0 counts as a change).
 bool Broadphase::Impl::sameAsPreviousFrame(const BoxSet& inBoxes) const {
-  const std::size_t n = inBoxes.size();
-  if (!previous_reusable || previous_ids.size() != n) return false;
-  if (inBoxes.hasFilters() != !ranked_filters.empty()) return false;
-  if (!std::equal(previous_ids.begin(), previous_ids.end(), inBoxes.ids.begin())) return false;
-  const uint32_t* object_of_rank = ranges.object_of_rank.data();
-  for (std::size_t rank = 0; rank < n; ++rank) {
-    const uint32_t i = object_of_rank[rank];
-    const RankedBox& box = ranked_boxes[rank];
-    for (int axis = 0; axis < 3; ++axis) {
-      // Bitwise equality: -0.0 and 0.0 give the same pairs, but a changed bit is a change.
-      if (std::memcmp(&box.lo[axis], &inBoxes.lo[axis][i], sizeof(double)) != 0 ||
-          std::memcmp(&box.hi[axis], &inBoxes.hi[axis][i], sizeof(double)) != 0)
-        return false;
-    }
-    if (!ranked_filters.empty() && (ranked_filters[rank].group != inBoxes.group(i) ||
-                                    ranked_filters[rank].mask != inBoxes.mask(i)))
+  if (!previous_reusable || previous_boxes.size() != inBoxes.size()) return false;
+  const auto same = [](const auto& inA, const auto& inB) {
+    return inA.size() == inB.size() &&
+           (inA.empty() || std::memcmp(inA.data(), inB.data(), inA.size() * sizeof inA[0]) == 0);
+  };
+  if (!same(previous_boxes.ids, inBoxes.ids) || !same(previous_boxes.groups, inBoxes.groups) ||
+      !same(previous_boxes.masks, inBoxes.masks))
+    return false;
+  for (int axis = 0; axis < 3; ++axis)
+    if (!same(previous_boxes.lo[axis], inBoxes.lo[axis]) ||
+        !same(previous_boxes.hi[axis], inBoxes.hi[axis]))
       return false;
-  }
   return true;
 }
 
 void Broadphase::Impl::rememberFrame(const BoxSet& inBoxes, FramePath inPath) {
-  previous_reusable = config.reuse_unchanged_frames && config.exact_final_test &&
+  previous_reusable = config.reuse_unchanged_frames &&
                       (inPath == FramePath::kSequential || inPath == FramePath::kParallel);
-  if (previous_reusable) previous_ids.assign(inBoxes.ids.begin(), inBoxes.ids.end());
+  if (previous_reusable) previous_boxes = inBoxes;  // vectors keep their capacity
 }
 
 Broadphase::Broadphase(const BroadphaseConfig& inConfig) : impl_(std::make_unique<Impl>()) {
@@ -337,7 +318,8 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     case FramePath::kParallel: {
       impl.sweepAndPrune(boxes, stats.path, threads);
       const Clock::time_point phase = Clock::now();
-      sortPairsCanonical(impl.pairs, impl.pair_scratch);
+      // Each thread's pairs are disjoint from the others': merging them is the whole set.
+      sortPairsCanonical(impl.pairs_per_thread, impl.pairs, impl.pair_scratch);
       stats.ms_output = millisecondsSince(phase);
       break;
     }

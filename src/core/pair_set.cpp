@@ -27,23 +27,37 @@ void sortByB(IdPair* ioBegin, IdPair* ioEnd) {
   }
 }
 
-// Counting sort on a (ids 0..inLargestA), then each run of equal a sorted by b.
-void bucketSort(PairList& ioPairs, PairSortScratch& ioScratch, uint32_t inLargestA) {
-  std::vector<uint32_t>& offsets = ioScratch.offsets;
-  offsets.assign(std::size_t{inLargestA} + 2, 0);
-  for (const IdPair& pair : ioPairs) ++offsets[pair.a + 1];
-  for (std::size_t a = 1; a < offsets.size(); ++a) offsets[a] += offsets[a - 1];
-  PairList& sorted = ioScratch.pairs;
-  sorted.resize(ioPairs.size());
-  for (const IdPair& pair : ioPairs) sorted[offsets[pair.a]++] = pair;
-  // offsets[a] now ends a's run, which starts where a - 1's ended.
+// Counting sort on a (ids 0..inLargestA) of the pairs of all inParts into outSorted, then
+// each run of equal a sorted by b.
+void bucketSort(const PairList* inParts, std::size_t inPartCount, uint32_t inLargestA,
+                std::vector<uint32_t>& ioOffsets, PairList& outSorted) {
+  ioOffsets.assign(std::size_t{inLargestA} + 2, 0);
+  std::size_t total = 0;
+  for (std::size_t part = 0; part < inPartCount; ++part) {
+    total += inParts[part].size();
+    for (const IdPair& pair : inParts[part]) ++ioOffsets[pair.a + 1];
+  }
+  for (std::size_t a = 1; a < ioOffsets.size(); ++a) ioOffsets[a] += ioOffsets[a - 1];
+  outSorted.resize(total);
+  for (std::size_t part = 0; part < inPartCount; ++part)
+    for (const IdPair& pair : inParts[part]) outSorted[ioOffsets[pair.a]++] = pair;
+  // ioOffsets[a] now ends a's run, which starts where a - 1's ended.
   uint32_t begin = 0;
   for (std::size_t a = 0; a <= inLargestA; ++a) {
-    const uint32_t end = offsets[a];
-    if (end - begin > 1) sortByB(&sorted[begin], &sorted[0] + end);
+    const uint32_t end = ioOffsets[a];
+    if (end - begin > 1) sortByB(&outSorted[begin], &outSorted[0] + end);
     begin = end;
   }
-  ioPairs.swap(sorted);
+}
+
+uint32_t largestA(const PairList& inPairs) {
+  uint32_t largest = 0;
+  for (const IdPair& pair : inPairs) largest = std::max(largest, pair.a);
+  return largest;
+}
+
+bool denseEnough(uint32_t inLargestA, std::size_t inCount) {
+  return inLargestA < 4 * inCount + 65536;
 }
 
 // LSD radix sort on the 64-bit key with 16-bit digits; passes whose digit never varies are
@@ -77,12 +91,30 @@ void radixSort(PairList& ioPairs, PairSortScratch& ioScratch) {
 void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch) {
   const std::size_t count = ioPairs.size();
   if (count < 2) return;
-  uint32_t largest_a = 0;
-  for (const IdPair& pair : ioPairs) largest_a = std::max(largest_a, pair.a);
-  if (largest_a < 4 * count + 65536)
-    bucketSort(ioPairs, ioScratch, largest_a);
-  else
+  const uint32_t largest_a = largestA(ioPairs);
+  if (denseEnough(largest_a, count)) {
+    bucketSort(&ioPairs, 1, largest_a, ioScratch.offsets, ioScratch.pairs);
+    ioPairs.swap(ioScratch.pairs);
+  } else {
     radixSort(ioPairs, ioScratch);
+  }
+}
+
+void sortPairsCanonical(const std::vector<PairList>& inParts, PairList& outPairs,
+                        PairSortScratch& ioScratch) {
+  std::size_t total = 0;
+  uint32_t largest_a = 0;
+  for (const PairList& part : inParts) {
+    total += part.size();
+    largest_a = std::max(largest_a, largestA(part));
+  }
+  if (denseEnough(largest_a, total)) {
+    bucketSort(inParts.data(), inParts.size(), largest_a, ioScratch.offsets, outPairs);
+    return;
+  }
+  outPairs.clear();
+  for (const PairList& part : inParts) outPairs.insert(outPairs.end(), part.begin(), part.end());
+  if (total > 1) radixSort(outPairs, ioScratch);
 }
 
 void sortPairsCanonical(PairList& ioPairs) {

@@ -104,28 +104,38 @@ void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex
 
 double PartitionedSorter::sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
                                int inThreads, AxisBounds& ioBounds, uint32_t* outIndex) {
+  owned_packed_.resize(inCount);
+  owned_scratch_.resize(inCount);
+  for (uint32_t k = 0; k < inCount; ++k) owned_packed_[k] = packKeyIndex(inKeys[k], k);
+  return sortPacked(owned_packed_.data(), owned_scratch_.data(), inCount, inPartitions, inThreads,
+                    ioBounds, outIndex);
+}
+
+double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, uint32_t inCount,
+                                     int inPartitions, int inThreads, AxisBounds& ioBounds,
+                                     uint32_t* outIndex) {
   if (inCount == 0) return 0.0;
   const int partitions = std::clamp(inPartitions, 1, kMaxSortPartitions);
   if (!ioBounds.from_previous_frame ||
       ioBounds.bounds.size() != static_cast<std::size_t>(partitions - 1))
-    initialiseBoundsFromSpan(inKeys, inCount, partitions, inThreads, ioBounds);
-  items_.resize(inCount);
-  scratch_.resize(inCount);
-  scatterIntoPartitions(inKeys, inCount, ioBounds, inThreads);
-  sortPartitionsAndExtract(inThreads, outIndex);
-  updateBoundsFromSorted(inKeys, outIndex, inCount, ioBounds);
+    initialiseBoundsFromSpan(ioPacked, inCount, partitions, inThreads, ioBounds);
+  scatterIntoPartitions(ioPacked, ioScratch, inCount, ioBounds, inThreads);
+  sortPartitionsAndExtract(ioScratch, ioPacked, inCount, inThreads, outIndex);
+  // Algorithm 2, lines 6-7: next frame's bounds are this frame's keys at ranks p * floor(2n/m).
+  std::copy(bound_samples_.begin(), bound_samples_.end(), ioBounds.bounds.begin());
+  ioBounds.from_previous_frame = true;
   return dispersion(inCount);
 }
 
 // First frame (or after an axis swap): b_p = min + p * span / m over the finite coordinates.
-void PartitionedSorter::initialiseBoundsFromSpan(const uint32_t* inKeys, uint32_t inCount,
+void PartitionedSorter::initialiseBoundsFromSpan(const uint64_t* inPacked, uint32_t inCount,
                                                  int inPartitions, int inThreads,
                                                  AxisBounds& ioBounds) {
   float lowest = std::numeric_limits<float>::infinity();
   float highest = -std::numeric_limits<float>::infinity();
 #pragma omp parallel for num_threads(inThreads) reduction(min : lowest) reduction(max : highest)
   for (uint32_t k = 0; k < inCount; ++k) {
-    const float value = keyToFloat(inKeys[k]);
+    const float value = keyToFloat(static_cast<uint32_t>(inPacked[k] >> 32));
     if (std::isfinite(value)) {
       lowest = std::min(lowest, value);
       highest = std::max(highest, value);
@@ -142,10 +152,11 @@ void PartitionedSorter::initialiseBoundsFromSpan(const uint32_t* inKeys, uint32_
   ioBounds.from_previous_frame = false;
 }
 
-// Algorithm 2, lines 1-3: each thread counts, then places, its contiguous slice of the keys,
+// Algorithm 2, lines 1-3: each thread counts, then places, its contiguous slice of the items,
 // so every partition receives its items in index order (the sort stays stable).
-void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t inCount,
-                                              const AxisBounds& inBounds, int inThreads) {
+void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t* outScattered,
+                                              uint32_t inCount, const AxisBounds& inBounds,
+                                              int inThreads) {
   const int partitions = static_cast<int>(inBounds.bounds.size()) + 1;
   const int bound_count = partitions - 1;
   const uint32_t* bounds = inBounds.bounds.data();
@@ -163,7 +174,8 @@ void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t i
     uint32_t* my_counts = &counts_[static_cast<std::size_t>(thread) * partitions];
     uint8_t* partition_of = partition_of_.data();
     for (uint32_t k = begin; k < end; ++k) {
-      partition_of[k] = lookupPartition(inKeys[k], prefix_table_.data(), bounds, bound_count);
+      const uint32_t key = static_cast<uint32_t>(inPacked[k] >> 32);
+      partition_of[k] = lookupPartition(key, prefix_table_.data(), bounds, bound_count);
       ++my_counts[partition_of[k]];
     }
 #pragma omp barrier
@@ -182,31 +194,31 @@ void PartitionedSorter::scatterIntoPartitions(const uint32_t* inKeys, uint32_t i
       }
       partition_begin_[partitions] = offset;
     }
-    for (uint32_t k = begin; k < end; ++k)
-      items_[my_counts[partition_of[k]]++] = packKeyIndex(inKeys[k], k);
+    for (uint32_t k = begin; k < end; ++k) outScattered[my_counts[partition_of[k]]++] = inPacked[k];
   }
 }
 
-// Algorithm 2, lines 4-5: the partitions are independent; larger ones are handed out first.
-void PartitionedSorter::sortPartitionsAndExtract(int inThreads, uint32_t* outIndex) {
+// Algorithm 2, lines 4-5: the partitions are independent and handed out dynamically. Keys at
+// the sorted positions p * floor(count / m) are kept as next frame's bounds.
+void PartitionedSorter::sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* ioScratch,
+                                                 uint32_t inCount, int inThreads,
+                                                 uint32_t* outIndex) {
   const int partitions = static_cast<int>(partition_size_.size());
+  const std::size_t sample_step = inCount / partitions;
+  bound_samples_.assign(partitions - 1, 0);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(inThreads)
   for (int p = 0; p < partitions; ++p) {
     const std::size_t begin = partition_begin_[p];
     const std::size_t size = partition_size_[p];
     if (size == 0) continue;
-    const uint64_t* sorted = radixSortPacked(&items_[begin], &scratch_[begin], size);
+    const uint64_t* sorted = radixSortPacked(&ioItems[begin], &ioScratch[begin], size);
     for (std::size_t k = 0; k < size; ++k) outIndex[begin + k] = static_cast<uint32_t>(sorted[k]);
+    for (std::size_t sample = 1; sample < static_cast<std::size_t>(partitions); ++sample) {
+      const std::size_t position = sample * sample_step;
+      if (position >= begin && position < begin + size)
+        bound_samples_[sample - 1] = static_cast<uint32_t>(sorted[position - begin] >> 32);
+    }
   }
-}
-
-// Algorithm 2, lines 6-7: next frame's bounds are this frame's keys at ranks p * floor(2n/m).
-void PartitionedSorter::updateBoundsFromSorted(const uint32_t* inKeys, const uint32_t* inSorted,
-                                               uint32_t inCount, AxisBounds& ioBounds) const {
-  const std::size_t partitions = ioBounds.bounds.size() + 1;
-  const std::size_t step = inCount / partitions;
-  for (std::size_t p = 1; p < partitions; ++p) ioBounds.bounds[p - 1] = inKeys[inSorted[p * step]];
-  ioBounds.from_previous_frame = true;
 }
 
 // Eq. (1): D = sum_p |x_p - mu| / (2n), with mu the ideal partition size.

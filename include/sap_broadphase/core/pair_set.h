@@ -35,5 +35,9 @@ struct PairSortScratch {
 void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch);
 /// Convenience overload with temporary buffers.
 void sortPairsCanonical(PairList& ioPairs);
+/// Merges the disjoint lists inParts into outPairs in canonical order, without first copying
+/// them into one list when ids are dense. inParts is left unchanged.
+void sortPairsCanonical(const std::vector<PairList>& inParts, PairList& outPairs,
+                        PairSortScratch& ioScratch);
 
 }  // namespace sap_broadphase

@@ -39,27 +39,31 @@ struct AxisBounds {
 class PartitionedSorter {
  public:
   /// Sorts inKeys[0..inCount) into outIndex using inPartitions partitions and inThreads
-  /// threads; reads and updates ioBounds. Returns D for this sort.
+  /// threads; reads and updates ioBounds. Returns D for this sort. Uses buffers of its own.
   double sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions, int inThreads,
               AxisBounds& ioBounds, uint32_t* outIndex);
+  /// The same on caller-owned buffers: ioPacked holds packKeyIndex(key_k, k) for k in
+  /// [0, inCount), ioScratch room for inCount words; both are overwritten.
+  double sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, uint32_t inCount, int inPartitions,
+                    int inThreads, AxisBounds& ioBounds, uint32_t* outIndex);
 
  private:
-  void initialiseBoundsFromSpan(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
+  void initialiseBoundsFromSpan(const uint64_t* inPacked, uint32_t inCount, int inPartitions,
                                 int inThreads, AxisBounds& ioBounds);
-  void scatterIntoPartitions(const uint32_t* inKeys, uint32_t inCount, const AxisBounds& inBounds,
-                             int inThreads);
-  void sortPartitionsAndExtract(int inThreads, uint32_t* outIndex);
-  void updateBoundsFromSorted(const uint32_t* inKeys, const uint32_t* inSorted, uint32_t inCount,
-                              AxisBounds& ioBounds) const;
+  void scatterIntoPartitions(const uint64_t* inPacked, uint64_t* outScattered, uint32_t inCount,
+                             const AxisBounds& inBounds, int inThreads);
+  void sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* ioScratch, uint32_t inCount,
+                                int inThreads, uint32_t* outIndex);
   double dispersion(uint32_t inCount) const;
 
-  std::vector<uint64_t> items_;
-  std::vector<uint64_t> scratch_;
+  std::vector<uint64_t> owned_packed_;  // sort()'s buffers; sortPacked() uses the caller's
+  std::vector<uint64_t> owned_scratch_;
   std::vector<uint8_t> partition_of_;         // partition of each key, found once
   std::vector<uint8_t> prefix_table_;         // partition by the key's top 16 bits
   std::vector<uint32_t> counts_;              // [thread][partition]
   std::vector<std::size_t> partition_begin_;  // m + 1 offsets
   std::vector<uint32_t> partition_size_;
+  std::vector<uint32_t> bound_samples_;  // next frame's B, read off the sorted partitions
 };
 
 }  // namespace sap_broadphase

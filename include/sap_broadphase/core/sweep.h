@@ -4,9 +4,11 @@
 // object i's low endpoint at i and its high endpoint at i + n.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
 #include "sap_broadphase/core/slab_grid.h"
 #include "sap_broadphase/core/succ_tree.h"
@@ -27,24 +29,25 @@ struct CandidateRanges {
   std::vector<uint32_t> object_of_rank;  ///< R^-
 };
 
-/// Exact bounds of one box, stored in primary-rank order so that candidates with nearby ranks
-/// sit in nearby memory.
-struct RankedBox {
-  double lo[3];
-  double hi[3];
-};
-
 /// Group and mask of one box, in rank order (only built when filters are in use).
 struct RankedFilter {
   uint32_t group;
   uint32_t mask;
 };
 
-/// Float32 keys of one box rounded outward, in rank order (the keys-only mode's test).
+/// Float32 keys of one box rounded outward (sort_keys.h), in rank order, so that candidates
+/// with nearby ranks sit in nearby memory. Keys that overlap with a margin of
+/// kCertainKeyMargin on every axis prove an exact overlap; keys apart prove a miss; only
+/// near-touching boxes need the float64 test on the input.
 struct RankedKeys {
   uint32_t lo[3];
   uint32_t hi[3];
 };
+
+/// Keys that far inside each other's interval prove an exact overlap: a low key is at most two
+/// keys below the smallest float >= the low end, a high key at most two above the largest
+/// float <= the high end.
+constexpr uint32_t kCertainKeyMargin = 4;
 
 /// First and last slab a box touches, in rank order.
 struct RankedSlabs {
@@ -52,47 +55,54 @@ struct RankedSlabs {
   uint8_t last;
 };
 
-/// One endpoint of the secondary-axis order with all that pairing reads about its box, laid
-/// out in sweep order: every pairing thread streams through it instead of looking boxes up
-/// at random (one gather pass builds it for all threads).
-struct SecondaryEndpoint {
-  uint32_t rank_and_kind;  ///< primary rank; bit 31 set for a high endpoint
-  uint32_t low;            ///< L of the box
-  uint32_t high;           ///< U of the box
-  RankedSlabs slabs;       ///< third-axis slabs of the box ({0, 0} without slabs)
-  static constexpr uint32_t kHighBit = 0x80000000u;
-};
+/// The secondary-axis order with all that pairing reads about each endpoint's box, two 64-bit
+/// words an endpoint, in sweep order: word 0 = rank | kind << 31 | L << 32, word 1 = U.
+/// One gather pass builds it, so no thread looks boxes up at random while sweeping. It fits
+/// in the sort's buffer, which is free by then.
+namespace secondary_stream {
+constexpr uint32_t kHighBit = 0x80000000u;
+inline uint32_t rankAndKind(const uint64_t* inStream, std::size_t inEndpoint) {
+  return static_cast<uint32_t>(inStream[2 * inEndpoint]);
+}
+inline uint32_t low(const uint64_t* inStream, std::size_t inEndpoint) {
+  return static_cast<uint32_t>(inStream[2 * inEndpoint] >> 32);
+}
+inline uint32_t high(const uint64_t* inStream, std::size_t inEndpoint) {
+  return static_cast<uint32_t>(inStream[2 * inEndpoint + 1]);
+}
+}  // namespace secondary_stream
 
-/// Builds the secondary stream from the sorted secondary order (inThreads threads).
+/// Writes the secondary stream (2 words per endpoint, 4n words) from the sorted secondary order.
 void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
-                          const CandidateRanges& inRanges, const RankedSlabs* inSlabs,
-                          int inThreads, std::vector<SecondaryEndpoint>& outStream);
+                          const CandidateRanges& inRanges, int inThreads, uint64_t* outStream);
 
-/// What pairing needs to know about the boxes, all indexed by rank.
+/// What pairing needs to know about the boxes.
 struct PairingInput {
-  const SecondaryEndpoint* stream = nullptr;  ///< 2n endpoints in secondary-axis order
-  uint32_t objects = 0;                       ///< n
-  const uint32_t* object_of_rank = nullptr;   ///< R^-
-  const RankedBox* boxes = nullptr;           ///< exact test (null in keys-only mode)
-  const RankedKeys* keys = nullptr;           ///< keys-only test (null in exact mode)
-  const RankedFilter* filters = nullptr;      ///< null when no box has a group or mask
-  const uint32_t* ids = nullptr;              ///< box ids, by object index
-  const RankedSlabs* slabs = nullptr;         ///< null when slab_count is 1
+  const uint64_t* stream = nullptr;          ///< the secondary stream, 2n endpoints
+  uint32_t objects = 0;                      ///< n
+  const uint32_t* object_of_rank = nullptr;  ///< R^-
+  const RankedKeys* keys = nullptr;          ///< outward keys by rank
+  const BoxSet* boxes = nullptr;  ///< exact float64 test for near-touching keys; null in the
+                                  ///< keys-only mode, where overlapping keys are reported
+  const RankedFilter* filters = nullptr;  ///< null when no box has a group or mask
+  const uint32_t* ids = nullptr;          ///< box ids, by object index
+  const RankedSlabs* slabs = nullptr;     ///< null when slab_count is 1
   int slab_count = 1;
 };
 
-/// Largest rank partition of the parallel pairing: its slab trees stay cache-resident.
-constexpr uint32_t kPairingPartitionRanks = 1u << 16;
+/// Largest rank partition of the parallel pairing: its slab trees stay cache-resident and
+/// ranks inside it fit in 16 bits.
+constexpr uint32_t kPairingPartitionRanks = 1u << 15;
 
-/// Reusable SuccTrees of the parallel phases.
+/// Reusable buffers of the parallel phases.
 struct SweepWorkspace {
-  std::vector<SuccTree> partition_local;  ///< Algorithm 3: toggled within each partition
-  std::vector<SuccTree> partition_start;  ///< Algorithm 3: ⊕-prefix, active at partition start
-  std::vector<SuccTree> pairing;          ///< Algorithm 4: slab_count trees per thread
-  std::vector<SecondaryEndpoint> partition_streams;  ///< Algorithm 4: endpoints by partition
-  std::vector<std::size_t> partition_offsets;        ///< start of each partition's stream, m + 1
-  std::vector<std::size_t> scatter_counts;           ///< [thread][partition] placement counters
-  std::vector<uint32_t> lows_before;  ///< Algorithm 3: rank counter at partition start
+  std::vector<SuccTree> partition_local;    ///< Algorithm 3: toggled within each partition
+  std::vector<SuccTree> partition_start;    ///< Algorithm 3: ⊕-prefix, active at partition start
+  std::vector<uint32_t> lows_before;        ///< Algorithm 3: rank counter at partition start
+  std::vector<SuccTree> pairing;            ///< Algorithm 4: slab_count trees per thread
+  std::vector<uint64_t> partition_entries;  ///< Algorithm 4: endpoints by partition
+  std::vector<std::size_t> partition_offsets;  ///< start of each partition's entries, m + 1
+  std::vector<std::size_t> scatter_counts;     ///< [thread][partition] placement counters
 };
 
 /// Algorithm 1, lines 5-14: ranks and candidate ranges from the primary-axis order, one thread.
@@ -111,9 +121,9 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairLis
 /// least one per thread), each swept by one thread with its own SuccTrees; each pair is found in
 /// exactly one partition, without locks or reduction. Unlike the paper, where every thread reads
 /// all 2n endpoints, one scatter pass first hands each partition only the endpoints that touch
-/// it (those whose rank or candidate range falls in it), in sweep order: partitions then fit in
-/// cache and there may be many more of them than threads. outPairsPerThread[t] receives
-/// thread t's pairs.
+/// it (those whose rank or candidate range falls in it), in sweep order, packed in 8 bytes:
+/// partitions then fit in cache and there may be many more of them than threads.
+/// outPairsPerThread[t] receives thread t's pairs.
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairList>& outPairsPerThread);
 

@@ -1,0 +1,282 @@
+// Pairing on the secondary axis: Algorithm 1 (lines 15-23) and Algorithm 4, with one active
+// list per third-axis slab (slab_grid.h).
+#include <omp.h>
+
+#include <algorithm>
+
+#include "sap_broadphase/core/sweep.h"
+
+namespace sap_broadphase {
+namespace {
+
+// Entries of a partition's endpoint list, one 64-bit word each:
+//   bits 0-30  the box's primary rank
+//   bit 63     set for a high endpoint
+//   bits 31-46 (low endpoints) start of the candidate range, local to the partition
+//   bits 47-62 (low endpoints) end of the candidate range, local to the partition
+constexpr uint64_t kEntryHighBit = uint64_t{1} << 63;
+constexpr uint32_t kRankMask = 0x7FFFFFFFu;
+
+inline uint64_t lowEntry(uint32_t inRank, uint32_t inLocalBegin, uint32_t inLocalEnd) {
+  return inRank | (uint64_t{inLocalBegin} << 31) | (uint64_t{inLocalEnd} << 47);
+}
+inline uint64_t highEntry(uint32_t inRank) {
+  return inRank | kEntryHighBit;
+}
+
+inline bool keysApart(const RankedKeys& inA, const RankedKeys& inB) {
+  return inA.lo[0] > inB.hi[0] || inB.lo[0] > inA.hi[0] || inA.lo[1] > inB.hi[1] ||
+         inB.lo[1] > inA.hi[1] || inA.lo[2] > inB.hi[2] || inB.lo[2] > inA.hi[2];
+}
+
+// Keys deep enough inside each other that the float64 intervals must overlap too.
+inline bool keysCertainlyOverlap(const RankedKeys& inA, const RankedKeys& inB) {
+  for (int axis = 0; axis < 3; ++axis) {
+    if (inA.lo[axis] + kCertainKeyMargin > inB.hi[axis] ||
+        inB.lo[axis] + kCertainKeyMargin > inA.hi[axis])
+      return false;
+  }
+  return true;
+}
+
+inline bool filtersAllow(const RankedFilter& inA, const RankedFilter& inB) {
+  return (inA.group & inB.mask) != 0 && (inB.group & inA.mask) != 0;
+}
+
+// Where a sweep reads its endpoints: the whole secondary stream (Algorithm 1) or one
+// partition's entry list (Algorithm 4). Both yield (rank, is_high, local candidate range).
+struct WholeStreamReader {
+  const uint64_t* stream;
+  std::size_t count;
+  uint32_t rank_end;  // ranks are local to [0, rank_end)
+  std::size_t size() const { return count; }
+  void read(std::size_t inK, uint32_t& outRank, bool& outHigh, uint32_t& outBegin,
+            uint32_t& outEnd) const {
+    const uint32_t rank_and_kind = secondary_stream::rankAndKind(stream, inK);
+    outRank = rank_and_kind & ~secondary_stream::kHighBit;
+    outHigh = (rank_and_kind & secondary_stream::kHighBit) != 0;
+    outBegin = secondary_stream::low(stream, inK);
+    outEnd = std::min(secondary_stream::high(stream, inK), rank_end);
+  }
+};
+
+struct PartitionReader {
+  const uint64_t* entries;
+  std::size_t count;
+  std::size_t size() const { return count; }
+  void read(std::size_t inK, uint32_t& outRank, bool& outHigh, uint32_t& outBegin,
+            uint32_t& outEnd) const {
+    const uint64_t entry = entries[inK];
+    outRank = static_cast<uint32_t>(entry) & kRankMask;
+    outHigh = (entry & kEntryHighBit) != 0;
+    outBegin = static_cast<uint32_t>(entry >> 31) & 0xFFFFu;
+    outEnd = static_cast<uint32_t>(entry >> 47) & 0xFFFFu;
+  }
+};
+
+// One partition's sweep: the paper's loop over the secondary order with the active list split
+// by slab. Ranks in [inRankBegin, inRankEnd) are this sweep's; trees hold local ranks.
+class PartitionSweep {
+ public:
+  PartitionSweep(const PairingInput& inInput, uint32_t inRankBegin, uint32_t inRankEnd,
+                 SuccTree* ioTrees, PairList& outPairs)
+      : input_(inInput),
+        rank_begin_(inRankBegin),
+        rank_end_(inRankEnd),
+        trees_(ioTrees),
+        pairs_(outPairs) {}
+
+  template <typename Reader>
+  void run(const Reader& inReader) {
+    uint32_t rank = 0, begin = 0, end = 0;
+    bool high = false;
+    for (std::size_t k = 0; k < inReader.size(); ++k) {
+      inReader.read(k, rank, high, begin, end);
+      const RankedSlabs slabs = slabsOf(rank);
+      if (high) {
+        for (int slab = slabs.first; slab <= slabs.last; ++slab)
+          trees_[slab].erase(rank - rank_begin_);
+        continue;
+      }
+      if (begin < end) {
+        const uint32_t object = input_.object_of_rank[rank];
+        for (int slab = slabs.first; slab <= slabs.last; ++slab)
+          testCandidates(slab, begin, end, object, rank);
+      }
+      if (rank >= rank_begin_ && rank < rank_end_)
+        for (int slab = slabs.first; slab <= slabs.last; ++slab)
+          trees_[slab].insert(rank - rank_begin_);
+    }
+  }
+
+ private:
+  RankedSlabs slabsOf(uint32_t inRank) const {
+    return input_.slabs ? input_.slabs[inRank] : RankedSlabs{0, 0};
+  }
+
+  // Tests box inObject (rank inRank) against slab inSlab's active ranks in [inBegin, inEnd).
+  void testCandidates(int inSlab, uint32_t inBegin, uint32_t inEnd, uint32_t inObject,
+                      uint32_t inRank) {
+    const RankedKeys& keys = input_.keys[inRank];
+    const RankedSlabs* slabs = input_.slabs;
+    const RankedFilter* filters = input_.filters;
+    const uint32_t* object_of_rank = input_.object_of_rank;
+    trees_[inSlab].forEachInRange(inBegin, inEnd, [&](uint32_t inLocalRank) {
+      const uint32_t other_rank = inLocalRank + rank_begin_;
+      // A pair sharing several slabs is reported only in the slab of the larger low end.
+      if (slabs && inSlab != std::max(slabs[inRank].first, slabs[other_rank].first)) return;
+      const RankedKeys& other_keys = input_.keys[other_rank];
+      if (keysApart(keys, other_keys)) return;
+      const uint32_t other = object_of_rank[other_rank];
+      if (input_.boxes && !keysCertainlyOverlap(keys, other_keys) &&
+          !boxesOverlap(*input_.boxes, inObject, other))
+        return;
+      if (filters && !filtersAllow(filters[inRank], filters[other_rank])) return;
+      pairs_.push_back(makeIdPair(input_.ids[inObject], input_.ids[other]));
+    });
+  }
+
+  const PairingInput& input_;
+  const uint32_t rank_begin_;
+  const uint32_t rank_end_;
+  SuccTree* const trees_;
+  PairList& pairs_;
+};
+
+// The rank partitions an endpoint matters to: its own (insert, erase) and, for a low endpoint,
+// every partition its candidate range [L, U) reaches (which includes its own: L <= R < U).
+inline void partitionsOf(const uint64_t* inStream, std::size_t inK, uint32_t inPartitionSize,
+                         uint32_t& outFirst, uint32_t& outLast) {
+  const uint32_t rank_and_kind = secondary_stream::rankAndKind(inStream, inK);
+  const uint32_t rank = rank_and_kind & ~secondary_stream::kHighBit;
+  if (rank_and_kind & secondary_stream::kHighBit) {
+    outFirst = outLast = rank / inPartitionSize;
+  } else {
+    outFirst = std::min(secondary_stream::low(inStream, inK), rank) / inPartitionSize;
+    outLast = (std::max(secondary_stream::high(inStream, inK), rank + 1) - 1) / inPartitionSize;
+  }
+}
+
+// The entry of stream endpoint inK for partition inPartition.
+inline uint64_t entryFor(const uint64_t* inStream, std::size_t inK, uint32_t inPartition,
+                         uint32_t inPartitionSize) {
+  const uint32_t rank_and_kind = secondary_stream::rankAndKind(inStream, inK);
+  const uint32_t rank = rank_and_kind & ~secondary_stream::kHighBit;
+  if (rank_and_kind & secondary_stream::kHighBit) return highEntry(rank);
+  const uint32_t partition_begin = inPartition * inPartitionSize;
+  const uint32_t partition_end = partition_begin + inPartitionSize;
+  const uint32_t begin = std::max(secondary_stream::low(inStream, inK), partition_begin);
+  const uint32_t end = std::min(secondary_stream::high(inStream, inK), partition_end);
+  return lowEntry(rank, begin - partition_begin, std::max(begin, end) - partition_begin);
+}
+
+// Copies each endpoint of the stream to the entry lists of the partitions it matters to,
+// keeping sweep order within each (threads take contiguous slices; counts, then placement).
+void scatterToPartitions(const PairingInput& inInput, int inThreads, uint32_t inPartitionSize,
+                         uint32_t inPartitions, SweepWorkspace& ioWork) {
+  const std::size_t endpoints = 2 * std::size_t{inInput.objects};
+  const uint64_t* stream = inInput.stream;
+  std::vector<std::size_t>& counts = ioWork.scatter_counts;
+  counts.assign(std::size_t(inThreads) * inPartitions, 0);
+  ioWork.partition_offsets.assign(inPartitions + 1, 0);
+#pragma omp parallel num_threads(inThreads)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    const std::size_t begin = endpoints * thread / team;
+    const std::size_t end = endpoints * (thread + 1) / team;
+    std::size_t* my_counts = &counts[std::size_t(thread) * inPartitions];
+    uint32_t first = 0, last = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      partitionsOf(stream, k, inPartitionSize, first, last);
+      for (uint32_t p = first; p <= last; ++p) ++my_counts[p];
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t offset = 0;
+      for (uint32_t p = 0; p < inPartitions; ++p) {
+        ioWork.partition_offsets[p] = offset;
+        for (int t = 0; t < team; ++t) {
+          std::size_t& slot = counts[std::size_t(t) * inPartitions + p];
+          const std::size_t size = slot;
+          slot = offset;
+          offset += size;
+        }
+      }
+      ioWork.partition_offsets[inPartitions] = offset;
+      ioWork.partition_entries.resize(offset);
+    }
+    uint64_t* out = ioWork.partition_entries.data();
+    for (std::size_t k = begin; k < end; ++k) {
+      partitionsOf(stream, k, inPartitionSize, first, last);
+      for (uint32_t p = first; p <= last; ++p)
+        out[my_counts[p]++] = entryFor(stream, k, p, inPartitionSize);
+    }
+  }
+}
+
+// Makes trees [inFirst, inFirst + inCount) of ioTrees empty trees over inSize ranks.
+void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCount,
+                  uint32_t inSize) {
+  if (ioTrees.size() < inFirst + inCount) ioTrees.resize(inFirst + inCount);
+  for (int t = 0; t < inCount; ++t) {
+    SuccTree& tree = ioTrees[inFirst + t];
+    if (tree.size() != inSize) tree.resize(inSize);  // same size: left empty by the last sweep
+  }
+}
+
+}  // namespace
+
+void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
+                          const CandidateRanges& inRanges, int inThreads, uint64_t* outStream) {
+  const std::size_t endpoints = 2 * std::size_t{inObjects};
+  const RankRange* ranges = inRanges.of_object.data();
+#pragma omp parallel for num_threads(inThreads) schedule(static)
+  for (std::size_t k = 0; k < endpoints; ++k) {
+    const uint32_t endpoint = inSecondaryOrder[k];
+    const bool is_high = endpoint >= inObjects;
+    const RankRange& range = ranges[is_high ? endpoint - inObjects : endpoint];
+    const uint32_t rank_and_kind = range.rank | (is_high ? secondary_stream::kHighBit : 0u);
+    outStream[2 * k] = rank_and_kind | (uint64_t{range.low} << 32);
+    outStream[2 * k + 1] = range.high;
+  }
+}
+
+void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairList& outPairs) {
+  prepareTrees(ioWork.pairing, 0, inInput.slab_count, inInput.objects);
+  PartitionSweep sweep(inInput, 0, inInput.objects, ioWork.pairing.data(), outPairs);
+  sweep.run(WholeStreamReader{inInput.stream, 2 * std::size_t{inInput.objects}, inInput.objects});
+}
+
+void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
+                  std::vector<PairList>& outPairsPerThread) {
+  const int threads = std::max(1, inThreads);
+  const uint32_t n = inInput.objects;
+  const uint32_t wanted =
+      std::max<uint32_t>(threads, (n + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
+  const uint32_t partition_size = std::max<uint32_t>(1, (n + wanted - 1) / wanted);  // Δ
+  const uint32_t partitions = (n + partition_size - 1) / partition_size;
+  scatterToPartitions(inInput, threads, partition_size, partitions, ioWork);
+  const int slab_count = inInput.slab_count;
+  prepareTrees(ioWork.pairing, 0, threads * slab_count, partition_size);
+  outPairsPerThread.resize(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    const int thread = omp_get_thread_num();
+    SuccTree* trees = &ioWork.pairing[std::size_t(thread) * slab_count];
+    PairList& pairs = outPairsPerThread[thread];
+    pairs.clear();
+#pragma omp for schedule(dynamic, 1)
+    for (uint32_t p = 0; p < partitions; ++p) {
+      const uint32_t rank_begin = p * partition_size;
+      const uint32_t rank_end = std::min(n, rank_begin + partition_size);
+      const std::size_t begin = ioWork.partition_offsets[p];
+      const std::size_t end = ioWork.partition_offsets[p + 1];
+      PartitionSweep sweep(inInput, rank_begin, rank_end, trees, pairs);
+      sweep.run(PartitionReader{ioWork.partition_entries.data() + begin, end - begin});
+    }
+  }
+}
+
+}  // namespace sap_broadphase
