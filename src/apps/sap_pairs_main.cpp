@@ -36,7 +36,8 @@ const char* const kUsage =
     "  --method M    sap: parallel sweep-and-prune, sequential for small inputs (default)\n"
     "                sequential: the sequential sweep;  brute: test every pair (oracle)\n"
     "  --count       print only the number of pairs\n"
-    "  --stats       print phase times, sweep axes and dispersion D to stderr\n"
+    "  --stats       print phase times (ms), sweep axes, third-axis slabs and the\n"
+    "                dispersion D of each sorted axis to stderr\n"
     "  --help        print this help\n"
     "\n"
     "Exit status: 0 success; 2 bad input (then nothing on stdout and 'FILE:LINE: reason' on\n"
@@ -133,13 +134,13 @@ bool readBoxes(const std::string& inPath, BoxSet& outBoxes) {
 void printStats(const FrameStats& inStats, double inReadMs) {
   std::fprintf(stderr,
                "boxes %zu pairs %zu path %s threads %d\n"
-               "axes primary %s secondary %s swapped %s\n"
+               "axes primary %s secondary %s swapped %s slabs %d\n"
                "dispersion primary %.6f secondary %.6f\n"
                "ms read %.3f keys %.3f sort %.3f candidates %.3f pairing %.3f output %.3f "
                "total %.3f\n",
                inStats.boxes, inStats.pairs, framePathName(inStats.path), inStats.threads,
                cli::axisName(inStats.primary_axis), cli::axisName(inStats.secondary_axis),
-               inStats.axes_swapped ? "yes" : "no", inStats.dispersion_primary,
+               inStats.axes_swapped ? "yes" : "no", inStats.slabs, inStats.dispersion_primary,
                inStats.dispersion_secondary, inReadMs, inStats.ms_keys, inStats.ms_sort,
                inStats.ms_candidates, inStats.ms_pairing, inStats.ms_output, inStats.ms_total);
 }
