@@ -69,8 +69,7 @@ struct Broadphase::Impl {
   // 4n words: packed (key, index) items and the sort's scratch while sorting, then the
   // secondary stream (2 words per endpoint) while pairing.
   std::vector<uint64_t> endpoint_words;
-  std::vector<uint32_t> primary_order;
-  std::vector<uint32_t> secondary_order;
+  std::vector<uint32_t> sweep_order;  // 2n endpoint indexes: primary order, then secondary
   CandidateRanges ranges;
   std::vector<RankedKeys> ranked_keys;
   std::vector<RankedFilter> ranked_filters;
@@ -166,7 +165,7 @@ void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
 
 void Broadphase::Impl::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
-  buildSecondaryStream(secondary_order.data(), n, ranges, inThreads, endpoint_words.data());
+  buildSecondaryStream(sweep_order.data(), n, ranges, inThreads, endpoint_words.data());
   PairingInput input;
   input.stream = endpoint_words.data();
   input.objects = n;
@@ -193,19 +192,23 @@ void Broadphase::Impl::sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, in
   const bool warm = bounds[config.primary_axis].from_previous_frame &&
                     bounds[config.secondary_axis].from_previous_frame;
 
+  // The primary order is consumed by candidate generation before the secondary axis is
+  // sorted, so both orders share one buffer (sweep_order).
   Clock::time_point phase = Clock::now();
-  stats.dispersion_primary = sortAxis(inBoxes, config.primary_axis, sort_threads, primary_order);
-  stats.dispersion_secondary =
-      sortAxis(inBoxes, config.secondary_axis, sort_threads, secondary_order);
-  stats.ms_sort = millisecondsSince(phase) - stats.ms_keys;
+  stats.dispersion_primary = sortAxis(inBoxes, config.primary_axis, sort_threads, sweep_order);
+  stats.ms_sort = millisecondsSince(phase);
 
   phase = Clock::now();
   if (inPath == FramePath::kParallel) {
-    computeCandidatesParallel(primary_order.data(), n, inThreads, workspace, ranges);
+    computeCandidatesParallel(sweep_order.data(), n, inThreads, workspace, ranges);
   } else {
-    computeCandidatesSequential(primary_order.data(), n, sequential_tree, ranges);
+    computeCandidatesSequential(sweep_order.data(), n, sequential_tree, ranges);
   }
   stats.ms_candidates = millisecondsSince(phase);
+
+  phase = Clock::now();
+  stats.dispersion_secondary = sortAxis(inBoxes, config.secondary_axis, sort_threads, sweep_order);
+  stats.ms_sort += millisecondsSince(phase) - stats.ms_keys;
 
   phase = Clock::now();
   gatherByRank(inBoxes, sort_threads);
@@ -318,8 +321,11 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     case FramePath::kParallel: {
       impl.sweepAndPrune(boxes, stats.path, threads);
       const Clock::time_point phase = Clock::now();
-      // Each thread's pairs are disjoint from the others': merging them is the whole set.
+      // Each thread's pairs are disjoint from the others': merging them is the whole set. The
+      // sweep order is dead by now: the sort borrows its memory for its histogram.
+      std::swap(impl.sweep_order, impl.pair_scratch.offsets);
       sortPairsCanonical(impl.pairs_per_thread, impl.pairs, impl.pair_scratch);
+      std::swap(impl.sweep_order, impl.pair_scratch.offsets);
       stats.ms_output = millisecondsSince(phase);
       break;
     }

@@ -29,8 +29,9 @@ struct BroadphaseConfig {
   std::size_t parallel_min_boxes = 4096;  ///< kAuto runs sequentially below this many boxes
   int third_axis_slabs = 0;               ///< active lists per slab of the unused axis: 0 = auto,
                                           ///< 1 = the paper's single list, k = k slabs (max 64)
-  bool reuse_unchanged_frames = true;     ///< a frame equal to the previous one (ids, bounds,
-                                          ///< groups, masks) returns the previous pairs
+  bool reuse_unchanged_frames = false;    ///< a frame equal to the previous one (ids, bounds,
+                                          ///< groups, masks) returns the previous pairs; keeps a
+                                          ///< copy of the last frame (52 bytes a box)
   bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
                                  ///< may report extra pairs; never misses one)
 };
