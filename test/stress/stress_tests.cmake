@@ -14,3 +14,31 @@ catkin_add_gtest(test_stress
 )
 target_include_directories(test_stress PRIVATE test/stress)
 target_link_libraries(test_stress ${PROJECT_NAME}_core)
+
+# The fuzzers' seed corpora and crash regressions (fuzz/corpus, fuzz/regressions), replayed
+# through the checks the libFuzzer targets run (scripts/fuzz.sh builds the targets themselves).
+catkin_add_gtest(test_fuzz_replay
+  test/stress/test_fuzz_replay.cpp
+  test/stress/fuzz_replay.cpp
+  fuzz/fuzz_checks.cpp
+  test/stress/stress_main.cpp
+)
+target_include_directories(test_fuzz_replay PRIVATE test/stress fuzz)
+target_link_libraries(test_fuzz_replay ${PROJECT_NAME}_core)
+target_compile_definitions(test_fuzz_replay PRIVATE
+  SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
+
+# The same for the BoxArray target, which needs the ROS messages and conversions.
+catkin_add_gtest(test_fuzz_replay_ros
+  test/stress/test_fuzz_replay_ros.cpp
+  test/stress/fuzz_replay.cpp
+  fuzz/box_array_checks.cpp
+  fuzz/fuzz_checks.cpp
+  test/stress/stress_main.cpp
+)
+target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
+target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core
+  ${catkin_LIBRARIES})
+add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp)
+target_compile_definitions(test_fuzz_replay_ros PRIVATE
+  SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")

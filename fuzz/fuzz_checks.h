@@ -1,0 +1,35 @@
+// The properties the fuzzers check, as plain functions shared by the libFuzzer targets and the
+// GoogleTest replay of their corpora (test/stress/test_fuzz_replay.cpp). Each returns an empty
+// string when every property holds, else what went wrong. No ROS here.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "sap_broadphase/core/box_set.h"
+
+namespace sap_broadphase::fuzz {
+
+/// Most boxes a fuzz input is run through the engine with (the oracle is O(n^2)).
+constexpr std::size_t kMaxEngineBoxes = 256;
+
+/// Bytes as a text file for readBoxText: a refusal must name a line and leave no boxes; an
+/// accepted file must pass validate(), survive writeBoxText/readBoxText bit for bit, and (up
+/// to kMaxEngineBoxes boxes) give the oracle's pairs in the engine.
+std::string checkTextInput(const uint8_t* inData, std::size_t inSize);
+
+/// Bytes decoded into a raw BoxSet (special values, NaN, duplicate ids, bad array lengths
+/// possible): validate() must not crash and must refuse exactly the broken sets (checked
+/// against a simple re-implementation); accepted sets must give the oracle's pairs.
+std::string checkBoxSetBytes(const uint8_t* inData, std::size_t inSize);
+
+/// The engine on inBoxes (valid) in the configuration inVariant selects, plus the sequential
+/// path and the keys-only mode, against bruteForcePairs. Frames: reversed, as given, again.
+std::string checkEngine(const BoxSet& inBoxes, uint32_t inVariant);
+
+/// Decodes inData into boxes the way checkBoxSetBytes does (exposed for the ROS target).
+/// outVariant receives the configuration selector.
+BoxSet decodeBoxSet(const uint8_t* inData, std::size_t inSize, uint32_t& outVariant);
+
+}  // namespace sap_broadphase::fuzz

@@ -1,0 +1,34 @@
+#include "fuzz_replay.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#ifndef SAP_FUZZ_DIR
+#error "SAP_FUZZ_DIR must name the fuzz/ directory of the sources"
+#endif
+
+namespace sap_broadphase::stress {
+
+std::vector<std::string> fuzzInputs(const std::string& inTarget) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> paths;
+  for (const char* kind : {"corpus", "regressions"}) {
+    const fs::path directory = fs::path(SAP_FUZZ_DIR) / kind / inTarget;
+    if (!fs::is_directory(directory)) continue;
+    for (const auto& entry : fs::directory_iterator(directory))
+      if (entry.is_regular_file() && entry.path().filename() != ".gitkeep")
+        paths.push_back(entry.path().string());
+  }
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
+std::vector<uint8_t> readBytes(const std::string& inPath) {
+  std::ifstream file(inPath, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(file),
+                              std::istreambuf_iterator<char>());
+}
+
+}  // namespace sap_broadphase::stress
