@@ -9,7 +9,7 @@ namespace sap_bench {
 
 using sap_broadphase::Broadphase;
 using sap_broadphase::BroadphaseConfig;
-using sap_broadphase::FrameStats;
+using sap_broadphase::FrameReport;
 using sap_broadphase::Method;
 using sap_broadphase::SceneConfig;
 using sap_broadphase::SceneSimulator;
@@ -61,7 +61,7 @@ SceneRun runScene(const SceneConfig& inScene, const std::vector<EngineSpec>& inE
   return result;
 }
 
-Metric statField(double FrameStats::*inField) {
+Metric statField(double FrameReport::*inField) {
   return [inField](const FrameSample& inSample) { return inSample.stats.*inField; };
 }
 

@@ -25,7 +25,7 @@ sap_broadphase::BroadphaseConfig parallelConfig(int inThreads);
 
 /// What one engine did on one frame.
 struct FrameSample {
-  sap_broadphase::FrameStats stats;
+  sap_broadphase::FrameReport stats;
   double wall_ms = 0.0;  ///< wall clock around update(), measured by the harness
 };
 
@@ -43,8 +43,8 @@ SceneRun runScene(const sap_broadphase::SceneConfig& inScene,
 
 /// A number taken from a sample.
 using Metric = std::function<double(const FrameSample&)>;
-/// Metric reading one FrameStats field.
-Metric statField(double sap_broadphase::FrameStats::*inField);
+/// Metric reading one FrameReport field.
+Metric statField(double sap_broadphase::FrameReport::*inField);
 /// Metric reading the harness's wall clock.
 Metric wallMs();
 

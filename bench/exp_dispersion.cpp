@@ -8,7 +8,7 @@
 
 namespace sap_bench {
 
-using sap_broadphase::FrameStats;
+using sap_broadphase::FrameReport;
 
 void runDispersion(const Options& inOptions) {
   const std::vector<double> densities = {0.05, 0.35};
@@ -29,7 +29,7 @@ void runDispersion(const Options& inOptions) {
     int over = 0, swaps = 0;
     Series p{"primary d=" + fmt(density, 2), {}, {}}, s{"secondary d=" + fmt(density, 2), {}, {}};
     for (std::size_t f = 0; f < samples.size(); ++f) {
-      const FrameStats& stats = samples[f].stats;
+      const FrameReport& stats = samples[f].stats;
       perFrame.addRow({fmt(density, 2), std::to_string(f), fmt(stats.dispersion_primary),
                        fmt(stats.dispersion_secondary), stats.axes_swapped ? "1" : "0"});
       swaps += stats.axes_swapped ? 1 : 0;

@@ -7,7 +7,7 @@
 
 namespace sap_bench {
 
-using sap_broadphase::FrameStats;
+using sap_broadphase::FrameReport;
 
 void runFig1Sort(const Options& inOptions) {
   const double density = 0.35;
@@ -24,12 +24,12 @@ void runFig1Sort(const Options& inOptions) {
   for (std::size_t n : sizes) {
     const SceneRun run =
         runScene(uniformScene(n, density, inOptions.seed), engines, runs, frames, 0, &progress);
-    const double seqSort = steadyMedian(run, 0, statField(&FrameStats::ms_sort));
-    const double parSort = steadyMedian(run, 1, statField(&FrameStats::ms_sort));
+    const double seqSort = steadyMedian(run, 0, statField(&FrameReport::ms_sort));
+    const double parSort = steadyMedian(run, 1, statField(&FrameReport::ms_sort));
     const int threads = run.samples[1].front().front().stats.threads;
     table.addRow({fmtSize(n), fmt(seqSort), fmt(parSort), fmtRatio(seqSort, parSort),
-                  fmt(steadyMedian(run, 0, statField(&FrameStats::ms_keys))),
-                  fmt(steadyMedian(run, 1, statField(&FrameStats::ms_keys))),
+                  fmt(steadyMedian(run, 0, statField(&FrameReport::ms_keys))),
+                  fmt(steadyMedian(run, 1, statField(&FrameReport::ms_keys))),
                   std::to_string(threads), std::to_string(runs), std::to_string(frames),
                   countCheck(run)});
     const double x = static_cast<double>(n);

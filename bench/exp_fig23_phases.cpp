@@ -7,7 +7,7 @@
 
 namespace sap_bench {
 
-using sap_broadphase::FrameStats;
+using sap_broadphase::FrameReport;
 
 namespace {
 
@@ -46,10 +46,10 @@ void runFig23Phases(const Options& inOptions) {
     for (std::size_t n : sizes) {
       const SceneRun run =
           runScene(uniformScene(n, density, inOptions.seed), engines, runs, frames, 0, &progress);
-      const double sc = steadyMedian(run, 0, statField(&FrameStats::ms_candidates));
-      const double pc = steadyMedian(run, 1, statField(&FrameStats::ms_candidates));
-      const double sp = steadyMedian(run, 0, statField(&FrameStats::ms_pairing));
-      const double pp = steadyMedian(run, 1, statField(&FrameStats::ms_pairing));
+      const double sc = steadyMedian(run, 0, statField(&FrameReport::ms_candidates));
+      const double pc = steadyMedian(run, 1, statField(&FrameReport::ms_candidates));
+      const double sp = steadyMedian(run, 0, statField(&FrameReport::ms_pairing));
+      const double pp = steadyMedian(run, 1, statField(&FrameReport::ms_pairing));
       const auto& last = run.samples[1].front().back().stats;
       table.addRow({d, fmtSize(n), fmt(sc), fmt(pc), fmtRatio(sc, pc), fmt(sp), fmt(pp),
                     fmtRatio(sp, pp), fmtCount(last.pairs), std::to_string(last.threads),

@@ -7,7 +7,7 @@
 
 namespace sap_bench {
 
-using sap_broadphase::FrameStats;
+using sap_broadphase::FrameReport;
 
 namespace {
 
@@ -44,11 +44,11 @@ void runFig4Stacked(const Options& inOptions) {
       const SceneRun run =
           runScene(uniformScene(n, density, inOptions.seed), engines, runs, frames, 0, &progress);
       const double ks = steadyMedian(run, 1, keysAndSort);
-      const double pc = steadyMedian(run, 1, statField(&FrameStats::ms_candidates));
-      const double pp = steadyMedian(run, 1, statField(&FrameStats::ms_pairing));
-      const double po = steadyMedian(run, 1, statField(&FrameStats::ms_output));
-      const double parTotal = steadyMedian(run, 1, statField(&FrameStats::ms_total));
-      const double seqTotal = steadyMedian(run, 0, statField(&FrameStats::ms_total));
+      const double pc = steadyMedian(run, 1, statField(&FrameReport::ms_candidates));
+      const double pp = steadyMedian(run, 1, statField(&FrameReport::ms_pairing));
+      const double po = steadyMedian(run, 1, statField(&FrameReport::ms_output));
+      const double parTotal = steadyMedian(run, 1, statField(&FrameReport::ms_total));
+      const double seqTotal = steadyMedian(run, 0, statField(&FrameReport::ms_total));
       table.addRow({fmtSize(n), fmt(density, 2), fmt(ks), fmt(pc), fmt(pp), fmt(po), fmt(parTotal),
                     fmt(seqTotal), fmtRatio(seqTotal, parTotal),
                     fmtCount(run.samples[1].front().back().stats.pairs), countCheck(run)});

@@ -7,21 +7,21 @@
 
 namespace sap_bench {
 
-using sap_broadphase::FrameStats;
+using sap_broadphase::FrameReport;
 
 namespace {
 
 struct PhaseColumn {
   const char* name;
-  double FrameStats::*field;
+  double FrameReport::*field;
 };
 
-const PhaseColumn kPhases[] = {{"keys", &FrameStats::ms_keys},
-                               {"sort", &FrameStats::ms_sort},
-                               {"candidates", &FrameStats::ms_candidates},
-                               {"pairing", &FrameStats::ms_pairing},
-                               {"output", &FrameStats::ms_output},
-                               {"total", &FrameStats::ms_total}};
+const PhaseColumn kPhases[] = {{"keys", &FrameReport::ms_keys},
+                               {"sort", &FrameReport::ms_sort},
+                               {"candidates", &FrameReport::ms_candidates},
+                               {"pairing", &FrameReport::ms_pairing},
+                               {"output", &FrameReport::ms_output},
+                               {"total", &FrameReport::ms_total}};
 
 /// 1, 2, 4, ... up to and including inMax.
 std::vector<int> threadCounts(int inMax) {
@@ -63,7 +63,7 @@ void runThreads(const Options& inOptions) {
     for (std::size_t n : sizes) {
       const SceneRun run = runScene(uniformScene(n, densities[di], inOptions.seed), engines, runs,
                                     frames, 0, &progress);
-      const double seqTotal = steadyMedian(run, 0, statField(&FrameStats::ms_total));
+      const double seqTotal = steadyMedian(run, 0, statField(&FrameReport::ms_total));
       for (std::size_t e = 0; e < engines.size(); ++e) {
         std::vector<std::string> row = {fmtSize(n), fmt(densities[di], 2), engines[e].label,
                                         std::to_string(engines[e].config.threads)};
@@ -77,7 +77,7 @@ void runThreads(const Options& inOptions) {
             series[di * std::size(kPhases) + p].add(static_cast<double>(n), base / here);
           }
         }
-        row.push_back(fmtRatio(seqTotal, steadyMedian(run, e, statField(&FrameStats::ms_total))));
+        row.push_back(fmtRatio(seqTotal, steadyMedian(run, e, statField(&FrameReport::ms_total))));
         row.push_back(countCheck(run));
         table.addRow(row);
       }

@@ -1,5 +1,5 @@
 // Each phase of the pipeline on one uniform frame. Keys and candidates (Algorithms 1 and 3) are
-// called directly; every phase is also timed inside update() through FrameStats (manual time),
+// called directly; every phase is also timed inside update() through FrameReport (manual time),
 // which keeps these benchmarks valid while the pairing internals change.
 #include <benchmark/benchmark.h>
 
@@ -111,10 +111,10 @@ void BM_SortPairsCanonical(benchmark::State& state) {
 }
 BENCHMARK(BM_SortPairsCanonical)->Arg(1 << 17)->Arg(1 << 20)->Unit(benchmark::kMillisecond);
 
-/// Which FrameStats field a phase benchmark reports.
+/// Which FrameReport field a phase benchmark reports.
 enum Phase : int64_t { kSort, kCandidates, kPairing, kOutput, kTotal };
 
-double phaseMs(const FrameStats& inStats, int64_t inPhase) {
+double phaseMs(const FrameReport& inStats, int64_t inPhase) {
   switch (inPhase) {
     case kSort:
       return inStats.ms_keys + inStats.ms_sort;

@@ -131,7 +131,7 @@ bool readBoxes(const std::string& inPath, BoxSet& outBoxes) {
 }
 
 /// Prints the frame statistics to stderr.
-void printStats(const FrameStats& inStats, double inReadMs) {
+void printStats(const FrameReport& inStats, double inReadMs) {
   std::fprintf(stderr,
                "boxes %zu pairs %zu path %s threads %d\n"
                "axes primary %s secondary %s swapped %s slabs %d\n"

@@ -1,4 +1,5 @@
 #include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/buffers.h"
 
 #include <omp.h>
 
@@ -63,7 +64,7 @@ int resolveThreadCount(int inRequested) {
 
 struct Broadphase::Impl {
   BroadphaseConfig config;
-  FrameStats stats;
+  FrameReport stats;
   AxisBounds bounds[3];
   PartitionedSorter sorter;
   // 4n words: packed (key, index) items and the sort's scratch while sorting, then the
@@ -77,7 +78,7 @@ struct Broadphase::Impl {
   SlabGrid slab_grid;
   SweepWorkspace workspace;
   SuccTree sequential_tree;
-  std::vector<PairList> pairs_per_thread;
+  std::vector<PairChunks> pairs_per_thread;
   PairList pairs;
   PairSortScratch pair_scratch;
   BoxSet collidable;               // the frame without boxes that can collide with nothing
@@ -122,8 +123,8 @@ double Broadphase::Impl::sortAxis(const BoxSet& inBoxes, int inAxis, int inThrea
   const double* low = inBoxes.lo[inAxis].data();
   const double* high = inBoxes.hi[inAxis].data();
   const Clock::time_point start = Clock::now();
-  endpoint_words.resize(2 * endpoints);
-  outOrder.resize(endpoints);
+  resizeDiscarding(endpoint_words, 2 * endpoints);
+  resizeDiscarding(outOrder, endpoints);
   uint64_t* packed = endpoint_words.data();
 #pragma omp parallel for num_threads(inThreads) schedule(static)
   for (uint32_t i = 0; i < n; ++i) {
@@ -141,12 +142,12 @@ void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const uint32_t* object_of_rank = ranges.object_of_rank.data();
   const bool filtered = inBoxes.hasFilters();
-  ranked_keys.resize(n);
-  ranked_filters.resize(filtered ? n : 0);
+  resizeDiscarding(ranked_keys, n);
+  resizeDiscarding(ranked_filters, filtered ? n : 0);
   const int third_axis = unusedAxis(config.primary_axis, config.secondary_axis);
   slab_grid = chooseSlabGrid(inBoxes, third_axis, config.third_axis_slabs, inThreads);
   const bool slabbed = slab_grid.count > 1;
-  ranked_slabs.resize(slabbed ? n : 0);
+  resizeDiscarding(ranked_slabs, slabbed ? n : 0);
   const double* third_low = inBoxes.lo[third_axis].data();
   const double* third_high = inBoxes.hi[third_axis].data();
 #pragma omp parallel for num_threads(inThreads) schedule(static)
@@ -287,9 +288,9 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
   Impl& impl = *impl_;
   const Clock::time_point start = Clock::now();
   const int threads = resolveThreadCount(impl.config.threads);
-  FrameStats& stats = impl.stats;
-  const FrameStats previous_stats = stats;
-  stats = FrameStats();
+  FrameReport& stats = impl.stats;
+  const FrameReport previous_stats = stats;
+  stats = FrameReport();
   stats.boxes = inBoxes.size();
   const BoxSet& boxes = impl.dropBoxesThatCollideWithNothing(inBoxes);
   stats.primary_axis = impl.config.primary_axis;
@@ -336,7 +337,7 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
   return impl.pairs;
 }
 
-const FrameStats& Broadphase::stats() const {
+const FrameReport& Broadphase::stats() const {
   return impl_->stats;
 }
 const BroadphaseConfig& Broadphase::config() const {

@@ -1,4 +1,5 @@
 #include "sap_broadphase/core/pair_set.h"
+#include "sap_broadphase/core/buffers.h"
 
 #include <algorithm>
 
@@ -27,20 +28,27 @@ void sortByB(IdPair* ioBegin, IdPair* ioEnd) {
   }
 }
 
-// Counting sort on a (ids 0..inLargestA) of the pairs of all inParts into outSorted, then
+// Calls inVisit(pair) for every pair of a PairList or of every PairChunks of a vector.
+template <typename Visit>
+void forEachPair(const PairList& inPairs, Visit&& inVisit) {
+  for (const IdPair& pair : inPairs) inVisit(pair);
+}
+template <typename Visit>
+void forEachPair(const std::vector<PairChunks>& inParts, Visit&& inVisit) {
+  for (const PairChunks& part : inParts) part.forEach(inVisit);
+}
+
+// Counting sort on a (ids 0..inLargestA) of the inTotal pairs of inPairs into outSorted, then
 // each run of equal a sorted by b.
-void bucketSort(const PairList* inParts, std::size_t inPartCount, uint32_t inLargestA,
+template <typename Pairs>
+void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
                 std::vector<uint32_t>& ioOffsets, PairList& outSorted) {
-  ioOffsets.assign(std::size_t{inLargestA} + 2, 0);
-  std::size_t total = 0;
-  for (std::size_t part = 0; part < inPartCount; ++part) {
-    total += inParts[part].size();
-    for (const IdPair& pair : inParts[part]) ++ioOffsets[pair.a + 1];
-  }
+  resizeDiscarding(ioOffsets, std::size_t{inLargestA} + 2);
+  std::fill(ioOffsets.begin(), ioOffsets.end(), 0);
+  forEachPair(inPairs, [&](const IdPair& inPair) { ++ioOffsets[inPair.a + 1]; });
   for (std::size_t a = 1; a < ioOffsets.size(); ++a) ioOffsets[a] += ioOffsets[a - 1];
-  outSorted.resize(total);
-  for (std::size_t part = 0; part < inPartCount; ++part)
-    for (const IdPair& pair : inParts[part]) outSorted[ioOffsets[pair.a]++] = pair;
+  resizeDiscarding(outSorted, inTotal);
+  forEachPair(inPairs, [&](const IdPair& inPair) { outSorted[ioOffsets[inPair.a]++] = inPair; });
   // ioOffsets[a] now ends a's run, which starts where a - 1's ended.
   uint32_t begin = 0;
   for (std::size_t a = 0; a <= inLargestA; ++a) {
@@ -50,9 +58,10 @@ void bucketSort(const PairList* inParts, std::size_t inPartCount, uint32_t inLar
   }
 }
 
-uint32_t largestA(const PairList& inPairs) {
+template <typename Pairs>
+uint32_t largestA(const Pairs& inPairs) {
   uint32_t largest = 0;
-  for (const IdPair& pair : inPairs) largest = std::max(largest, pair.a);
+  forEachPair(inPairs, [&](const IdPair& inPair) { largest = std::max(largest, inPair.a); });
   return largest;
 }
 
@@ -66,7 +75,7 @@ void radixSort(PairList& ioPairs, PairSortScratch& ioScratch) {
   const std::size_t count = ioPairs.size();
   std::vector<uint32_t>& histogram = ioScratch.offsets;
   histogram.resize(kDigitValues);
-  ioScratch.pairs.resize(count);
+  resizeDiscarding(ioScratch.pairs, count);
   PairList* source = &ioPairs;
   PairList* target = &ioScratch.pairs;
   for (int shift = 0; shift < 64; shift += kDigitBits) {
@@ -93,33 +102,37 @@ void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch) {
   if (count < 2) return;
   const uint32_t largest_a = largestA(ioPairs);
   if (denseEnough(largest_a, count)) {
-    bucketSort(&ioPairs, 1, largest_a, ioScratch.offsets, ioScratch.pairs);
+    bucketSort(ioPairs, count, largest_a, ioScratch.offsets, ioScratch.pairs);
     ioPairs.swap(ioScratch.pairs);
   } else {
     radixSort(ioPairs, ioScratch);
   }
 }
 
-void sortPairsCanonical(const std::vector<PairList>& inParts, PairList& outPairs,
+void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
                         PairSortScratch& ioScratch) {
   std::size_t total = 0;
-  uint32_t largest_a = 0;
-  for (const PairList& part : inParts) {
-    total += part.size();
-    largest_a = std::max(largest_a, largestA(part));
-  }
+  for (const PairChunks& part : inParts) total += part.size();
+  const uint32_t largest_a = largestA(inParts);
   if (denseEnough(largest_a, total)) {
-    bucketSort(inParts.data(), inParts.size(), largest_a, ioScratch.offsets, outPairs);
+    bucketSort(inParts, total, largest_a, ioScratch.offsets, outPairs);
     return;
   }
-  outPairs.clear();
-  for (const PairList& part : inParts) outPairs.insert(outPairs.end(), part.begin(), part.end());
+  resizeDiscarding(outPairs, total);
+  std::size_t next = 0;
+  forEachPair(inParts, [&](const IdPair& inPair) { outPairs[next++] = inPair; });
   if (total > 1) radixSort(outPairs, ioScratch);
 }
 
 void sortPairsCanonical(PairList& ioPairs) {
   PairSortScratch scratch;
   sortPairsCanonical(ioPairs, scratch);
+}
+
+void PairChunks::startChunk() {
+  if (used_chunks_ == chunks_.size()) chunks_.emplace_back(new IdPair[kChunkPairs]);
+  ++used_chunks_;
+  fill_ = 0;
 }
 
 }  // namespace sap_broadphase

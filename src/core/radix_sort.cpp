@@ -1,4 +1,5 @@
 #include "sap_broadphase/core/radix_sort.h"
+#include "sap_broadphase/core/buffers.h"
 
 #include <omp.h>
 
@@ -104,8 +105,8 @@ void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex
 
 double PartitionedSorter::sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
                                int inThreads, AxisBounds& ioBounds, uint32_t* outIndex) {
-  owned_packed_.resize(inCount);
-  owned_scratch_.resize(inCount);
+  resizeDiscarding(owned_packed_, inCount);
+  resizeDiscarding(owned_scratch_, inCount);
   for (uint32_t k = 0; k < inCount; ++k) owned_packed_[k] = packKeyIndex(inKeys[k], k);
   return sortPacked(owned_packed_.data(), owned_scratch_.data(), inCount, inPartitions, inThreads,
                     ioBounds, outIndex);
@@ -161,7 +162,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
   const int bound_count = partitions - 1;
   const uint32_t* bounds = inBounds.bounds.data();
   counts_.assign(static_cast<std::size_t>(inThreads) * partitions, 0);
-  partition_of_.resize(inCount);
+  resizeDiscarding(partition_of_, inCount);
   buildPrefixTable(bounds, bound_count, prefix_table_);
   partition_begin_.assign(partitions + 1, 0);
   partition_size_.assign(partitions, 0);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "sap_broadphase/core/buffers.h"
 #include "sap_broadphase/core/sweep.h"
 
 namespace sap_broadphase {
@@ -38,8 +39,8 @@ void sweepCandidateSlice(const uint32_t* inOrder, uint32_t inObjects, std::size_
 
 void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObjects,
                                  SuccTree& ioActive, CandidateRanges& outRanges) {
-  outRanges.of_object.resize(inObjects);
-  outRanges.object_of_rank.resize(inObjects);
+  resizeDiscarding(outRanges.of_object, inObjects);
+  resizeDiscarding(outRanges.object_of_rank, inObjects);
   uint32_t next_rank = 0;
   for (std::size_t k = 0; k < 2 * std::size_t{inObjects}; ++k) {
     const uint32_t endpoint = inPrimaryOrder[k];
@@ -57,8 +58,8 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
                                SweepWorkspace& ioWork, CandidateRanges& outRanges) {
   const int slices = std::max(1, inThreads);
   const std::size_t endpoints = 2 * std::size_t{inObjects};
-  outRanges.of_object.resize(inObjects);
-  outRanges.object_of_rank.resize(inObjects);
+  resizeDiscarding(outRanges.of_object, inObjects);
+  resizeDiscarding(outRanges.object_of_rank, inObjects);
   ioWork.partition_local.resize(slices);
   ioWork.partition_start.resize(slices);
   ioWork.lows_before.assign(slices + 1, 0);

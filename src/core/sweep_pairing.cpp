@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "sap_broadphase/core/buffers.h"
 #include "sap_broadphase/core/sweep.h"
 
 namespace sap_broadphase {
@@ -79,7 +80,7 @@ struct PartitionReader {
 class PartitionSweep {
  public:
   PartitionSweep(const PairingInput& inInput, uint32_t inRankBegin, uint32_t inRankEnd,
-                 SuccTree* ioTrees, PairList& outPairs)
+                 SuccTree* ioTrees, PairChunks& outPairs)
       : input_(inInput),
         rank_begin_(inRankBegin),
         rank_end_(inRankEnd),
@@ -140,7 +141,7 @@ class PartitionSweep {
   const uint32_t rank_begin_;
   const uint32_t rank_end_;
   SuccTree* const trees_;
-  PairList& pairs_;
+  PairChunks& pairs_;
 };
 
 // The rank partitions an endpoint matters to: its own (insert, erase) and, for a low endpoint,
@@ -205,7 +206,7 @@ void scatterToPartitions(const PairingInput& inInput, int inThreads, uint32_t in
         }
       }
       ioWork.partition_offsets[inPartitions] = offset;
-      ioWork.partition_entries.resize(offset);
+      resizeDiscarding(ioWork.partition_entries, offset);
     }
     uint64_t* out = ioWork.partition_entries.data();
     for (std::size_t k = begin; k < end; ++k) {
@@ -243,14 +244,14 @@ void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
   }
 }
 
-void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairList& outPairs) {
+void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, inInput.objects);
   PartitionSweep sweep(inInput, 0, inInput.objects, ioWork.pairing.data(), outPairs);
   sweep.run(WholeStreamReader{inInput.stream, 2 * std::size_t{inInput.objects}, inInput.objects});
 }
 
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
-                  std::vector<PairList>& outPairsPerThread) {
+                  std::vector<PairChunks>& outPairsPerThread) {
   const int threads = std::max(1, inThreads);
   const uint32_t n = inInput.objects;
   const uint32_t wanted =
@@ -265,7 +266,7 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   {
     const int thread = omp_get_thread_num();
     SuccTree* trees = &ioWork.pairing[std::size_t(thread) * slab_count];
-    PairList& pairs = outPairsPerThread[thread];
+    PairChunks& pairs = outPairsPerThread[thread];
     pairs.clear();
 #pragma omp for schedule(dynamic, 1)
     for (uint32_t p = 0; p < partitions; ++p) {

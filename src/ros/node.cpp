@@ -20,7 +20,7 @@ double millisecondsSince(Clock::time_point inStart) {
 }
 
 /// Copies the engine's account of a frame into the stats message (times are added later).
-void fillEngineStats(const EngineFrameStats& inEngine, FrameStats& outStats) {
+void fillEngineStats(const FrameReport& inEngine, FrameStats& outStats) {
   outStats.boxes = static_cast<uint32_t>(inEngine.boxes);
   outStats.pairs = static_cast<uint32_t>(inEngine.pairs);
   outStats.primary_axis = static_cast<uint8_t>(inEngine.primary_axis);

@@ -85,6 +85,10 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
     return error;
   if (engine.third_axis_slabs > 64) return "~third_axis_slabs must be at most 64";
   inPrivate.param("exact_final_test", engine.exact_final_test, engine.exact_final_test);
+  // Publishers often resend a scene that did not move: worth the engine's copy of the frame.
+  engine.reuse_unchanged_frames = true;
+  inPrivate.param("reuse_unchanged_frames", engine.reuse_unchanged_frames,
+                  engine.reuse_unchanged_frames);
 
   inPrivate.param("publish_markers", outParams.publish_markers, outParams.publish_markers);
   if (!(error = readCount(inPrivate, "max_marker_boxes", markers.max_boxes)).empty()) return error;

@@ -41,7 +41,7 @@ std::set<int> runPlaneScene(int inPlaneAxis, int inPrimary, int inSecondary,
   for (int frame = 0; frame <= 75; ++frame) {
     const BoxSet& boxes = simulator.boxes();
     const PairList& pairs = engine.update(boxes);
-    const FrameStats& stats = engine.stats();
+    const FrameReport& stats = engine.stats();
     EXPECT_NE(stats.primary_axis, stats.secondary_axis);
     EXPECT_TRUE(samePairs(reference.update(boxes), pairs)) << "frame " << frame;
     if (stats.axes_swapped || checkNextWithOracle || frame % 25 == 0 || frame == 60) {

@@ -49,7 +49,7 @@ enum class FramePath : uint8_t {
 const char* framePathName(FramePath inPath);
 
 /// What one frame cost and how it was computed. Times are milliseconds of wall clock.
-struct FrameStats {
+struct FrameReport {
   std::size_t boxes = 0;
   std::size_t boxes_filtered_out = 0;  ///< boxes with group 0 or mask 0: never swept
   std::size_t pairs = 0;
@@ -83,7 +83,7 @@ class Broadphase {
   /// with a < b in canonical (a, b) order. The reference stays valid until the next update().
   const PairList& update(const BoxSet& inBoxes);
   /// Statistics of the last update().
-  const FrameStats& stats() const;
+  const FrameReport& stats() const;
   /// The configuration in force (axes change when swapped).
   const BroadphaseConfig& config() const;
   /// Forgets temporal state (partition bounds); the next frame starts as a first frame.

@@ -1,7 +1,9 @@
 // Pairs of box ids as they leave the engine.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace sap_broadphase {
@@ -17,6 +19,45 @@ struct IdPair {
 };
 
 using PairList = std::vector<IdPair>;
+
+/// Pairs appended in fixed-size chunks, the pairing threads' output: growing never copies
+/// (a vector's doubling would keep old and new storage resident together) and clear() keeps
+/// the chunks for the next frame.
+class PairChunks {
+ public:
+  static constexpr std::size_t kChunkPairs = std::size_t{1} << 13;  // 64 KiB
+
+  /// Forgets the pairs, keeping the storage.
+  void clear() {
+    used_chunks_ = 0;
+    fill_ = kChunkPairs;
+  }
+  /// Appends one pair.
+  void push_back(const IdPair& inPair) {
+    if (fill_ == kChunkPairs) startChunk();
+    chunks_[used_chunks_ - 1][fill_++] = inPair;
+  }
+  /// Number of pairs held.
+  std::size_t size() const {
+    return used_chunks_ == 0 ? 0 : (used_chunks_ - 1) * kChunkPairs + fill_;
+  }
+  /// Calls inVisit(pair) for every pair, in insertion order.
+  template <typename Visit>
+  void forEach(Visit&& inVisit) const {
+    for (std::size_t chunk = 0; chunk < used_chunks_; ++chunk) {
+      const std::size_t count = chunk + 1 == used_chunks_ ? fill_ : kChunkPairs;
+      const IdPair* pairs = chunks_[chunk].get();
+      for (std::size_t k = 0; k < count; ++k) inVisit(pairs[k]);
+    }
+  }
+
+ private:
+  void startChunk();
+
+  std::vector<std::unique_ptr<IdPair[]>> chunks_;
+  std::size_t used_chunks_ = 0;
+  std::size_t fill_ = kChunkPairs;
+};
 
 /// Makes a < b in the pair (swaps when needed).
 inline IdPair makeIdPair(uint32_t x, uint32_t y) {
@@ -37,7 +78,7 @@ void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch);
 void sortPairsCanonical(PairList& ioPairs);
 /// Merges the disjoint lists inParts into outPairs in canonical order, without first copying
 /// them into one list when ids are dense. inParts is left unchanged.
-void sortPairsCanonical(const std::vector<PairList>& inParts, PairList& outPairs,
+void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
                         PairSortScratch& ioScratch);
 
 }  // namespace sap_broadphase

@@ -115,7 +115,7 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);
 
 /// Algorithm 1, lines 15-23: every pair, found once, by one thread. Appends to outPairs.
-void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairList& outPairs);
+void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs);
 
 /// Algorithm 4: rank space split into partitions of at most kPairingPartitionRanks ranks (and at
 /// least one per thread), each swept by one thread with its own SuccTrees; each pair is found in
@@ -125,6 +125,6 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairLis
 /// partitions then fit in cache and there may be many more of them than threads.
 /// outPairsPerThread[t] receives thread t's pairs.
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
-                  std::vector<PairList>& outPairsPerThread);
+                  std::vector<PairChunks>& outPairsPerThread);
 
 }  // namespace sap_broadphase

@@ -16,7 +16,7 @@
 #include "sap_broadphase/ComputePairs.h"
 #include "sap_broadphase/FrameStats.h"
 #include "sap_broadphase/PairArray.h"
-#include "sap_broadphase/ros/engine.h"
+#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/ros/node_params.h"
 
 namespace sap_broadphase {

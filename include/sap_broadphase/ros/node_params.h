@@ -5,7 +5,7 @@
 
 #include <ros/node_handle.h>
 
-#include "sap_broadphase/ros/engine.h"
+#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/ros/markers.h"
 
 namespace sap_broadphase {
