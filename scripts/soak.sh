@@ -47,6 +47,7 @@ if [ ! -x "$CHECKER" ] || [ "$ROOT/test/stress/soak_checker.cpp" -nt "$CHECKER" 
     -o "$CHECKER" -lroscpp -lrostime -lroscpp_serialization -lrosconsole -lcpp_common \
     -lboost_system -lpthread
 fi
+"$CHECKER" selftest
 
 export SAP_WS="$WS"
 # shellcheck disable=SC1091
@@ -90,13 +91,13 @@ if [ "$SECONDS_SOAK" != 0 ]; then
   PUBLISHER=$!
   PIDS+=($PUBLISHER)
   # Warm-up: the first frames allocate the engine's buffers; RSS after that is the baseline.
-  sleep 5
+  sleep 10
   rss_start=$(rss_kb $NODE)
   echo "soak.sh: $BOXES boxes at $RATE Hz for $SECONDS_SOAK s, compute_pairs called in a loop; node RSS at start $((rss_start / 1024)) MB"
   ( while kill -0 $NODE 2>/dev/null; do echo "$(date +%s) $(rss_kb $NODE)"; sleep 5; done ) > "$OUT/rss.log" &
   PIDS+=($!)
   start=$(date +%s)
-  "$CHECKER" soak "$SECONDS_SOAK" 2 | tee "$OUT/checker.log" || status=1
+  "$CHECKER" soak "$SECONDS_SOAK" 1 | tee "$OUT/checker.log" || status=1
   rss_end=$(rss_kb $NODE)
   if kill -0 $NODE 2>/dev/null; then node_state="alive"; else node_state="DEAD"; status=1; fi
   echo "soak.sh: after $(( $(date +%s) - start )) s the node is $node_state; RSS at start $((rss_start / 1024)) MB, at end $((rss_end / 1024)) MB (samples in $OUT/rss.log)"
