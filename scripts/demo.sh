@@ -28,7 +28,7 @@ echo "demo: set-up and build (first run: several minutes; log in build/demo_setu
   echo "demo: set-up failed, see $ROOT/build/demo_setup.log" >&2; exit 1; }
 source "$ROOT/scripts/env.sh"
 
-# OpenMP threads sleep at barriers rather than spin (see docs/NODE.md, "Threads").
+# OpenMP threads sleep at barriers rather than spin (see README.md, "Threads").
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 PIDS=()
 stop_all() {
