@@ -11,6 +11,7 @@
 #
 #   scripts/sanitize.sh            # both
 #   scripts/sanitize.sh asan       # or: tsan
+#   SANITIZE_REV=HEAD scripts/sanitize.sh   # a committed tree instead of the working tree
 #
 # Prints one line per test binary and a summary; exits non-zero on any finding. Reports stay
 # in build/sanitize/. Until test/tests.cmake includes test/stress/stress_tests.cmake, the
@@ -29,8 +30,17 @@ failures=0
 mirror() {  # workspace
   local ws=$1
   mkdir -p "$ws/src"
-  rsync -a --delete --exclude=/build/ --exclude=/.git/ --exclude=/artifacts/ "$ROOT/" \
-    "$ws/src/sap_broadphase/"
+  if [ -n "${SANITIZE_REV:-}" ]; then
+    # A committed tree (e.g. SANITIZE_REV=HEAD while others edit the working tree).
+    local staging="$ws/src/.sap_broadphase_rev"
+    rm -rf "$staging" && mkdir -p "$staging"
+    git -C "$ROOT" archive "$SANITIZE_REV" | tar -x -C "$staging"
+    rsync -a --delete --checksum "$staging/" "$ws/src/sap_broadphase/"
+    rm -rf "$staging"
+  else
+    rsync -a --delete --exclude=/build/ --exclude=/.git/ --exclude=/artifacts/ "$ROOT/" \
+      "$ws/src/sap_broadphase/"
+  fi
   local tests="$ws/src/sap_broadphase/test/tests.cmake"
   grep -q 'stress_tests.cmake' "$tests" || echo 'include(test/stress/stress_tests.cmake)' >> "$tests"
 }

@@ -94,7 +94,10 @@ std::vector<uint32_t> sweepOracle(const BoxArray& inMsg) {
       top[a] = std::max(top[a], b[6 * i + a]);
       edge = std::max(edge, b[6 * i + 3 + a] - b[6 * i + a]);
     }
-  const double cell = std::max(edge * (1.0 + 1e-9), 1e-300);
+  // Any cell at least as wide as the largest edge is exact; wider cells bound the grid size.
+  double span = 0.0;
+  for (int a = 0; a < 3 && n > 0; ++a) span = std::max(span, top[a] - origin[a]);
+  const double cell = std::max({edge * (1.0 + 1e-9), span / 400.0, 1e-300});
   std::size_t dims[3] = {1, 1, 1};
   double cells = 1.0;
   for (int a = 0; a < 3 && n > 0; ++a) {
@@ -103,7 +106,7 @@ std::vector<uint32_t> sweepOracle(const BoxArray& inMsg) {
     dims[a] = std::isfinite(count) ? static_cast<std::size_t>(std::min(count, 1e9)) : 0;
   }
   PairList pairs;
-  if (n > 0 && std::isfinite(cells) && cells <= 64e6 && dims[0] * dims[1] * dims[2] > 0) {
+  if (n > 0 && std::isfinite(cells) && cells <= 70e6 && dims[0] * dims[1] * dims[2] > 0) {
     auto coordinate = [&](std::size_t i, int a) {
       return std::min(dims[a] - 1, static_cast<std::size_t>((b[6 * i + a] - origin[a]) / cell));
     };
