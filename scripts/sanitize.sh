@@ -111,7 +111,7 @@ tsan() {
     rostest --text sap_broadphase node.test > "$REPORTS/tsan_node.log" 2>&1
   ) && node_ok=1 || node_ok=0
   if [ "$node_ok" = 1 ] && ! ls "$REPORTS"/tsan_report.* >/dev/null 2>&1; then
-    echo "sanitize: tsan_node.test clean ($(grep -oE 'SUMMARY.*|Ran [0-9]+ tests?' "$REPORTS/tsan_node.log" | head -1))"
+    echo "sanitize: tsan_node.test clean ($(grep -oE 'PASSED.*' "$REPORTS/tsan_node.log" | head -1))"
   else
     failures=$((failures + 1))
     echo "sanitize: tsan_node.test FAILED (rostest exit $node_ok, log $REPORTS/tsan_node.log)"
