@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,7 @@
 #include "sap_broadphase/core/axis_policy.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/radix_sort.h"
+#include "sap_broadphase/core/skin_list.h"
 #include "sap_broadphase/core/sort_keys.h"
 #include "sap_broadphase/core/sweep.h"
 
@@ -36,6 +38,8 @@ void checkConfig(const BroadphaseConfig& inConfig) {
       inConfig.primary_axis == inConfig.secondary_axis)
     throw std::invalid_argument("primary and secondary axes must be distinct values in 0..2");
   if (inConfig.threads < 0) throw std::invalid_argument("threads must be >= 0");
+  if (!(inConfig.skin >= 0.0) || !std::isfinite(inConfig.skin))
+    throw std::invalid_argument("skin must be a finite value >= 0");
   if (inConfig.third_axis_slabs < 0 || inConfig.third_axis_slabs > kMaxSlabs)
     throw std::invalid_argument("third_axis_slabs must be in 0..64");
 }
@@ -54,6 +58,8 @@ const char* framePathName(FramePath inPath) {
       return "brute";
     case FramePath::kReused:
       return "reused";
+    case FramePath::kSkin:
+      return "skin";
   }
   return "unknown";
 }
@@ -81,8 +87,10 @@ struct Broadphase::Impl {
   std::vector<PairChunks> pairs_per_thread;
   PairList pairs;
   PairSortScratch pair_scratch;
-  BoxSet collidable;               // the frame without boxes that can collide with nothing
-  BoxSet previous_boxes;           // the last swept frame, to recognise an unchanged one
+  BoxSet collidable;      // the frame without boxes that can collide with nothing
+  BoxSet previous_boxes;  // the last swept frame, to recognise an unchanged one
+  SkinList skin_list;
+  BoxSet inflated;                 // the frame grown by the skin, while sweeping for skin reuse
   bool previous_reusable = false;  // pairs still holds previous_boxes' pairs
 
   bool sameAsPreviousFrame(const BoxSet& inBoxes) const;
@@ -95,6 +103,8 @@ struct Broadphase::Impl {
   void gatherByRank(const BoxSet& inBoxes, int inThreads);
   void pair(const BoxSet& inBoxes, FramePath inPath, int inThreads);
   void sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, int inThreads);
+  void sweepIntoPairs(const BoxSet& inBoxes, FramePath inPath, int inThreads);
+  void skinFrame(const BoxSet& inBoxes, int inThreads);
   void decideAxes(bool inWarm);
 };
 
@@ -271,8 +281,39 @@ bool Broadphase::Impl::sameAsPreviousFrame(const BoxSet& inBoxes) const {
 
 void Broadphase::Impl::rememberFrame(const BoxSet& inBoxes, FramePath inPath) {
   previous_reusable = config.reuse_unchanged_frames &&
-                      (inPath == FramePath::kSequential || inPath == FramePath::kParallel);
+                      (inPath == FramePath::kSequential || inPath == FramePath::kParallel ||
+                       inPath == FramePath::kSkin);
   if (previous_reusable) previous_boxes = inBoxes;  // vectors keep their capacity
+}
+
+void Broadphase::Impl::sweepIntoPairs(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
+  sweepAndPrune(inBoxes, inPath, inThreads);
+  const Clock::time_point phase = Clock::now();
+  // Each thread's pairs are disjoint from the others': merging them is the whole set. The
+  // sweep order is dead by now: the sort borrows its memory for its histogram.
+  std::swap(sweep_order, pair_scratch.offsets);
+  sortPairsCanonical(pairs_per_thread, pairs, pair_scratch);
+  std::swap(sweep_order, pair_scratch.offsets);
+  stats.ms_output = millisecondsSince(phase);
+}
+
+// Skin reuse: test the kept candidates when every box is inside its skin, else sweep the
+// grown boxes for new candidates first.
+void Broadphase::Impl::skinFrame(const BoxSet& inBoxes, int inThreads) {
+  Clock::time_point phase = Clock::now();
+  if (skin_list.covers(inBoxes, inThreads)) {
+    stats.path = FramePath::kSkin;
+    stats.threads = inThreads;
+  } else {
+    skin_list.inflate(inBoxes, config.skin, inflated);
+    stats.ms_keys += millisecondsSince(phase);
+    sweepIntoPairs(inflated, stats.path, inThreads);
+    skin_list.adopt(inBoxes, pairs);
+  }
+  phase = Clock::now();
+  skin_list.collect(inBoxes, inThreads, pairs);
+  stats.ms_pairing += millisecondsSince(phase);
+  stats.skin_candidates = skin_list.candidates();
 }
 
 Broadphase::Broadphase(const BroadphaseConfig& inConfig) : impl_(std::make_unique<Impl>()) {
@@ -319,17 +360,14 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
       break;
     }
     case FramePath::kSequential:
-    case FramePath::kParallel: {
-      impl.sweepAndPrune(boxes, stats.path, threads);
-      const Clock::time_point phase = Clock::now();
-      // Each thread's pairs are disjoint from the others': merging them is the whole set. The
-      // sweep order is dead by now: the sort borrows its memory for its histogram.
-      std::swap(impl.sweep_order, impl.pair_scratch.offsets);
-      sortPairsCanonical(impl.pairs_per_thread, impl.pairs, impl.pair_scratch);
-      std::swap(impl.sweep_order, impl.pair_scratch.offsets);
-      stats.ms_output = millisecondsSince(phase);
+    case FramePath::kParallel:
+      if (impl.config.skin > 0)
+        impl.skinFrame(boxes, threads);
+      else
+        impl.sweepIntoPairs(boxes, stats.path, threads);
       break;
-    }
+    case FramePath::kSkin:
+      break;  // decided and computed inside skinFrame()
   }
   if (stats.path != FramePath::kReused) impl.rememberFrame(boxes, stats.path);
   stats.pairs = impl.pairs.size();
@@ -347,6 +385,7 @@ const BroadphaseConfig& Broadphase::config() const {
 void Broadphase::reset() {
   for (AxisBounds& axis_bounds : impl_->bounds) axis_bounds.from_previous_frame = false;
   impl_->previous_reusable = false;
+  impl_->skin_list.clear();
 }
 
 }  // namespace sap_broadphase

@@ -17,6 +17,13 @@ namespace {
 using test_support::engineConfig;
 using test_support::samePairs;
 
+/// An engine configuration with unchanged-frame reuse on (it is off by default).
+BroadphaseConfig reusingConfig(Method inMethod, int inThreads) {
+  BroadphaseConfig config = engineConfig(inMethod, inThreads, 0, 1);
+  config.reuse_unchanged_frames = true;
+  return config;
+}
+
 /// Boxes on a grid touching their x neighbours exactly (many pairs hinge on one bound).
 BoxSet touchingRow(std::size_t inCount) {
   BoxSet boxes;
@@ -36,7 +43,7 @@ void expectChangeSeen(const std::string& inLabel, Change&& inChange, bool inFilt
   for (Method method : {Method::kSequential, Method::kParallel, Method::kAuto}) {
     BoxSet boxes = touchingRow(4900);
     if (inFilters) test_support::addRandomFilters(boxes, 3);
-    Broadphase broadphase(engineConfig(method, 3, 0, 1));
+    Broadphase broadphase(reusingConfig(method, 3));
     ASSERT_TRUE(samePairs(bruteForcePairs(boxes), broadphase.update(boxes)));
     ASSERT_TRUE(samePairs(bruteForcePairs(boxes), broadphase.update(boxes)));  // may be reused
     inChange(boxes);
@@ -50,7 +57,7 @@ TEST(EngineReuse, UnchangedFramesGiveTheSamePairs) {
   BoxSet boxes = touchingRow(4900);
   const PairList oracle = bruteForcePairs(boxes);
   for (Method method : {Method::kSequential, Method::kParallel}) {
-    Broadphase broadphase(engineConfig(method, 2, 0, 1));
+    Broadphase broadphase(reusingConfig(method, 2));
     for (int frame = 0; frame < 4; ++frame) {
       const BoxSet copy = boxes;  // equal content, another object
       EXPECT_TRUE(samePairs(oracle, broadphase.update(frame % 2 ? copy : boxes)));

@@ -32,6 +32,8 @@ struct BroadphaseConfig {
   bool reuse_unchanged_frames = false;    ///< a frame equal to the previous one (ids, bounds,
                                           ///< groups, masks) returns the previous pairs; keeps a
                                           ///< copy of the last frame (52 bytes a box)
+  double skin = 0.0;  ///< > 0: skin reuse (skin_list.h): sweep boxes grown by skin / 2 a side,
+                      ///< then test only those candidates until a box leaves its grown box
   bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
                                  ///< may report extra pairs; never misses one)
 };
@@ -43,9 +45,10 @@ enum class FramePath : uint8_t {
   kParallel,    ///< Algorithms 2, 3, 4
   kBruteForce,  ///< the oracle
   kReused,      ///< same boxes as the previous frame: its pairs returned without a sweep
+  kSkin,        ///< every box inside its skin: the kept candidates tested, no sweep
 };
 
-/// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused".
+/// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused", "skin".
 const char* framePathName(FramePath inPath);
 
 /// What one frame cost and how it was computed. Times are milliseconds of wall clock.
@@ -59,7 +62,9 @@ struct FrameReport {
   double dispersion_secondary = 0.0;  ///< D of eq. (1) for the secondary-axis sort
   bool axes_swapped = false;          ///< an axis swap happened after this frame's sort
   int threads = 1;
-  int slabs = 1;  ///< third-axis slabs used by pairing
+  int slabs = 1;
+  std::size_t skin_candidates =
+      0;  ///< candidate pairs kept by skin reuse  ///< third-axis slabs used by pairing
   FramePath path = FramePath::kEmpty;
   double ms_keys = 0.0;        ///< float64 -> sortable keys
   double ms_sort = 0.0;        ///< both axes' radix index sorts (keys excluded)

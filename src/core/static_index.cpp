@@ -1,0 +1,325 @@
+#include "sap_broadphase/core/static_index.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sap_broadphase/core/broadphase.h"  // resolveThreadCount
+#include "sap_broadphase/core/radix_sort.h"
+
+namespace sap_broadphase {
+namespace {
+
+// Bits of one axis's cell index in Slot::low_cells; three axes fit in 63 bits.
+constexpr int kCellBits = 21;
+constexpr uint32_t kMaxCellsOnAxis = uint32_t{1} << kCellBits;
+// Cell edge in mean box extents. At one extent a box covers about 2^3 cells and a cell holds
+// about density * 8 boxes; the cap below usually decides instead.
+constexpr double kCellInExtents = 1.0;
+// Most cells per indexed box: bounds the offsets array (8 bytes a cell) and empty-cell visits.
+constexpr double kCellsPerBox = 1.0;
+// A box covering more cells than this goes to the large list: listing it in every cell would
+// cost more memory and cell visits than testing it against each query.
+constexpr uint64_t kMaxCellsPerBox = 64;
+// Fewest queries worth a thread of their own in queryAll.
+constexpr std::size_t kMinQueriesPerThread = 64;
+// Queries handed out together (static schedule: the same split on every run).
+constexpr int kQueryChunk = 16;
+
+// Finite spread of the indexed boxes on one axis.
+struct AxisSpread {
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -std::numeric_limits<double>::infinity();
+  double extent_sum = 0.0;
+  std::size_t finite_boxes = 0;
+};
+
+AxisSpread measureAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes, int inAxis,
+                       int inThreads) {
+  const double* low = inBoxes.lo[inAxis].data();
+  const double* high = inBoxes.hi[inAxis].data();
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -std::numeric_limits<double>::infinity();
+  double extent_sum = 0.0;
+  std::size_t finite_boxes = 0;
+  const std::size_t count = inIndexes.size();
+#pragma omp parallel for num_threads(inThreads) reduction(min : lowest) reduction(max : highest) \
+    reduction(+ : extent_sum, finite_boxes)
+  for (std::size_t k = 0; k < count; ++k) {
+    const uint32_t i = inIndexes[k];
+    if (std::isfinite(low[i])) lowest = std::min(lowest, low[i]);
+    if (std::isfinite(high[i])) highest = std::max(highest, high[i]);
+    const double extent = high[i] - low[i];  // inf for infinite or overflowing intervals
+    if (std::isfinite(extent)) {
+      extent_sum += extent;
+      ++finite_boxes;
+    }
+  }
+  return AxisSpread{lowest, highest, extent_sum, finite_boxes};
+}
+
+// Cells wanted on one axis before the total cap: span / (kCellInExtents * mean extent).
+uint32_t wantedCells(const AxisSpread& inSpread) {
+  const double span = inSpread.highest - inSpread.lowest;
+  if (inSpread.finite_boxes == 0 || !(span > 0.0) || !std::isfinite(span)) return 1;
+  const double mean_extent = inSpread.extent_sum / static_cast<double>(inSpread.finite_boxes);
+  if (!(mean_extent > 0.0)) return kMaxCellsOnAxis;  // points: the total cap decides
+  const double wanted = span / (kCellInExtents * mean_extent);
+  if (!(wanted > 1.0)) return 1;
+  if (wanted >= kMaxCellsOnAxis) return kMaxCellsOnAxis;
+  return static_cast<uint32_t>(std::ceil(wanted));
+}
+
+uint64_t cellsOf(const uint32_t inDims[3]) {
+  return uint64_t{inDims[0]} * inDims[1] * inDims[2];
+}
+
+}  // namespace
+
+/// The query box as the scan loops read it.
+struct StaticIndex::QueryBox {
+  double lo[3];
+  double hi[3];
+  uint32_t group;
+  uint32_t mask;
+  uint32_t id;
+};
+
+namespace {
+
+template <typename Slot, typename QueryBox>
+bool overlapsAndAllowed(const Slot& inSlot, const QueryBox& inBox) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (inSlot.lo[axis] > inBox.hi[axis] || inBox.lo[axis] > inSlot.hi[axis]) return false;
+  return (inSlot.group & inBox.mask) != 0 && (inBox.group & inSlot.mask) != 0;
+}
+
+}  // namespace
+
+void StaticIndex::build(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes,
+                        int inThreads) {
+  const int threads = resolveThreadCount(inThreads);
+  chooseGrid(inBoxes, inIndexes, threads);
+  placeBoxes(inBoxes, inIndexes, threads);
+  fillCells();
+  buildIdLookup();
+}
+
+void StaticIndex::chooseGrid(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes,
+                             int inThreads) {
+  AxisSpread spreads[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    spreads[axis] = measureAxis(inBoxes, inIndexes, axis, inThreads);
+    dims_[axis] = wantedCells(spreads[axis]);
+  }
+  // Halving the finest axis keeps cells as close to cubes (in extents) as the cap allows.
+  const double cap = std::max(1.0, kCellsPerBox * static_cast<double>(inIndexes.size()));
+  while (static_cast<double>(cellsOf(dims_)) > cap) {
+    uint32_t& finest = *std::max_element(dims_, dims_ + 3);
+    finest = (finest + 1) / 2;
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    const double span = spreads[axis].highest - spreads[axis].lowest;
+    origin_[axis] = dims_[axis] > 1 ? spreads[axis].lowest : 0.0;
+    scale_[axis] = dims_[axis] > 1 ? dims_[axis] / span : 0.0;
+    if (!std::isfinite(scale_[axis])) {  // a subnormal span: not worth cells
+      dims_[axis] = 1;
+      origin_[axis] = scale_[axis] = 0.0;
+    }
+    last_cell_[axis] = static_cast<double>(dims_[axis] - 1);
+  }
+}
+
+void StaticIndex::placeBoxes(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes,
+                             int inThreads) {
+  const std::size_t count = inIndexes.size();
+  constexpr uint64_t kLarge = std::numeric_limits<uint64_t>::max();
+  // Each box's home cell (the cell of its low corner), or kLarge.
+  std::vector<uint64_t> home(count);
+#pragma omp parallel for num_threads(inThreads)
+  for (std::size_t k = 0; k < count; ++k) {
+    const uint32_t i = inIndexes[k];
+    uint64_t covered = 1;
+    uint32_t low[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      low[axis] = cellOf(axis, inBoxes.lo[axis][i]);
+      covered *= cellOf(axis, inBoxes.hi[axis][i]) - low[axis] + 1;
+    }
+    home[k] = covered > kMaxCellsPerBox
+                  ? kLarge
+                  : (uint64_t{low[2]} * dims_[1] + low[1]) * dims_[0] + low[0];
+  }
+  // Counting sort by home cell: boxes of one cell sit together in slots_ (cache locality).
+  const uint64_t cells = cellsOf(dims_);
+  std::vector<std::size_t> next_slot(cells + 1, 0);
+  for (std::size_t k = 0; k < count; ++k)
+    if (home[k] != kLarge) ++next_slot[home[k] + 1];
+  for (uint64_t cell = 0; cell < cells; ++cell) next_slot[cell + 1] += next_slot[cell];
+  grid_count_ = next_slot[cells];
+  std::size_t next_large = grid_count_;
+  std::vector<uint32_t> slot_of(count);
+  for (std::size_t k = 0; k < count; ++k)
+    slot_of[k] = static_cast<uint32_t>(home[k] == kLarge ? next_large++ : next_slot[home[k]]++);
+
+  slots_.resize(count);
+  slot_ids_.resize(count);
+  uint32_t any_group = 0;
+  uint32_t any_mask = 0;
+#pragma omp parallel for num_threads(inThreads) reduction(| : any_group, any_mask)
+  for (std::size_t k = 0; k < count; ++k) {
+    const uint32_t i = inIndexes[k];
+    Slot& slot = slots_[slot_of[k]];
+    slot.low_cells = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      slot.lo[axis] = inBoxes.lo[axis][i];
+      slot.hi[axis] = inBoxes.hi[axis][i];
+      slot.low_cells |= uint64_t{cellOf(axis, slot.lo[axis])} << (kCellBits * axis);
+    }
+    slot.group = inBoxes.group(i);
+    slot.mask = inBoxes.mask(i);
+    slot_ids_[slot_of[k]] = inBoxes.ids[i];
+    any_group |= slot.group;
+    any_mask |= slot.mask;
+  }
+  any_group_ = any_group;
+  any_mask_ = any_mask;
+  removed_.assign(count, 0);
+  live_count_ = count;
+}
+
+void StaticIndex::fillCells() {
+  const uint64_t cells = cellsOf(dims_);
+  // Calls inVisit(cell) for every cell that grid slot inSlot covers.
+  auto forEachCell = [this](const Slot& inSlot, auto&& inVisit) {
+    uint32_t low[3], high[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      low[axis] = cellOf(axis, inSlot.lo[axis]);
+      high[axis] = cellOf(axis, inSlot.hi[axis]);
+    }
+    for (uint32_t z = low[2]; z <= high[2]; ++z)
+      for (uint32_t y = low[1]; y <= high[1]; ++y) {
+        const uint64_t row = (uint64_t{z} * dims_[1] + y) * dims_[0];
+        for (uint32_t x = low[0]; x <= high[0]; ++x) inVisit(row + x);
+      }
+  };
+  cell_begin_.assign(cells + 1, 0);
+  for (std::size_t s = 0; s < grid_count_; ++s)
+    forEachCell(slots_[s], [this](uint64_t inCell) { ++cell_begin_[inCell + 1]; });
+  for (uint64_t cell = 0; cell < cells; ++cell) cell_begin_[cell + 1] += cell_begin_[cell];
+  cell_slots_.resize(cell_begin_[cells]);
+  std::vector<std::size_t> cursor(cell_begin_.begin(), cell_begin_.end() - 1);
+  for (std::size_t s = 0; s < grid_count_; ++s)
+    forEachCell(slots_[s],
+                [&](uint64_t inCell) { cell_slots_[cursor[inCell]++] = static_cast<uint32_t>(s); });
+}
+
+void StaticIndex::buildIdLookup() {
+  const auto count = static_cast<uint32_t>(slot_ids_.size());
+  sorted_id_slots_.resize(count);
+  radixIndexSort(slot_ids_.data(), count, sorted_id_slots_.data());
+  sorted_ids_.resize(count);
+  for (uint32_t k = 0; k < count; ++k) sorted_ids_[k] = slot_ids_[sorted_id_slots_[k]];
+}
+
+bool StaticIndex::remove(uint32_t inId) {
+  const auto found = std::lower_bound(sorted_ids_.begin(), sorted_ids_.end(), inId);
+  if (found == sorted_ids_.end() || *found != inId) return false;
+  const uint32_t slot = sorted_id_slots_[found - sorted_ids_.begin()];
+  if (removed_[slot]) return false;
+  removed_[slot] = 1;
+  slots_[slot].group = 0;  // the filter now rejects it on every path
+  slots_[slot].mask = 0;
+  --live_count_;
+  return true;
+}
+
+void StaticIndex::query(const BoxSet& inQueries, std::size_t inQuery, PairList& outPairs) const {
+  QueryBox box;
+  for (int axis = 0; axis < 3; ++axis) {
+    box.lo[axis] = inQueries.lo[axis][inQuery];
+    box.hi[axis] = inQueries.hi[axis][inQuery];
+  }
+  box.group = inQueries.group(inQuery);
+  box.mask = inQueries.mask(inQuery);
+  box.id = inQueries.ids[inQuery];
+  if ((box.group & any_mask_) == 0 || (box.mask & any_group_) == 0) return;
+  scanCells(box, outPairs);
+  scanSlots(box, grid_count_, slots_.size(), outPairs);
+}
+
+void StaticIndex::scanCells(const QueryBox& inBox, PairList& outPairs) const {
+  if (grid_count_ == 0) return;
+  uint32_t low[3], high[3];
+  uint64_t visited = 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    low[axis] = cellOf(axis, inBox.lo[axis]);
+    high[axis] = cellOf(axis, inBox.hi[axis]);
+    visited *= high[axis] - low[axis] + 1;
+  }
+  // A cell visit costs an offset read plus its list; once that exceeds one test per binned
+  // box, testing each binned box once is cheaper (and needs no duplicate rule).
+  const double per_cell =
+      1.0 + static_cast<double>(cell_slots_.size()) / static_cast<double>(cellsOf(dims_));
+  if (static_cast<double>(visited) * per_cell >= static_cast<double>(grid_count_)) {
+    scanSlots(inBox, 0, grid_count_, outPairs);
+    return;
+  }
+  // Reference-point rule: a pair is reported only in the cell holding, on every axis,
+  // max(query low, indexed low), i.e. max of their low cells (cellOf is monotone). Where this
+  // cell is the query's low cell on an axis, any indexed box listed here qualifies on that axis
+  // (its low cell is at most this one); elsewhere its low cell must be exactly this one.
+  constexpr uint64_t kAxisBits = (uint64_t{1} << kCellBits) - 1;
+  for (uint32_t z = low[2]; z <= high[2]; ++z) {
+    const uint64_t need_z = z > low[2] ? kAxisBits << (2 * kCellBits) : 0;
+    for (uint32_t y = low[1]; y <= high[1]; ++y) {
+      const uint64_t need_yz = need_z | (y > low[1] ? kAxisBits << kCellBits : 0);
+      const uint64_t row = (uint64_t{z} * dims_[1] + y) * dims_[0];
+      for (uint32_t x = low[0]; x <= high[0]; ++x) {
+        const uint64_t need = need_yz | (x > low[0] ? kAxisBits : 0);
+        const uint64_t here =
+            (uint64_t{z} << (2 * kCellBits)) | (uint64_t{y} << kCellBits) | uint64_t{x};
+        const uint64_t expected = here & need;
+        for (std::size_t e = cell_begin_[row + x]; e < cell_begin_[row + x + 1]; ++e) {
+          const uint32_t s = cell_slots_[e];
+          const Slot& slot = slots_[s];
+          if ((slot.low_cells & need) != expected) continue;
+          if (overlapsAndAllowed(slot, inBox))
+            outPairs.push_back(makeIdPair(inBox.id, slot_ids_[s]));
+        }
+      }
+    }
+  }
+}
+
+void StaticIndex::scanSlots(const QueryBox& inBox, std::size_t inBegin, std::size_t inEnd,
+                            PairList& outPairs) const {
+  for (std::size_t s = inBegin; s < inEnd; ++s)
+    if (overlapsAndAllowed(slots_[s], inBox))
+      outPairs.push_back(makeIdPair(inBox.id, slot_ids_[s]));
+}
+
+void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+                           int inThreads, PairList& outPairs) const {
+  const std::size_t count = inQueryIndexes.size();
+  const int threads = static_cast<int>(std::min<std::size_t>(
+      resolveThreadCount(inThreads), std::max<std::size_t>(1, count / kMinQueriesPerThread)));
+  if (threads == 1) {
+    for (uint32_t i : inQueryIndexes) query(inQueries, i, outPairs);
+    return;
+  }
+  std::vector<PairList> parts(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    PairList& mine = parts[omp_get_thread_num()];
+#pragma omp for schedule(static, kQueryChunk)
+    for (std::size_t k = 0; k < count; ++k) query(inQueries, inQueryIndexes[k], mine);
+  }
+  std::size_t total = outPairs.size();
+  for (const PairList& part : parts) total += part.size();
+  outPairs.reserve(total);
+  for (const PairList& part : parts) outPairs.insert(outPairs.end(), part.begin(), part.end());
+}
+
+}  // namespace sap_broadphase

@@ -1,0 +1,114 @@
+// Work the engine skips must not change a single pair: unchanged frames (reused), skin reuse
+// over moving frames, and boxes whose group or mask is 0 (never swept).
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "sap_broadphase/core/brute_force.h"
+#include "sap_broadphase/core/scenes.h"
+#include "test_support.h"
+
+namespace sap_broadphase {
+namespace {
+
+using test_support::engineConfig;
+
+SceneConfig movingScene(SceneKind inKind, uint64_t inSeed) {
+  SceneConfig scene;
+  scene.kind = inKind;
+  scene.n = 3000;
+  scene.density = 0.2;
+  scene.seed = inSeed;
+  scene.frames = 80;
+  return scene;
+}
+
+TEST(UnchangedFrame, SecondIdenticalFrameIsReusedAndExact) {
+  SceneSimulator scene(movingScene(SceneKind::kUniform, 5));
+  BroadphaseConfig config = engineConfig(Method::kAuto, 2, 0, 1);
+  config.reuse_unchanged_frames = true;
+  Broadphase broadphase(config);
+  const PairList first = broadphase.update(scene.boxes());
+  EXPECT_NE(broadphase.stats().path, FramePath::kReused);
+  EXPECT_EQ(broadphase.update(scene.boxes()), first);
+  EXPECT_EQ(broadphase.stats().path, FramePath::kReused);
+  scene.step();
+  EXPECT_EQ(broadphase.update(scene.boxes()), bruteForcePairs(scene.boxes()));
+  EXPECT_NE(broadphase.stats().path, FramePath::kReused);
+}
+
+TEST(UnchangedFrame, OffByDefault) {
+  SceneSimulator scene(movingScene(SceneKind::kUniform, 6));
+  Broadphase broadphase(engineConfig(Method::kAuto, 2, 0, 1));
+  broadphase.update(scene.boxes());
+  broadphase.update(scene.boxes());
+  EXPECT_NE(broadphase.stats().path, FramePath::kReused);
+}
+
+// Every frame of every scene exact, with boxes added and jumping now and then, for skins
+// too small to ever reuse, medium and large; a large skin must reuse most uniform frames.
+TEST(SkinReuse, ExactOverMovingFramesAndReusesWhenBoxesStayInside) {
+  const std::vector<int> thread_counts = {1, 2, 3};
+  for (SceneKind kind : {SceneKind::kUniform, SceneKind::kBallCluster, SceneKind::kPlaneCluster}) {
+    for (double skin : {0.05, 0.3, 1.0}) {
+      SceneSimulator scene(movingScene(kind, 7));
+      std::vector<Broadphase> engines;
+      for (int threads : thread_counts) {
+        BroadphaseConfig config = engineConfig(Method::kAuto, threads, 0, 1);
+        config.skin = skin;
+        config.parallel_min_boxes = 1000;
+        config.reuse_unchanged_frames = threads == 2;
+        engines.emplace_back(config);
+      }
+      std::vector<int> skin_frames(engines.size(), 0);
+      for (int frame = 0; frame < 40; ++frame) {
+        BoxSet boxes = scene.boxes();
+        if (frame % 17 == 5) {
+          const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+          boxes.add(900000 + frame, lo, hi);
+        }
+        if (frame % 13 == 7) boxes.hi[0][3] += 10.0;  // one box jumps out of its skin
+        const PairList oracle = bruteForcePairs(boxes);
+        for (std::size_t e = 0; e < engines.size(); ++e) {
+          ASSERT_EQ(engines[e].update(boxes), oracle)
+              << "scene " << int(kind) << " skin " << skin << " threads " << thread_counts[e]
+              << " frame " << frame << " path " << framePathName(engines[e].stats().path);
+          skin_frames[e] += engines[e].stats().path == FramePath::kSkin;
+        }
+        scene.step();
+      }
+      if (kind == SceneKind::kUniform && skin == 1.0) {
+        for (int count : skin_frames) EXPECT_GT(count, 20);
+      }
+    }
+  }
+}
+
+TEST(SkinReuse, RejectsNegativeOrInfiniteSkin) {
+  BroadphaseConfig config;
+  config.skin = -1.0;
+  EXPECT_THROW(Broadphase{config}, std::invalid_argument);
+  config.skin = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(Broadphase{config}, std::invalid_argument);
+}
+
+// Boxes with group 0 or mask 0 can pair with nothing: they are dropped before the sweep.
+TEST(Filters, BoxesThatCollideWithNothingAreLeftOut) {
+  SceneSimulator scene(movingScene(SceneKind::kUniform, 9));
+  BoxSet boxes = scene.boxes();
+  boxes.groups.assign(boxes.size(), 0x1);
+  boxes.masks.assign(boxes.size(), 0xFFFFFFFF);
+  for (std::size_t i = 0; i < boxes.size(); i += 7) boxes.groups[i] = 0;
+  for (std::size_t i = 3; i < boxes.size(); i += 11) boxes.masks[i] = 0;
+  for (int threads : {1, 2, 3}) {
+    Broadphase broadphase(engineConfig(Method::kAuto, threads, 0, 1));
+    EXPECT_EQ(broadphase.update(boxes), bruteForcePairs(boxes));
+    EXPECT_GT(broadphase.stats().boxes_filtered_out, 0u);
+    EXPECT_EQ(broadphase.stats().boxes, boxes.size());
+  }
+}
+
+}  // namespace
+}  // namespace sap_broadphase
