@@ -31,7 +31,14 @@ std::vector<EngineSpec> engineModes(int inThreads) {
   EngineSpec exactSequential{"exact_sequential", sequentialConfig()};
   EngineSpec keysSequential{"keys_only_sequential", sequentialConfig()};
   keysSequential.config.exact_final_test = false;
-  return {exact, keysOnly, exactSequential, keysSequential};
+  std::vector<EngineSpec> modes = {exact, keysOnly, exactSequential, keysSequential};
+  // Skin reuse (exact): skins in mean box edges; the uniform scene moves 0.05 a frame.
+  for (double skin : {0.1, 0.3, 1.0}) {
+    EngineSpec skinMode{"skin_" + std::to_string(skin).substr(0, 3), parallelConfig(inThreads)};
+    skinMode.config.skin = skin;
+    modes.push_back(skinMode);
+  }
+  return modes;
 }
 
 /// The true pairs of a frame, and whether the grid agreed with the brute force on it.

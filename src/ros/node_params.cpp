@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include <xmlrpcpp/XmlRpcValue.h>
 
@@ -89,6 +90,9 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
   engine.reuse_unchanged_frames = true;
   inPrivate.param("reuse_unchanged_frames", engine.reuse_unchanged_frames,
                   engine.reuse_unchanged_frames);
+  inPrivate.param("skin", engine.skin, engine.skin);
+  if (!(engine.skin >= 0.0) || !std::isfinite(engine.skin))
+    return "~skin must be a finite value >= 0";
 
   inPrivate.param("publish_markers", outParams.publish_markers, outParams.publish_markers);
   if (!(error = readCount(inPrivate, "max_marker_boxes", markers.max_boxes)).empty()) return error;
