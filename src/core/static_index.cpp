@@ -223,6 +223,14 @@ void StaticIndex::buildIdLookup() {
   for (uint32_t k = 0; k < count; ++k) sorted_ids_[k] = slot_ids_[sorted_id_slots_[k]];
 }
 
+std::size_t StaticIndex::memoryBytes() const {
+  return slots_.capacity() * sizeof(Slot) +
+         (slot_ids_.capacity() + cell_slots_.capacity() + sorted_ids_.capacity() +
+          sorted_id_slots_.capacity()) *
+             sizeof(uint32_t) +
+         cell_begin_.capacity() * sizeof(std::size_t) + removed_.capacity();
+}
+
 bool StaticIndex::remove(uint32_t inId) {
   const auto found = std::lower_bound(sorted_ids_.begin(), sorted_ids_.end(), inId);
   if (found == sorted_ids_.end() || *found != inId) return false;
