@@ -82,3 +82,8 @@ if(benchmark_FOUND)
 else()
   message(STATUS "sap_microbench: Google Benchmark not found, skipped")
 endif()
+
+# ---- End to end through ROS (item 11); only with the ROS layer (catkin's roscpp) ----
+if(TARGET ${PROJECT_NAME}_ros)
+  include(${SAP_BENCH_DIR}/ros_latency.cmake)
+endif()
