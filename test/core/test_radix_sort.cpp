@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <ios>
 #include <limits>
 #include <numeric>
+#include <random>
 #include <vector>
 
 #include "sap_broadphase/core/radix_sort.h"
@@ -305,6 +307,53 @@ TEST(RadixSort, DispersionIsZeroForBalancedPartitionsAndHighWhenClustered) {
       sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 4, 2, bounds, order.data());
   EXPECT_GT(clustered, 0.5);
   EXPECT_EQ(order, stableOrder(keys));
+}
+
+}  // namespace
+}  // namespace sap_broadphase
+
+namespace sap_broadphase {
+namespace {
+
+// lowKey/highKey step keys instead of calling nextafter; they must equal the keys of the
+// nextafter-based roundings on every double, near zero, subnormals and the float range's ends.
+TEST(SortKeys, FastKeysEqualTheKeysOfTheDirectedRoundings) {
+  std::mt19937_64 random(20261121);
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                5e-324,
+                                -5e-324,
+                                0x1p-149,
+                                -0x1p-149,
+                                0x1p-150,
+                                -0x1p-150,
+                                0x1.8p-150,
+                                -0x1.8p-150,
+                                3.4028235e38,
+                                -3.4028235e38,
+                                3.5e38,
+                                -3.5e38,
+                                1e300,
+                                -1e300,
+                                std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity()};
+  for (int k = 0; k < 300000; ++k) {
+    const uint64_t bits = random();
+    double value;
+    std::memcpy(&value, &bits, sizeof value);
+    if (!std::isnan(value)) values.push_back(value);
+    const uint32_t float_bits = static_cast<uint32_t>(random());
+    float single;
+    std::memcpy(&single, &float_bits, sizeof single);
+    if (std::isnan(single)) continue;
+    values.push_back(single);
+    values.push_back(std::nextafter(static_cast<double>(single), 1e308));
+    values.push_back(std::nextafter(static_cast<double>(single), -1e308));
+  }
+  for (double value : values) {
+    ASSERT_EQ(lowKey(value), floatToKey(roundDownToFloat(value))) << std::hexfloat << value;
+    ASSERT_EQ(highKey(value), floatToKey(roundUpToFloat(value))) << std::hexfloat << value;
+  }
 }
 
 }  // namespace

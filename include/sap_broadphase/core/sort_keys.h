@@ -46,13 +46,25 @@ inline float roundUpToFloat(double inValue) {
   return nearest;
 }
 
-/// Sort key of a low endpoint (min): rounded down.
+/// Key of the positive zero; the negative zero maps here too.
+constexpr uint32_t kZeroKey = 0x80000000u;
+
+/// Sort key of a low endpoint (min): the key of roundDownToFloat(inMin), computed without
+/// nextafter: one float down is one key down, except just below zero, where -0.0 has no key
+/// of its own and the next float down is two keys down.
 inline uint32_t lowKey(double inMin) {
-  return floatToKey(roundDownToFloat(inMin));
+  const float nearest = static_cast<float>(inMin);
+  uint32_t key = floatToKey(nearest);
+  if (static_cast<double>(nearest) > inMin) key -= (key == kZeroKey) ? 2 : 1;
+  return key;
 }
-/// Sort key of a high endpoint (max): rounded up.
+/// Sort key of a high endpoint (max): the key of roundUpToFloat(inMax) (again two keys up
+/// from the key of -denorm_min, over the missing key of -0.0).
 inline uint32_t highKey(double inMax) {
-  return floatToKey(roundUpToFloat(inMax));
+  const float nearest = static_cast<float>(inMax);
+  uint32_t key = floatToKey(nearest);
+  if (static_cast<double>(nearest) < inMax) key += (key == kZeroKey - 2) ? 2 : 1;
+  return key;
 }
 
 }  // namespace sap_broadphase
