@@ -63,24 +63,40 @@ class SuccTree {
   std::vector<std::vector<uint64_t>> levels_;  // levels_[0] = leaves; back() has one word
 };
 
+// Walks the level-1 summary of the range (bit w set iff leaf word w has elements), then the
+// set bits of each non-empty leaf word: word-at-a-time on both levels, no climbing per element.
+// Ranges here span at most a few summary words (a pairing partition is 2^15 ranks).
 template <typename Visit>
 void SuccTree::forEachInRange(uint32_t inBegin, uint32_t inEnd, Visit&& inVisit) const {
+  if (inEnd > size_) inEnd = size_;
   if (inBegin >= inEnd) return;
-  const std::vector<uint64_t>& leaves = levels_[0];
-  uint32_t cursor = next(inBegin);
-  while (cursor < inEnd) {
-    const uint32_t word_index = cursor >> 6;
-    uint64_t bits = leaves[word_index] & (~uint64_t{0} << (cursor & 63));
-    const uint32_t word_base = word_index << 6;
-    if (inEnd - word_base < 64) bits &= (uint64_t{1} << (inEnd - word_base)) - 1;
+  const uint64_t* leaves = levels_[0].data();
+  const uint32_t first_word = inBegin >> 6;
+  const uint32_t last_word = (inEnd - 1) >> 6;
+  const auto visitWord = [&](uint32_t inWord) {
+    uint64_t bits = leaves[inWord];
+    if (inWord == first_word) bits &= ~uint64_t{0} << (inBegin & 63);
+    if (inWord == last_word) bits &= ~uint64_t{0} >> (63 - ((inEnd - 1) & 63));
     while (bits) {
-      inVisit(word_base + static_cast<uint32_t>(__builtin_ctzll(bits)));
+      inVisit((inWord << 6) | static_cast<uint32_t>(__builtin_ctzll(bits)));
       bits &= bits - 1;
     }
-    const uint32_t following = word_base + 64;
-    if (following >= inEnd || following >= size_) return;
-    // Reuse the leaf word after this one directly when it has bits; climb only when empty.
-    cursor = leaves[word_index + 1] ? following : next(following);
+  };
+  if (levels_.size() == 1) {  // a single leaf word
+    visitWord(0);
+    return;
+  }
+  const uint64_t* summary = levels_[1].data();
+  const uint32_t first_group = first_word >> 6;
+  const uint32_t last_group = last_word >> 6;
+  for (uint32_t group = first_group; group <= last_group; ++group) {
+    uint64_t words = summary[group];
+    if (group == first_group) words &= ~uint64_t{0} << (first_word & 63);
+    if (group == last_group) words &= ~uint64_t{0} >> (63 - (last_word & 63));
+    while (words) {
+      visitWord((group << 6) | static_cast<uint32_t>(__builtin_ctzll(words)));
+      words &= words - 1;
+    }
   }
 }
 
