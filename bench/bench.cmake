@@ -77,6 +77,7 @@ if(benchmark_FOUND)
     ${SAP_BENCH_DIR}/micro/micro_succ_tree.cpp
     ${SAP_BENCH_DIR}/micro/micro_radix_sort.cpp
     ${SAP_BENCH_DIR}/micro/micro_phases.cpp
+    ${SAP_BENCH_DIR}/micro/micro_static_index.cpp
   )
   target_link_libraries(sap_microbench ${PROJECT_NAME}_core benchmark::benchmark)
 else()

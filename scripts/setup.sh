@@ -29,7 +29,12 @@ build_workspace() {
   mkdir -p "$WS/src"
   local mirror="$WS/src/sap_broadphase"
   [ -L "$mirror" ] && rm -f "$mirror"
-  rsync -a --delete --exclude=/build/ --exclude=/.git/ --exclude=/artifacts/ "$ROOT/" "$mirror/"
+  # Files rsync transfers get the current time: one edited while an earlier build compiled its
+  # old copy would otherwise carry an mtime older than that object, and never be rebuilt.
+  rsync -a --delete --out-format='%n' --exclude=/build/ --exclude=/.git/ --exclude=/artifacts/ \
+    "$ROOT/" "$mirror/" | while IFS= read -r changed; do
+    [ -f "$mirror/$changed" ] && touch "$mirror/$changed"
+  done
   # Debian's ROS needs the system python, not a pyenv shim that may come first in PATH.
   export PYENV_VERSION=system
   catkin_make -C "$WS" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \

@@ -44,6 +44,8 @@ if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/test/stress/stress_tests.cmake)
   include(test/stress/stress_tests.cmake)
 endif()
 
+include(test/core/static_index_tests.cmake)
+
 # The ROS node's tests live with the node (owned by that work).
 if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/ros_tests.cmake)
   include(test/ros/ros_tests.cmake)

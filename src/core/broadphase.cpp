@@ -15,6 +15,7 @@
 #include "sap_broadphase/core/radix_sort.h"
 #include "sap_broadphase/core/skin_list.h"
 #include "sap_broadphase/core/sort_keys.h"
+#include "sap_broadphase/core/static_split.h"
 #include "sap_broadphase/core/sweep.h"
 
 namespace sap_broadphase {
@@ -60,6 +61,8 @@ const char* framePathName(FramePath inPath) {
       return "reused";
     case FramePath::kSkin:
       return "skin";
+    case FramePath::kStatic:
+      return "static";
   }
   return "unknown";
 }
@@ -87,9 +90,11 @@ struct Broadphase::Impl {
   std::vector<PairChunks> pairs_per_thread;
   PairList pairs;
   PairSortScratch pair_scratch;
-  BoxSet collidable;      // the frame without boxes that can collide with nothing
-  BoxSet previous_boxes;  // the last swept frame, to recognise an unchanged one
+  BoxSet collidable;            // the frame without boxes that can collide with nothing
+  BoxSet previous_boxes;        // the last swept frame, to recognise an unchanged one
+  bool previous_valid = false;  // previous_boxes holds the last frame
   SkinList skin_list;
+  StaticSplit static_split;
   BoxSet inflated;                 // the frame grown by the skin, while sweeping for skin reuse
   bool previous_reusable = false;  // pairs still holds previous_boxes' pairs
 
@@ -105,6 +110,7 @@ struct Broadphase::Impl {
   void sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, int inThreads);
   void sweepIntoPairs(const BoxSet& inBoxes, FramePath inPath, int inThreads);
   void skinFrame(const BoxSet& inBoxes, int inThreads);
+  bool staticFrame(const BoxSet& inBoxes, int inThreads);
   void decideAxes(bool inWarm);
 };
 
@@ -150,7 +156,6 @@ double Broadphase::Impl::sortAxis(const BoxSet& inBoxes, int inAxis, int inThrea
 // Box data in primary-rank order, so a candidate range is a contiguous stretch of memory.
 void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
-  const uint32_t* object_of_rank = ranges.object_of_rank.data();
   const bool filtered = inBoxes.hasFilters();
   resizeDiscarding(ranked_keys, n);
   resizeDiscarding(ranked_filters, filtered ? n : 0);
@@ -160,12 +165,16 @@ void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
   resizeDiscarding(ranked_slabs, slabbed ? n : 0);
   const double* third_low = inBoxes.lo[third_axis].data();
   const double* third_high = inBoxes.hi[third_axis].data();
+  // Reads the boxes in input order (sequential streams of the SoA arrays) and writes each one's
+  // record at its rank: one scattered write a box instead of six scattered reads.
+  const RankRange* ranges_of_object = ranges.of_object.data();
 #pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (uint32_t rank = 0; rank < n; ++rank) {
-    const uint32_t i = object_of_rank[rank];
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t rank = ranges_of_object[i].rank;
+    RankedKeys& keys = ranked_keys[rank];
     for (int axis = 0; axis < 3; ++axis) {
-      ranked_keys[rank].lo[axis] = lowKey(inBoxes.lo[axis][i]);
-      ranked_keys[rank].hi[axis] = highKey(inBoxes.hi[axis][i]);
+      keys.lo[axis] = lowKey(inBoxes.lo[axis][i]);
+      keys.hi[axis] = highKey(inBoxes.hi[axis][i]);
     }
     if (slabbed)
       ranked_slabs[rank] = {static_cast<uint8_t>(slab_grid.slabOf(third_low[i])),
@@ -280,10 +289,30 @@ bool Broadphase::Impl::sameAsPreviousFrame(const BoxSet& inBoxes) const {
 }
 
 void Broadphase::Impl::rememberFrame(const BoxSet& inBoxes, FramePath inPath) {
-  previous_reusable = config.reuse_unchanged_frames &&
-                      (inPath == FramePath::kSequential || inPath == FramePath::kParallel ||
-                       inPath == FramePath::kSkin);
-  if (previous_reusable) previous_boxes = inBoxes;  // vectors keep their capacity
+  previous_reusable = config.reuse_unchanged_frames && inPath != FramePath::kEmpty &&
+                      inPath != FramePath::kBruteForce;
+  if (!config.reuse_unchanged_frames && !config.index_static_boxes) {
+    previous_valid = false;
+    return;
+  }
+  const bool same_shape = previous_valid && static_split.compared() &&
+                          previous_boxes.groups.size() == inBoxes.groups.size() &&
+                          previous_boxes.masks.size() == inBoxes.masks.size();
+  if (!same_shape) {
+    previous_boxes = inBoxes;  // vectors keep their capacity
+  } else {
+    // Same ids in the same order: only the boxes that changed need copying.
+    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+      if (static_split.unchanged(i)) continue;
+      for (int axis = 0; axis < 3; ++axis) {
+        previous_boxes.lo[axis][i] = inBoxes.lo[axis][i];
+        previous_boxes.hi[axis][i] = inBoxes.hi[axis][i];
+      }
+      if (!inBoxes.groups.empty()) previous_boxes.groups[i] = inBoxes.groups[i];
+      if (!inBoxes.masks.empty()) previous_boxes.masks[i] = inBoxes.masks[i];
+    }
+  }
+  previous_valid = true;
 }
 
 void Broadphase::Impl::sweepIntoPairs(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
@@ -314,6 +343,30 @@ void Broadphase::Impl::skinFrame(const BoxSet& inBoxes, int inThreads) {
   skin_list.collect(inBoxes, inThreads, pairs);
   stats.ms_pairing += millisecondsSince(phase);
   stats.skin_candidates = skin_list.candidates();
+}
+
+// Static boxes: when the index covers part of the frame, sweep only the moving boxes and ask
+// the index for their pairs with the resting ones.
+bool Broadphase::Impl::staticFrame(const BoxSet& inBoxes, int inThreads) {
+  if (!config.index_static_boxes || !previous_valid) return false;
+  Clock::time_point phase = Clock::now();
+  const bool split = static_split.prepare(inBoxes, previous_boxes, inThreads);
+  stats.ms_keys += millisecondsSince(phase);
+  if (!split) return false;
+  const BoxSet& moving = static_split.moving();
+  const FramePath sweep_path = choosePath(moving.size(), inThreads);
+  if (sweep_path == FramePath::kSequential || sweep_path == FramePath::kParallel)
+    sweepIntoPairs(moving, sweep_path, inThreads);
+  else
+    pairs = bruteForcePairs(moving);  // fewer than two boxes, or the brute-force method
+  phase = Clock::now();
+  static_split.crossPairs(inBoxes, inThreads, pairs);
+  sortPairsCanonical(pairs, pair_scratch);
+  stats.ms_pairing += millisecondsSince(phase);
+  stats.path = FramePath::kStatic;
+  stats.threads = inThreads;
+  stats.static_boxes = static_split.indexedBoxes();
+  return true;
 }
 
 Broadphase::Broadphase(const BroadphaseConfig& inConfig) : impl_(std::make_unique<Impl>()) {
@@ -361,13 +414,15 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     }
     case FramePath::kSequential:
     case FramePath::kParallel:
+      if (impl.staticFrame(boxes, threads)) break;
       if (impl.config.skin > 0)
         impl.skinFrame(boxes, threads);
       else
         impl.sweepIntoPairs(boxes, stats.path, threads);
       break;
     case FramePath::kSkin:
-      break;  // decided and computed inside skinFrame()
+    case FramePath::kStatic:
+      break;  // decided and computed inside skinFrame() and staticFrame()
   }
   if (stats.path != FramePath::kReused) impl.rememberFrame(boxes, stats.path);
   stats.pairs = impl.pairs.size();
@@ -386,6 +441,8 @@ void Broadphase::reset() {
   for (AxisBounds& axis_bounds : impl_->bounds) axis_bounds.from_previous_frame = false;
   impl_->previous_reusable = false;
   impl_->skin_list.clear();
+  impl_->static_split.clear();
+  impl_->previous_valid = false;
 }
 
 }  // namespace sap_broadphase

@@ -90,6 +90,7 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
   engine.reuse_unchanged_frames = true;
   inPrivate.param("reuse_unchanged_frames", engine.reuse_unchanged_frames,
                   engine.reuse_unchanged_frames);
+  inPrivate.param("index_static_boxes", engine.index_static_boxes, engine.index_static_boxes);
   inPrivate.param("skin", engine.skin, engine.skin);
   if (!(engine.skin >= 0.0) || !std::isfinite(engine.skin))
     return "~skin must be a finite value >= 0";

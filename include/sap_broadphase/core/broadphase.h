@@ -32,6 +32,9 @@ struct BroadphaseConfig {
   bool reuse_unchanged_frames = false;    ///< a frame equal to the previous one (ids, bounds,
                                           ///< groups, masks) returns the previous pairs; keeps a
                                           ///< copy of the last frame (52 bytes a box)
+  bool index_static_boxes = false;        ///< keep boxes that did not move since the previous frame
+                                          ///< and whose groups/masks forbid pairs among them in an
+                                          ///< index (static_split.h); sweep only the others
   double skin = 0.0;  ///< > 0: skin reuse (skin_list.h): sweep boxes grown by skin / 2 a side,
                       ///< then test only those candidates until a box leaves its grown box
   bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
@@ -46,9 +49,11 @@ enum class FramePath : uint8_t {
   kBruteForce,  ///< the oracle
   kReused,      ///< same boxes as the previous frame: its pairs returned without a sweep
   kSkin,        ///< every box inside its skin: the kept candidates tested, no sweep
+  kStatic,      ///< resting boxes answered by the static index, only the rest swept
 };
 
-/// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused", "skin".
+/// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused", "skin",
+/// "static".
 const char* framePathName(FramePath inPath);
 
 /// What one frame cost and how it was computed. Times are milliseconds of wall clock.
@@ -62,9 +67,9 @@ struct FrameReport {
   double dispersion_secondary = 0.0;  ///< D of eq. (1) for the secondary-axis sort
   bool axes_swapped = false;          ///< an axis swap happened after this frame's sort
   int threads = 1;
-  int slabs = 1;
-  std::size_t skin_candidates =
-      0;  ///< candidate pairs kept by skin reuse  ///< third-axis slabs used by pairing
+  int slabs = 1;                    ///< third-axis slabs used by pairing
+  std::size_t skin_candidates = 0;  ///< candidate pairs kept by skin reuse
+  std::size_t static_boxes = 0;     ///< boxes answered by the static index
   FramePath path = FramePath::kEmpty;
   double ms_keys = 0.0;        ///< float64 -> sortable keys
   double ms_sort = 0.0;        ///< both axes' radix index sorts (keys excluded)
