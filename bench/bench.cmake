@@ -23,6 +23,7 @@ add_executable(sap_bench
   ${SAP_BENCH_DIR}/exp_pareto.cpp
   ${SAP_BENCH_DIR}/exp_peers.cpp
   ${SAP_BENCH_DIR}/exp_memory.cpp
+  ${SAP_BENCH_DIR}/exp_skips.cpp
   ${SAP_BENCH_DIR}/peers/peer_registry.cpp
   ${SAP_BENCH_DIR}/peers/peer_grid.cpp
   ${SAP_BENCH_DIR}/peers/uniform_grid.cpp
@@ -88,3 +89,10 @@ endif()
 if(TARGET ${PROJECT_NAME}_ros)
   include(${SAP_BENCH_DIR}/ros_latency.cmake)
 endif()
+
+# The benchmark tools are installed beside the package's other executables.
+foreach(sap_bench_tool sap_bench sap_microbench)
+  if(TARGET ${sap_bench_tool})
+    install(TARGETS ${sap_bench_tool} RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  endif()
+endforeach()

@@ -17,6 +17,7 @@ void runThreads(const Options& inOptions);
 void runPareto(const Options& inOptions);
 void runPeers(const Options& inOptions);
 void runMemory(const Options& inOptions);
+void runSkips(const Options& inOptions);
 
 /// One experiment: its name on the command line, a line of description, its function.
 struct Experiment {

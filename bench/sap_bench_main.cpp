@@ -27,6 +27,8 @@ const std::vector<Experiment>& allExperiments() {
       {"pareto", "Run time against error (missed/extra pairs) per engine mode", runPareto},
       {"peers", "CGAL, Bullet, FCL and a uniform grid on the same boxes", runPeers},
       {"memory", "Peak memory of the engine per box and per pair", runMemory},
+      {"skips", "What each skip saves: filters, static boxes, unchanged frames, small frames, skin",
+       runSkips},
   };
   return kExperiments;
 }

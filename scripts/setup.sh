@@ -2,7 +2,7 @@
 # Installs whatever the project needs that is missing (Debian 12 packages), then builds the
 # catkin workspace in build/ws (or $SAP_WS), whose src/sap_broadphase mirrors this repository.
 #
-# The sources are mirrored (rsync, mtimes kept, so make rebuilds only what changed), not
+# The sources are mirrored (rsync by content, so make rebuilds only what changed), not
 # symlinked: roslaunch searches a package's directory following links, and a link from
 # build/ws/src back to the repository, which contains build/, would be an endless loop.
 # Usage: scripts/setup.sh [extra catkin_make arguments, e.g. tests]
@@ -29,12 +29,11 @@ build_workspace() {
   mkdir -p "$WS/src"
   local mirror="$WS/src/sap_broadphase"
   [ -L "$mirror" ] && rm -f "$mirror"
-  # Files rsync transfers get the current time: one edited while an earlier build compiled its
-  # old copy would otherwise carry an mtime older than that object, and never be rebuilt.
-  rsync -a --delete --out-format='%n' --exclude=/build/ --exclude=/.git/ --exclude=/artifacts/ \
-    "$ROOT/" "$mirror/" | while IFS= read -r changed; do
-    [ -f "$mirror/$changed" ] && touch "$mirror/$changed"
-  done
+  # Content decides what is copied (--checksum) and times are not preserved (no -t): a file
+  # that changed gets the time of the copy, newer than any object built from its old content,
+  # and an unchanged file keeps its time, so make rebuilds exactly what changed.
+  rsync -rlpgoD --checksum --delete --exclude=/build/ --exclude=/.git/ --exclude=/artifacts/ \
+    "$ROOT/" "$mirror/"
   # Debian's ROS needs the system python, not a pyenv shim that may come first in PATH.
   export PYENV_VERSION=system
   catkin_make -C "$WS" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \

@@ -40,13 +40,13 @@ target_compile_definitions(test_cli PRIVATE
   SAP_PAIRS_EXE="$<TARGET_FILE:sap_pairs>" SAP_SCENE_EXE="$<TARGET_FILE:sap_scene>")
 
 # The numerical stress suite lives with its own work (test/stress).
-if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/test/stress/stress_tests.cmake)
+if(EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/test/stress/stress_tests.cmake")
   include(test/stress/stress_tests.cmake)
 endif()
 
 include(test/core/static_index_tests.cmake)
 
 # The ROS node's tests live with the node (owned by that work).
-if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/ros_tests.cmake)
+if(EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/test/ros/ros_tests.cmake")
   include(test/ros/ros_tests.cmake)
 endif()
