@@ -37,7 +37,8 @@ TEST(EngineVsOracle, SmallAndMediumSizesManySeeds) {
 
 TEST(EngineVsOracle, ThousandsOfBoxesSeveralDensities) {
   for (double density : {0.01, 0.2, 1.0}) {
-    const std::size_t n = 4500;  // above the default parallel_min_boxes, so kAuto goes parallel
+    // Above the default parallel_min_boxes, so kAuto goes parallel.
+    const std::size_t n = BroadphaseConfig().parallel_min_boxes + 500;
     const BoxSet boxes = randomBoxes(n, worldFor(n, density), 1.0, 77);
     expectAllConfigsMatch(boxes, "random d=" + std::to_string(density));
   }

@@ -132,9 +132,11 @@ TEST(EngineScenes, BoxesAddedRemovedReorderedBetweenFrames) {
 
 TEST(EngineScenes, GrowingAndShrinkingAcrossTheAutoThreshold) {
   // kAuto switches between the sequential and parallel paths as n crosses parallel_min_boxes.
+  const std::size_t threshold = BroadphaseConfig().parallel_min_boxes;
   std::vector<BoxSet> frames;
-  for (std::size_t n : {100u, 5000u, 4095u, 4096u, 4097u, 0u, 6000u, 1u, 5000u}) {
-    frames.push_back(test_support::randomBoxes(n, 14.0, 1.0, n + 3));
+  for (std::size_t n : {std::size_t{100}, threshold + 900, threshold - 1, threshold, threshold + 1,
+                        std::size_t{0}, threshold + 1900, std::size_t{1}, threshold + 900}) {
+    frames.push_back(test_support::randomBoxes(n, 24.0, 1.0, n + 3));
   }
   expectFramesMatch(frames, "growing and shrinking");
 }

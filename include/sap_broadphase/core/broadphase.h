@@ -20,21 +20,22 @@ enum class Method : uint8_t {
 
 /// What a caller may tune. Defaults are the exact, adaptive engine.
 struct BroadphaseConfig {
-  int threads = 0;                        ///< worker threads; 0 = all cores (omp_get_max_threads)
-  Method method = Method::kAuto;          ///< algorithm choice
-  int primary_axis = 0;                   ///< first sweep axis (0 = x, 1 = y, 2 = z)
-  int secondary_axis = 1;                 ///< second sweep axis; must differ from primary_axis
-  bool axis_swapping = true;              ///< swap a clustered sweep axis with the unused one (§5)
-  double axis_swap_threshold = 0.25;      ///< dispersion D above which an axis is swapped
-  std::size_t parallel_min_boxes = 4096;  ///< kAuto runs sequentially below this many boxes
-  int third_axis_slabs = 0;               ///< active lists per slab of the unused axis: 0 = auto,
-                                          ///< 1 = the paper's single list, k = k slabs (max 64)
-  bool reuse_unchanged_frames = false;    ///< a frame equal to the previous one (ids, bounds,
-                                          ///< groups, masks) returns the previous pairs; keeps a
-                                          ///< copy of the last frame (52 bytes a box)
-  bool index_static_boxes = false;        ///< keep boxes that did not move since the previous frame
-                                          ///< and whose groups/masks forbid pairs among them in an
-                                          ///< index (static_split.h); sweep only the others
+  int threads = 0;                    ///< worker threads; 0 = all cores (omp_get_max_threads)
+  Method method = Method::kAuto;      ///< algorithm choice
+  int primary_axis = 0;               ///< first sweep axis (0 = x, 1 = y, 2 = z)
+  int secondary_axis = 1;             ///< second sweep axis; must differ from primary_axis
+  bool axis_swapping = true;          ///< swap a clustered sweep axis with the unused one (§5)
+  double axis_swap_threshold = 0.25;  ///< dispersion D above which an axis is swapped
+  std::size_t parallel_min_boxes = 12288;  ///< kAuto runs sequentially below this many boxes
+                                           ///< (measured crossover on 2 cores: sap_bench -e skips)
+  int third_axis_slabs = 0;                ///< active lists per slab of the unused axis: 0 = auto,
+                                           ///< 1 = the paper's single list, k = k slabs (max 64)
+  bool reuse_unchanged_frames = false;     ///< a frame equal to the previous one (ids, bounds,
+                                           ///< groups, masks) returns the previous pairs; keeps a
+                                           ///< copy of the last frame (52 bytes a box)
+  bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
+                                    ///< and whose groups/masks forbid pairs among them in an
+                                    ///< index (static_split.h); sweep only the others
   double skin = 0.0;  ///< > 0: skin reuse (skin_list.h): sweep boxes grown by skin / 2 a side,
                       ///< then test only those candidates until a box leaves its grown box
   bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
