@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <iostream>
 
 namespace sap_broadphase::cli {
 
@@ -90,6 +92,22 @@ const char* axisName(int inAxis) {
 int reportUsageError(const char* inProgram, const std::string& inMessage, const char* inUsage) {
   std::fprintf(stderr, "%s: %s\n\n%s", inProgram, inMessage.c_str(), inUsage);
   return kExitBadInput;
+}
+
+int finishOutput(const char* inProgram) {
+  std::cout.flush();
+  if (std::cout) return kExitOk;
+  std::fprintf(stderr, "%s: cannot write the output\n", inProgram);
+  return kExitFailure;
+}
+
+int runMain(const char* inProgram, int (*inRun)(int, char**), int inArgc, char** inArgv) {
+  try {
+    return inRun(inArgc, inArgv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", inProgram, e.what());
+    return kExitFailure;
+  }
 }
 
 }  // namespace sap_broadphase::cli

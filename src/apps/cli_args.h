@@ -52,4 +52,12 @@ const char* axisName(int inAxis);
 /// Prints "PROGRAM: MESSAGE" and the usage text to stderr; returns kExitBadInput.
 int reportUsageError(const char* inProgram, const std::string& inMessage, const char* inUsage);
 
+/// Exit status once the output is written: kExitOk, or kExitFailure with "PROGRAM: cannot
+/// write the output" when standard output failed (full disk, closed pipe).
+int finishOutput(const char* inProgram);
+
+/// Runs inRun(argc, argv) and turns an escaping exception into "PROGRAM: what" and
+/// kExitFailure: the body of both tools' main().
+int runMain(const char* inProgram, int (*inRun)(int, char**), int inArgc, char** inArgv);
+
 }  // namespace sap_broadphase::cli

@@ -173,20 +173,11 @@ int run(int inArgc, char** inArgv) {
   }
   std::cout.flush();
   if (options.stats) printStats(broadphase.stats(), readMs);
-  if (!std::cout) {
-    std::fprintf(stderr, "%s: cannot write the output\n", kProgram);
-    return cli::kExitFailure;
-  }
-  return cli::kExitOk;
+  return cli::finishOutput(kProgram);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", kProgram, e.what());
-    return cli::kExitFailure;
-  }
+  return cli::runMain(kProgram, run, argc, argv);
 }

@@ -95,21 +95,11 @@ int run(int inArgc, char** inArgv) {
   std::ios::sync_with_stdio(false);
   const BoxSet boxes = makeSceneFrame(config, frame);
   writeBoxText(std::cout, boxes);
-  std::cout.flush();
-  if (!std::cout) {
-    std::fprintf(stderr, "%s: cannot write the output\n", kProgram);
-    return cli::kExitFailure;
-  }
-  return cli::kExitOk;
+  return cli::finishOutput(kProgram);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", kProgram, e.what());
-    return cli::kExitFailure;
-  }
+  return cli::runMain(kProgram, run, argc, argv);
 }
