@@ -185,8 +185,8 @@ class Collector {
   bool wait(uint64_t inStamp, double inTimeoutS, Reply& outReply) {
     std::unique_lock<std::mutex> lock(mutex_);
     const Clock::time_point deadline =
-        Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                           std::chrono::duration<double>(inTimeoutS));
+        Clock::now() +
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(inTimeoutS));
     for (;;) {
       auto found = replies_.find(inStamp);
       if (found != replies_.end() && found->second.have_pairs && found->second.have_stats) {
@@ -319,8 +319,7 @@ Summary summarise(const std::string& inMode, std::size_t inN, double inDensity,
   s.other = medianOf(inRows, [](const FrameRow& r) { return r.other_ms(); });
   s.outside_node =
       medianOf(inRows, [](const FrameRow& r) { return r.latency_ms - r.stats.ms_total; });
-  s.outside_sweep =
-      medianOf(inRows, [](const FrameRow& r) { return r.latency_ms - r.sweep_ms(); });
+  s.outside_sweep = medianOf(inRows, [](const FrameRow& r) { return r.latency_ms - r.sweep_ms(); });
   s.outside_share = medianOf(
       inRows, [](const FrameRow& r) { return (r.latency_ms - r.sweep_ms()) / r.latency_ms; });
   s.sweep_share = 1.0 - s.outside_share;
@@ -449,8 +448,8 @@ class Runner {
 void printTable(const std::vector<Summary>& inSummaries) {
   std::printf(
       "\n%-10s %8s %5s %3s %4s %8s %7s %6s | %8s %7s %8s %7s %7s %7s %6s | %8s %8s %6s %6s\n",
-      "mode", "n", "d", "fr", "lost", "pairs", "box MB", "prs MB", "latency", "publish",
-      "out-node", "conv", "sweep", "output", "other", "node tot", "out-swp", "share", "fps");
+      "mode", "n", "d", "fr", "lost", "pairs", "box MB", "prs MB", "latency", "publish", "out-node",
+      "conv", "sweep", "output", "other", "node tot", "out-swp", "share", "fps");
   for (const Summary& s : inSummaries) {
     std::printf(
         "%-10s %8zu %5.2f %3d %4d %8.0f %7.1f %6.2f | %8.2f %7.2f %8.2f %7.2f %7.2f %7.2f %6.2f | "
@@ -488,12 +487,11 @@ bool writeCsv(const std::string& inDir, const std::vector<Summary>& inSummaries,
   for (const Summary& s : inSummaries) {
     summary << s.mode << ',' << s.n << ',' << s.density << ',' << s.frames << ',' << s.lost << ','
             << s.threads << ',' << s.path << ',' << s.pairs << ',' << s.box_mb << ',' << s.pair_mb
-            << ',' << s.latency << ',' << s.publish << ',' << s.outside_node << ','
-            << s.conversion << ',' << s.sort << ',' << s.candidates << ',' << s.pairing << ','
-            << s.sweep << ',' << s.output << ',' << s.other << ',' << s.node_total << ','
-            << s.outside_sweep << ',' << s.outside_share << ',' << s.fps << ',' << s.dropped
-            << ',' << s.ser_boxes << ',' << s.deser_boxes << ',' << s.ser_pairs << ','
-            << s.deser_pairs << '\n';
+            << ',' << s.latency << ',' << s.publish << ',' << s.outside_node << ',' << s.conversion
+            << ',' << s.sort << ',' << s.candidates << ',' << s.pairing << ',' << s.sweep << ','
+            << s.output << ',' << s.other << ',' << s.node_total << ',' << s.outside_sweep << ','
+            << s.outside_share << ',' << s.fps << ',' << s.dropped << ',' << s.ser_boxes << ','
+            << s.deser_boxes << ',' << s.ser_pairs << ',' << s.deser_pairs << '\n';
   }
   std::ofstream frames(inDir + "/ros_latency_frames.csv");
   frames << "mode,n,density,frame,stamp_ns,pairs,box_msg_bytes,pair_msg_bytes,publish_ms,"
@@ -503,8 +501,8 @@ bool writeCsv(const std::string& inDir, const std::vector<Summary>& inSummaries,
     frames << r.mode << ',' << r.n << ',' << r.density << ',' << r.frame << ',' << r.stamp << ','
            << r.pairs << ',' << r.box_bytes << ',' << r.pair_bytes << ',' << r.publish_ms << ','
            << r.latency_ms << ',' << r.stats.ms_conversion << ',' << r.stats.ms_sort << ','
-           << r.stats.ms_candidates << ',' << r.stats.ms_pairing << ',' << r.stats.ms_output
-           << ',' << r.stats.ms_total << ',' << r.stats.path << ',' << r.stats.threads << ','
+           << r.stats.ms_candidates << ',' << r.stats.ms_pairing << ',' << r.stats.ms_output << ','
+           << r.stats.ms_total << ',' << r.stats.path << ',' << r.stats.threads << ','
            << r.stats.frames_dropped << '\n';
   }
   return summary.good() && frames.good();
@@ -551,8 +549,8 @@ int main(int argc, char** argv) {
 
       std::vector<FrameRow> rows;
       double fps = 0.0;
-      int lost = runner.run("latency", n, density, messages, 0, options.warmup, per_mode, 1,
-                            rows, fps);
+      int lost =
+          runner.run("latency", n, density, messages, 0, options.warmup, per_mode, 1, rows, fps);
       total_lost += lost;
       Summary latency = summarise("latency", n, density, rows, lost);
       latency.fps = fps;  // one in flight: 1 / (latency + this process's gaps)
@@ -588,8 +586,7 @@ int main(int argc, char** argv) {
   }
   spinner.stop();
   if (total_lost > 0) {
-    std::cerr << "sap_ros_latency: " << total_lost
-              << " latency-mode frames got no answer\n";
+    std::cerr << "sap_ros_latency: " << total_lost << " latency-mode frames got no answer\n";
     return 3;
   }
   return 0;

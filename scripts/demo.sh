@@ -30,18 +30,9 @@ source "$ROOT/scripts/env.sh"
 
 # OpenMP threads sleep at barriers rather than spin (see README.md, "Threads").
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
-PIDS=()
-stop_all() {
-  local pid
-  for pid in "${PIDS[@]}"; do kill -INT "$pid" 2>/dev/null || true; done
-  for pid in "${PIDS[@]}"; do
-    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
-    kill -KILL "$pid" 2>/dev/null || true
-  done
-}
-trap stop_all EXIT
+source "$ROOT/scripts/processes.sh"
 
-PORT=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+PORT=$(free_loopback_port)
 export ROS_MASTER_URI=http://127.0.0.1:$PORT
 export ROS_LOG_DIR=$ROOT/build/demo_logs
 mkdir -p "$ROS_LOG_DIR"
