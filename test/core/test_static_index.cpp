@@ -12,28 +12,15 @@
 #include "sap_broadphase/core/pair_set.h"
 #include "sap_broadphase/core/scenes.h"
 #include "sap_broadphase/core/static_index.h"
+#include "test_support.h"
 
 namespace sap_broadphase {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// splitmix64: the same boxes on every platform.
-class Random {
- public:
-  explicit Random(uint64_t inSeed) : state_(inSeed) {}
-  uint64_t bits() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double unit() { return static_cast<double>(bits() >> 11) * 0x1.0p-53; }
-  uint64_t below(uint64_t inBound) { return bits() % inBound; }
-
- private:
-  uint64_t state_;
-};
+/// splitmix64, shared with the other engine tests: the same boxes on every platform.
+using Random = test_support::TestRandom;
 
 /// Every overlapping, filter-allowed (query, indexed) pair, by testing all of them.
 PairList bruteForceCross(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexed,
