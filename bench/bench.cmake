@@ -29,7 +29,7 @@ add_executable(sap_bench
   ${SAP_BENCH_DIR}/peers/uniform_grid.cpp
 )
 target_include_directories(sap_bench PRIVATE ${SAP_BENCH_DIR})
-target_link_libraries(sap_bench ${PROJECT_NAME}_core OpenMP::OpenMP_CXX)
+target_link_libraries(sap_bench ${PROJECT_NAME}_core_internal OpenMP::OpenMP_CXX)
 
 # ---- Optional peers ----
 # Each adapter is its own static library, so a peer's compile flags (CGAL adds
@@ -38,7 +38,7 @@ set(SAP_BENCH_PEERS "grid")
 function(sap_bench_add_peer inName inSource inDefine)
   add_library(sap_bench_peer_${inName} STATIC ${SAP_BENCH_DIR}/peers/${inSource})
   target_include_directories(sap_bench_peer_${inName} PRIVATE ${SAP_BENCH_DIR})
-  target_link_libraries(sap_bench_peer_${inName} PUBLIC ${PROJECT_NAME}_core ${ARGN})
+  target_link_libraries(sap_bench_peer_${inName} PUBLIC ${PROJECT_NAME}_core_internal ${ARGN})
   target_compile_definitions(sap_bench PRIVATE ${inDefine})
   target_link_libraries(sap_bench sap_bench_peer_${inName})
   set(SAP_BENCH_PEERS "${SAP_BENCH_PEERS};${inName}" PARENT_SCOPE)
@@ -80,7 +80,7 @@ if(benchmark_FOUND)
     ${SAP_BENCH_DIR}/micro/micro_phases.cpp
     ${SAP_BENCH_DIR}/micro/micro_static_index.cpp
   )
-  target_link_libraries(sap_microbench ${PROJECT_NAME}_core benchmark::benchmark)
+  target_link_libraries(sap_microbench ${PROJECT_NAME}_core_internal benchmark::benchmark)
 else()
   message(STATUS "sap_microbench: Google Benchmark not found, skipped")
 endif()

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "core/sort_keys.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/core/sort_keys.h"
 #include "sap_broadphase/core/text_io.h"
 
 namespace sap_broadphase::fuzz {

@@ -36,7 +36,7 @@ CXX=${CXX_FUZZ:-clang++}
 command -v "$CXX" >/dev/null || { echo "fuzz.sh: $CXX not found (apt-get install clang libclang-rt-dev libomp-dev)" >&2; exit 2; }
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 FLAGS="-std=c++17 -O1 -g -fno-omit-frame-pointer -fopenmp -Wall -Wextra $SAN"
-INCLUDES="-I$ROOT/include -I$ROOT/fuzz -I$OUT/gen"
+INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/fuzz -I$OUT/gen"
 mkdir -p "$OUT/obj" "$OUT/gen/sap_broadphase" "$OUT/crashes"
 
 # ROS message headers straight from the .msg files (Debian's gencpp).

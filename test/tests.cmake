@@ -14,7 +14,7 @@ catkin_add_gtest(test_core
   test/core/test_main.cpp
 )
 target_include_directories(test_core PRIVATE test/core)
-target_link_libraries(test_core ${PROJECT_NAME}_core)
+target_link_libraries(test_core ${PROJECT_NAME}_core_internal)
 
 # The whole engine against the brute-force oracle: random boxes, edge cases, scenes, frame
 # sequences, determinism across thread counts and axes, axis swapping.
@@ -30,11 +30,11 @@ catkin_add_gtest(test_engine
   test/core/test_main.cpp
 )
 target_include_directories(test_engine PRIVATE test/core)
-target_link_libraries(test_engine ${PROJECT_NAME}_core)
+target_link_libraries(test_engine ${PROJECT_NAME}_core_internal)
 
 # The CLI contract, exercised through the real executables.
 catkin_add_gtest(test_cli test/core/test_cli.cpp test/core/test_main.cpp)
-target_link_libraries(test_cli ${PROJECT_NAME}_core)
+target_link_libraries(test_cli ${PROJECT_NAME}_core_internal)
 add_dependencies(test_cli sap_pairs sap_scene)
 target_compile_definitions(test_cli PRIVATE
   SAP_PAIRS_EXE="$<TARGET_FILE:sap_pairs>" SAP_SCENE_EXE="$<TARGET_FILE:sap_scene>")

@@ -9,11 +9,11 @@
 #include <utility>
 #include <vector>
 
+#include "core/radix_sort.h"
+#include "core/sort_keys.h"
+#include "core/sweep.h"  // Algorithms 1 and 3 (candidates)
 #include "sap_broadphase/core/broadphase.h"
-#include "sap_broadphase/core/radix_sort.h"
 #include "sap_broadphase/core/scenes.h"
-#include "sap_broadphase/core/sort_keys.h"
-#include "sap_broadphase/core/sweep.h"  // Algorithms 1 and 3 (candidates)
 
 namespace {
 

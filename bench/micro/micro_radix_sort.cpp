@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "sap_broadphase/core/radix_sort.h"
-#include "sap_broadphase/core/sort_keys.h"
+#include "core/radix_sort.h"
+#include "core/sort_keys.h"
 
 namespace {
 

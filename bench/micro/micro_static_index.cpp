@@ -6,9 +6,9 @@
 #include <memory>
 #include <vector>
 
+#include "core/static_index.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
-#include "sap_broadphase/core/static_index.h"
 
 namespace {
 

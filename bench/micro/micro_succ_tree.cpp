@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "sap_broadphase/core/succ_tree.h"
+#include "core/succ_tree.h"
 
 namespace {
 

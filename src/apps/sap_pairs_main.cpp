@@ -54,16 +54,10 @@ struct PairsOptions {
   std::string path = "-";
 };
 
-/// Parses a --method name.
+/// Parses a --method name: the CLI's three names (sap is the engine's "auto").
 bool parseMethodName(const std::string& inName, Method& outMethod) {
-  if (inName == "sap")
-    outMethod = Method::kAuto;
-  else if (inName == "sequential")
-    outMethod = Method::kSequential;
-  else if (inName == "brute")
-    outMethod = Method::kBruteForce;
-  else
-    return false;
+  if (inName != "sap" && inName != "sequential" && inName != "brute") return false;
+  outMethod = *parseMethod(inName);
   return true;
 }
 

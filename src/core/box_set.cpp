@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "sap_broadphase/core/radix_sort.h"
+#include "core/radix_sort.h"
 
 namespace sap_broadphase {
 namespace {

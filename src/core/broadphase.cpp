@@ -1,5 +1,5 @@
 #include "sap_broadphase/core/broadphase.h"
-#include "sap_broadphase/core/buffers.h"
+#include "core/buffers.h"
 
 #include <omp.h>
 
@@ -10,13 +10,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "sap_broadphase/core/axis_policy.h"
+#include "core/axis_policy.h"
+#include "core/radix_sort.h"
+#include "core/skin_list.h"
+#include "core/sort_keys.h"
+#include "core/static_index.h"
+#include "core/static_split.h"
+#include "core/sweep.h"
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/core/radix_sort.h"
-#include "sap_broadphase/core/skin_list.h"
-#include "sap_broadphase/core/sort_keys.h"
-#include "sap_broadphase/core/static_split.h"
-#include "sap_broadphase/core/sweep.h"
 
 namespace sap_broadphase {
 namespace {
@@ -33,19 +34,69 @@ double millisecondsSince(Clock::time_point inStart) {
   return std::chrono::duration<double, std::milli>(Clock::now() - inStart).count();
 }
 
-void checkConfig(const BroadphaseConfig& inConfig) {
+}  // namespace
+
+const char* methodName(Method inMethod) {
+  switch (inMethod) {
+    case Method::kAuto:
+      return "auto";
+    case Method::kParallel:
+      return "parallel";
+    case Method::kSequential:
+      return "sequential";
+    case Method::kBruteForce:
+      return "brute";
+  }
+  return "unknown";
+}
+
+std::optional<Method> parseMethod(const std::string& inName) {
+  for (Method method : {Method::kAuto, Method::kParallel, Method::kSequential, Method::kBruteForce})
+    if (inName == methodName(method)) return method;
+  if (inName == "sap") return Method::kAuto;
+  return std::nullopt;
+}
+
+std::optional<std::string> configProblem(const BroadphaseConfig& inConfig) {
   const auto valid_axis = [](int axis) { return axis >= 0 && axis <= 2; };
   if (!valid_axis(inConfig.primary_axis) || !valid_axis(inConfig.secondary_axis) ||
       inConfig.primary_axis == inConfig.secondary_axis)
-    throw std::invalid_argument("primary and secondary axes must be distinct values in 0..2");
-  if (inConfig.threads < 0) throw std::invalid_argument("threads must be >= 0");
-  if (!(inConfig.skin >= 0.0) || !std::isfinite(inConfig.skin))
-    throw std::invalid_argument("skin must be a finite value >= 0");
+    return "primary and secondary axes must be distinct values in 0..2, not " +
+           std::to_string(inConfig.primary_axis) + " and " +
+           std::to_string(inConfig.secondary_axis);
+  if (inConfig.threads < 0)
+    return "threads must be >= 0 (0 = all cores), not " + std::to_string(inConfig.threads);
+  if (inConfig.skin && !(*inConfig.skin >= 0.0 && std::isfinite(*inConfig.skin)))
+    return "skin must be a finite value >= 0 (or automatic), not " + std::to_string(*inConfig.skin);
   if (inConfig.third_axis_slabs < 0 || inConfig.third_axis_slabs > kMaxSlabs)
-    throw std::invalid_argument("third_axis_slabs must be in 0..64");
+    return "third_axis_slabs must be in 0.." + std::to_string(kMaxSlabs) + ", not " +
+           std::to_string(inConfig.third_axis_slabs);
+  if (!(inConfig.axis_swap_threshold >= 0.0))
+    return "axis_swap_threshold must be >= 0, not " + std::to_string(inConfig.axis_swap_threshold);
+  return std::nullopt;
 }
 
-}  // namespace
+const char* skinChoiceName(SkinChoice inChoice) {
+  switch (inChoice) {
+    case SkinChoice::kOff:
+      return "off";
+    case SkinChoice::kFixed:
+      return "fixed";
+    case SkinChoice::kFirstFrame:
+      return "first_frame";
+    case SkinChoice::kIdsChanged:
+      return "ids_changed";
+    case SkinChoice::kKept:
+      return "kept";
+    case SkinChoice::kChosen:
+      return "chosen";
+    case SkinChoice::kTooFast:
+      return "too_fast";
+    case SkinChoice::kNotWorthIt:
+      return "not_worth_it";
+  }
+  return "unknown";
+}
 
 const char* framePathName(FramePath inPath) {
   switch (inPath) {
@@ -95,8 +146,11 @@ struct Broadphase::Impl {
   bool previous_valid = false;  // previous_boxes holds the last frame
   SkinList skin_list;
   StaticSplit static_split;
-  BoxSet inflated;                 // the frame grown by the skin, while sweeping for skin reuse
-  bool previous_reusable = false;  // pairs still holds previous_boxes' pairs
+  BoxSet inflated;                    // the frame grown by the skin, while sweeping for skin reuse
+  bool previous_reusable = false;     // pairs still holds previous_boxes' pairs
+  StaticIndex declared_static;        // the scenery of setStaticBoxes()
+  std::vector<uint32_t> all_indexes;  // 0..n-1, the queries of the declared static index
+  void addDeclaredStaticPairs(const BoxSet& inBoxes, int inThreads);
 
   bool sameAsPreviousFrame(const BoxSet& inBoxes) const;
   void rememberFrame(const BoxSet& inBoxes, FramePath inPath);
@@ -334,7 +388,7 @@ void Broadphase::Impl::skinFrame(const BoxSet& inBoxes, int inThreads) {
     stats.path = FramePath::kSkin;
     stats.threads = inThreads;
   } else {
-    skin_list.inflate(inBoxes, config.skin, inflated);
+    skin_list.inflate(inBoxes, *config.skin, inflated);
     stats.ms_keys += millisecondsSince(phase);
     sweepIntoPairs(inflated, stats.path, inThreads);
     skin_list.adopt(inBoxes, pairs);
@@ -369,8 +423,21 @@ bool Broadphase::Impl::staticFrame(const BoxSet& inBoxes, int inThreads) {
   return true;
 }
 
+// Pairs between this frame's boxes and the declared scenery, merged into canonical order.
+void Broadphase::Impl::addDeclaredStaticPairs(const BoxSet& inBoxes, int inThreads) {
+  if (declared_static.size() == 0 || inBoxes.size() == 0) return;
+  const Clock::time_point phase = Clock::now();
+  all_indexes.resize(inBoxes.size());
+  for (std::size_t i = 0; i < all_indexes.size(); ++i) all_indexes[i] = static_cast<uint32_t>(i);
+  const std::size_t before = pairs.size();
+  declared_static.queryAll(inBoxes, all_indexes, inThreads, pairs);
+  if (pairs.size() != before) sortPairsCanonical(pairs, pair_scratch);
+  stats.static_boxes += declared_static.size();
+  stats.ms_static = millisecondsSince(phase);
+}
+
 Broadphase::Broadphase(const BroadphaseConfig& inConfig) : impl_(std::make_unique<Impl>()) {
-  checkConfig(inConfig);
+  if (auto problem = configProblem(inConfig)) throw std::invalid_argument(*problem);
   impl_->config = inConfig;
 }
 
@@ -415,7 +482,7 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     case FramePath::kSequential:
     case FramePath::kParallel:
       if (impl.staticFrame(boxes, threads)) break;
-      if (impl.config.skin > 0)
+      if (impl.config.skin.value_or(0.0) > 0)
         impl.skinFrame(boxes, threads);
       else
         impl.sweepIntoPairs(boxes, stats.path, threads);
@@ -424,10 +491,31 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     case FramePath::kStatic:
       break;  // decided and computed inside skinFrame() and staticFrame()
   }
-  if (stats.path != FramePath::kReused) impl.rememberFrame(boxes, stats.path);
+  if (stats.path != FramePath::kReused) {
+    impl.rememberFrame(boxes, stats.path);
+    impl.addDeclaredStaticPairs(boxes, threads);
+  } else {
+    stats.static_boxes = previous_stats.static_boxes;
+  }
   stats.pairs = impl.pairs.size();
   stats.ms_total = millisecondsSince(start);
   return impl.pairs;
+}
+
+void Broadphase::setStaticBoxes(const BoxSet& inStaticBoxes) {
+  std::vector<uint32_t> every_box(inStaticBoxes.size());
+  for (std::size_t i = 0; i < every_box.size(); ++i) every_box[i] = static_cast<uint32_t>(i);
+  impl_->declared_static.build(inStaticBoxes, every_box, resolveThreadCount(impl_->config.threads));
+  impl_->previous_reusable = false;  // the last pairs were computed against other scenery
+}
+
+void Broadphase::clearStaticBoxes() {
+  impl_->declared_static = StaticIndex();
+  impl_->previous_reusable = false;
+}
+
+std::size_t Broadphase::staticBoxCount() const {
+  return impl_->declared_static.size();
 }
 
 const FrameReport& Broadphase::stats() const {

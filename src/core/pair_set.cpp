@@ -1,5 +1,5 @@
 #include "sap_broadphase/core/pair_set.h"
-#include "sap_broadphase/core/buffers.h"
+#include "core/buffers.h"
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
-#include "sap_broadphase/core/radix_sort.h"
-#include "sap_broadphase/core/buffers.h"
+#include "core/radix_sort.h"
+#include "core/buffers.h"
 
 #include <omp.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "sap_broadphase/core/sort_keys.h"
+#include "core/sort_keys.h"
 
 namespace sap_broadphase {
 namespace {

@@ -1,4 +1,4 @@
-#include "sap_broadphase/core/skin_list.h"
+#include "core/skin_list.h"
 
 #include <omp.h>
 

@@ -1,4 +1,4 @@
-#include "sap_broadphase/core/slab_grid.h"
+#include "core/slab_grid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sap_broadphase/core/static_index.h"
+#include "core/static_index.h"
 
 #include <omp.h>
 
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/radix_sort.h"
 #include "sap_broadphase/core/broadphase.h"  // resolveThreadCount
-#include "sap_broadphase/core/radix_sort.h"
 
 namespace sap_broadphase {
 namespace {

@@ -1,4 +1,4 @@
-#include "sap_broadphase/core/static_split.h"
+#include "core/static_split.h"
 
 #include <algorithm>
 #include <cstring>

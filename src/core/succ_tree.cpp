@@ -1,4 +1,4 @@
-#include "sap_broadphase/core/succ_tree.h"
+#include "core/succ_tree.h"
 
 #include <algorithm>
 

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "sap_broadphase/core/buffers.h"
-#include "sap_broadphase/core/sweep.h"
+#include "core/buffers.h"
+#include "core/sweep.h"
 
 namespace sap_broadphase {
 namespace {

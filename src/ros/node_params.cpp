@@ -51,18 +51,22 @@ bool parseAxisName(const std::string& inName, int& outAxis) {
   return false;
 }
 
-bool parseMethodName(const std::string& inName, Method& outMethod) {
-  if (inName == "auto")
-    outMethod = Method::kAuto;
-  else if (inName == "parallel")
-    outMethod = Method::kParallel;
-  else if (inName == "sequential")
-    outMethod = Method::kSequential;
-  else if (inName == "brute")
-    outMethod = Method::kBruteForce;
+// ~skin is "auto" (the default), 0 (off) or a fixed skin in metres.
+std::string readSkin(const ros::NodeHandle& inPrivate, std::optional<double>& outSkin) {
+  XmlRpc::XmlRpcValue value;
+  if (!inPrivate.getParam("skin", value)) return "";
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeString &&
+      static_cast<std::string>(value) == "auto") {
+    outSkin.reset();
+    return "";
+  }
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble)
+    outSkin = static_cast<double>(value);
+  else if (value.getType() == XmlRpc::XmlRpcValue::TypeInt)
+    outSkin = static_cast<int>(value);
   else
-    return false;
-  return true;
+    return "~skin must be auto, 0 (off) or a skin > 0 in the boxes' units";
+  return "";
 }
 
 std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams) {
@@ -72,8 +76,10 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
   if (!(error = readCount(inPrivate, "threads", engine.threads)).empty()) return error;
   std::string method = "auto";
   inPrivate.param<std::string>("method", method, method);
-  if (!parseMethodName(method, engine.method))
+  const std::optional<Method> parsed_method = parseMethod(method);
+  if (!parsed_method)
     return "~method must be auto, parallel, sequential or brute, not '" + method + "'";
+  engine.method = *parsed_method;
   if (!(error = readAxis(inPrivate, "primary_axis", engine.primary_axis)).empty()) return error;
   if (!(error = readAxis(inPrivate, "secondary_axis", engine.secondary_axis)).empty()) return error;
   if (engine.primary_axis == engine.secondary_axis)
@@ -84,16 +90,14 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
     return error;
   if (!(error = readCount(inPrivate, "third_axis_slabs", engine.third_axis_slabs)).empty())
     return error;
-  if (engine.third_axis_slabs > 64) return "~third_axis_slabs must be at most 64";
   inPrivate.param("exact_final_test", engine.exact_final_test, engine.exact_final_test);
   // Publishers often resend a scene that did not move: worth the engine's copy of the frame.
   engine.reuse_unchanged_frames = true;
   inPrivate.param("reuse_unchanged_frames", engine.reuse_unchanged_frames,
                   engine.reuse_unchanged_frames);
   inPrivate.param("index_static_boxes", engine.index_static_boxes, engine.index_static_boxes);
-  inPrivate.param("skin", engine.skin, engine.skin);
-  if (!(engine.skin >= 0.0) || !std::isfinite(engine.skin))
-    return "~skin must be a finite value >= 0";
+  if (!(error = readSkin(inPrivate, engine.skin)).empty()) return error;
+  if (const auto problem = configProblem(engine)) return "~" + *problem;
 
   inPrivate.param("publish_markers", outParams.publish_markers, outParams.publish_markers);
   if (!(error = readCount(inPrivate, "max_marker_boxes", markers.max_boxes)).empty()) return error;

@@ -5,4 +5,4 @@ catkin_add_gtest(test_static_index
   test/core/test_static_index.cpp
   test/core/test_main.cpp
 )
-target_link_libraries(test_static_index ${PROJECT_NAME}_core)
+target_link_libraries(test_static_index ${PROJECT_NAME}_core_internal)

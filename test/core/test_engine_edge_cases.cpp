@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/sort_keys.h"
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/core/sort_keys.h"
 #include "test_support.h"
 
 namespace sap_broadphase {

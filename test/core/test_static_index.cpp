@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "core/static_index.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
 #include "sap_broadphase/core/scenes.h"
-#include "sap_broadphase/core/static_index.h"
 #include "test_support.h"
 
 namespace sap_broadphase {

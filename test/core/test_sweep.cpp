@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <vector>
 
-#include "sap_broadphase/core/radix_sort.h"
-#include "sap_broadphase/core/sort_keys.h"
-#include "sap_broadphase/core/sweep.h"
+#include "core/radix_sort.h"
+#include "core/sort_keys.h"
+#include "core/sweep.h"
 #include "test_support.h"
 
 namespace sap_broadphase {

@@ -7,7 +7,7 @@ find_package(rostest REQUIRED)
 add_rostest_gtest(test_node test/ros/node.test
   test/ros/test_node.cpp test/ros/node_client.cpp test/ros/test_frames.cpp)
 target_include_directories(test_node PRIVATE test/ros)
-target_link_libraries(test_node ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
+target_link_libraries(test_node ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_node ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)
 
 # `pairs` keeps the rate of scene_publisher (10 Hz, 10^4 boxes), checked by rostest's hztest.
@@ -24,5 +24,5 @@ catkin_add_gtest(test_ros_units
   test/ros/test_conversions.cpp test/ros/test_frames.cpp test/ros/test_markers.cpp
   test/ros/test_units_main.cpp)
 target_include_directories(test_ros_units PRIVATE test/ros)
-target_link_libraries(test_ros_units ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
+target_link_libraries(test_ros_units ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_ros_units ${PROJECT_NAME}_generate_messages_cpp)

@@ -6,27 +6,13 @@
 #include <sstream>
 #include <utility>
 
+#include "core/sort_keys.h"
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/core/sort_keys.h"
 
 namespace sap_broadphase::stress {
 namespace {
 
 constexpr int kShownDifferences = 8;
-
-std::string methodName(Method inMethod) {
-  switch (inMethod) {
-    case Method::kAuto:
-      return "auto";
-    case Method::kParallel:
-      return "parallel";
-    case Method::kSequential:
-      return "sequential";
-    case Method::kBruteForce:
-      return "brute";
-  }
-  return "?";
-}
 
 std::string pairText(const IdPair& inPair) {
   return "(" + std::to_string(inPair.a) + ", " + std::to_string(inPair.b) + ")";

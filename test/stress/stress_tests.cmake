@@ -13,7 +13,7 @@ catkin_add_gtest(test_stress
   test/stress/stress_main.cpp
 )
 target_include_directories(test_stress PRIVATE test/stress)
-target_link_libraries(test_stress ${PROJECT_NAME}_core)
+target_link_libraries(test_stress ${PROJECT_NAME}_core_internal)
 
 # The fuzzers' seed corpora and crash regressions (fuzz/corpus, fuzz/regressions), replayed
 # through the checks the libFuzzer targets run (scripts/fuzz.sh builds the targets themselves).
@@ -24,7 +24,7 @@ catkin_add_gtest(test_fuzz_replay
   test/stress/stress_main.cpp
 )
 target_include_directories(test_fuzz_replay PRIVATE test/stress fuzz)
-target_link_libraries(test_fuzz_replay ${PROJECT_NAME}_core)
+target_link_libraries(test_fuzz_replay ${PROJECT_NAME}_core_internal)
 target_compile_definitions(test_fuzz_replay PRIVATE
   SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
 
@@ -37,7 +37,7 @@ catkin_add_gtest(test_fuzz_replay_ros
   test/stress/stress_main.cpp
 )
 target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
-target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core
+target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal
   ${catkin_LIBRARIES})
 add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp)
 target_compile_definitions(test_fuzz_replay_ros PRIVATE

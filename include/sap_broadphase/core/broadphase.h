@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
@@ -17,6 +19,12 @@ enum class Method : uint8_t {
   kSequential,  ///< Algorithm 1 of the paper
   kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
 };
+
+/// The one vocabulary of method names: "auto", "parallel", "sequential", "brute".
+const char* methodName(Method inMethod);
+/// Parses a method name; "sap" is accepted for "auto" (the CLI's name for it). Nothing when
+/// the name is unknown.
+std::optional<Method> parseMethod(const std::string& inName);
 
 /// What a caller may tune. Defaults are the exact, adaptive engine.
 struct BroadphaseConfig {
@@ -36,11 +44,18 @@ struct BroadphaseConfig {
   bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
                                     ///< and whose groups/masks forbid pairs among them in an
                                     ///< index (static_split.h); sweep only the others
-  double skin = 0.0;  ///< > 0: skin reuse (skin_list.h): sweep boxes grown by skin / 2 a side,
-                      ///< then test only those candidates until a box leaves its grown box
+  /// Skin reuse (kept candidates): sweep boxes grown by skin / 2 a side, then test only those
+  /// candidates until a box leaves its grown box. Nothing (the default) = automatic: chosen
+  /// each sweep from the measured motion and costs, off when it does not pay; 0 = off;
+  /// > 0 = this fixed skin.
+  std::optional<double> skin;
   bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
                                  ///< may report extra pairs; never misses one)
 };
+
+/// What is wrong with inConfig, in words a user can act on, or nothing when it is valid. The
+/// one check of a configuration (the engine's constructor and the node both use it).
+std::optional<std::string> configProblem(const BroadphaseConfig& inConfig);
 
 /// Which path computed a frame.
 enum class FramePath : uint8_t {
@@ -57,6 +72,22 @@ enum class FramePath : uint8_t {
 /// "static".
 const char* framePathName(FramePath inPath);
 
+/// Why the skin in force for a frame is what it is.
+enum class SkinChoice : uint8_t {
+  kOff,         ///< configured off (skin = 0)
+  kFixed,       ///< the configured fixed skin
+  kFirstFrame,  ///< automatic: no previous frame to measure motion against, plain sweep
+  kIdsChanged,  ///< automatic: ids or their order changed, motion unknown, plain sweep
+  kKept,        ///< automatic: every box still inside the skin of the last sweep
+  kChosen,      ///< automatic: a new skin chosen from the measured motion and costs
+  kTooFast,     ///< automatic: at the measured motion no skin beats a plain sweep
+  kNotWorthIt,  ///< automatic: frame too small or too static for a skin to pay
+};
+
+/// Name of a skin choice: "off", "fixed", "first_frame", "ids_changed", "kept", "chosen",
+/// "too_fast", "not_worth_it".
+const char* skinChoiceName(SkinChoice inChoice);
+
 /// What one frame cost and how it was computed. Times are milliseconds of wall clock.
 struct FrameReport {
   std::size_t boxes = 0;
@@ -70,12 +101,18 @@ struct FrameReport {
   int threads = 1;
   int slabs = 1;                    ///< third-axis slabs used by pairing
   std::size_t skin_candidates = 0;  ///< candidate pairs kept by skin reuse
-  std::size_t static_boxes = 0;     ///< boxes answered by the static index
+  std::size_t static_boxes = 0;     ///< boxes answered by a static index (declared or resting)
+  double skin = 0.0;                ///< skin of the kept candidates used this frame (0: none)
+  SkinChoice skin_choice = SkinChoice::kOff;  ///< why that skin
+  std::size_t moved_boxes = 0;                ///< boxes whose bounds changed since the last frame
+  double max_displacement = 0.0;  ///< largest bound change of one box since the last frame
   FramePath path = FramePath::kEmpty;
+  double ms_history = 0.0;     ///< comparing with the last frame and remembering this one
   double ms_keys = 0.0;        ///< float64 -> sortable keys
   double ms_sort = 0.0;        ///< both axes' radix index sorts (keys excluded)
   double ms_candidates = 0.0;  ///< ranks and candidate ranges on the primary axis
   double ms_pairing = 0.0;     ///< secondary sweep and exact overlap tests
+  double ms_static = 0.0;      ///< queries of the static indexes (declared and resting boxes)
   double ms_output = 0.0;      ///< ids and canonical pair order
   double ms_total = 0.0;
 };
@@ -93,6 +130,16 @@ class Broadphase {
   /// Computes every overlapping pair of inBoxes (closed intervals, filters honoured), as ids
   /// with a < b in canonical (a, b) order. The reference stays valid until the next update().
   const PairList& update(const BoxSet& inBoxes);
+  /// Declares scenery: boxes that stay put until replaced (validate() them first). They are
+  /// indexed once, here; every later update() reports the pairs among its boxes and between
+  /// its boxes and the scenery, never scenery x scenery pairs (as the static bodies of Box2D,
+  /// Jolt and Bullet). Ids of update()'s boxes must differ from the scenery's ids. Replaces
+  /// any earlier scenery.
+  void setStaticBoxes(const BoxSet& inStaticBoxes);
+  /// Forgets the scenery.
+  void clearStaticBoxes();
+  /// Number of declared static boxes.
+  std::size_t staticBoxCount() const;
   /// Statistics of the last update().
   const FrameReport& stats() const;
   /// The configuration in force (axes change when swapped).

@@ -12,9 +12,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/static_index.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
-#include "sap_broadphase/core/static_index.h"
 
 namespace sap_broadphase {
 

@@ -8,10 +8,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/slab_grid.h"
+#include "core/succ_tree.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
-#include "sap_broadphase/core/slab_grid.h"
-#include "sap_broadphase/core/succ_tree.h"
 
 namespace sap_broadphase {
 
