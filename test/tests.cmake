@@ -50,3 +50,14 @@ include(test/core/static_index_tests.cmake)
 if(EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/test/ros/ros_tests.cmake")
   include(test/ros/ros_tests.cmake)
 endif()
+
+# The per-frame flow: the plan on its own, then every path and combination of skips,
+# declared scenery, the automatic skin and large-world coordinates against the oracle.
+catkin_add_gtest(test_frame_flow
+  test/core/test_frame_plan.cpp
+  test/core/test_frame_flow.cpp
+  test/core/test_support.cpp
+  test/core/test_main.cpp
+)
+target_include_directories(test_frame_flow PRIVATE test/core)
+target_link_libraries(test_frame_flow ${PROJECT_NAME}_core_internal)

@@ -1,40 +1,31 @@
+// The per-frame flow (docs/ARCHITECTURE.md walks through it step by step):
+//
+//   boxes -> drop boxes that pair with nothing -> frame history: delta since the last frame
+//         -> resting boxes into their index (optional) -> plan -> one strategy:
+//            reuse | kept candidates | sweep (grown by a skin or plain) | brute force
+//         -> declared scenery queried -> pairs in canonical order -> remember the frame,
+//            learn the costs, give back memory a burst of large frames left behind
 #include "sap_broadphase/core/broadphase.h"
-#include "core/buffers.h"
 
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
-#include "core/axis_policy.h"
-#include "core/radix_sort.h"
+#include "core/frame_history.h"
+#include "core/frame_plan.h"
+#include "core/phase_timer.h"
 #include "core/skin_list.h"
-#include "core/sort_keys.h"
+#include "core/slab_grid.h"
 #include "core/static_index.h"
 #include "core/static_split.h"
-#include "core/sweep.h"
+#include "core/sweep_and_prune.h"
+#include "core/tuning.h"
 #include "sap_broadphase/core/brute_force.h"
 
 namespace sap_broadphase {
-namespace {
-
-// Sort partitions (m of Algorithm 2). More partitions than threads keeps them cache-sized and
-// gives D a fine enough grain to notice clustering; they are handed out dynamically.
-constexpr int kSortPartitions = 16;
-// Below this many endpoints one partition is cheaper than bucketing.
-constexpr std::size_t kMinPartitionedEndpoints = 8192;
-
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point inStart) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - inStart).count();
-}
-
-}  // namespace
 
 const char* methodName(Method inMethod) {
   switch (inMethod) {
@@ -122,197 +113,79 @@ int resolveThreadCount(int inRequested) {
   return inRequested > 0 ? inRequested : std::max(1, omp_get_max_threads());
 }
 
+namespace {
+
+// Mean finite box extent and the span of the finite bounds on each axis (the skin cost
+// model's picture of the frame).
+void measureExtents(const BoxSet& inBoxes, SkinCosts& ioCosts) {
+  for (int axis = 0; axis < 3; ++axis) {
+    double sum = 0.0, low = HUGE_VAL, high = -HUGE_VAL;
+    std::size_t finite = 0;
+    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+      const double box_low = inBoxes.lo[axis][i], box_high = inBoxes.hi[axis][i];
+      if (!std::isfinite(box_low) || !std::isfinite(box_high)) continue;
+      sum += box_high - box_low;
+      low = std::min(low, box_low);
+      high = std::max(high, box_high);
+      ++finite;
+    }
+    ioCosts.mean_extent[axis] = finite ? sum / static_cast<double>(finite) : 0.0;
+    ioCosts.span[axis] = finite ? high - low : 0.0;
+  }
+}
+
+double smoothed(double inAverage, double inSample) {
+  return inAverage > 0.0 ? inAverage + tuning::kCostSmoothing * (inSample - inAverage) : inSample;
+}
+
+}  // namespace
+
 struct Broadphase::Impl {
+  explicit Impl(const BroadphaseConfig& inConfig) : config(inConfig), sweep(inConfig) {}
+
   BroadphaseConfig config;
-  FrameReport stats;
-  AxisBounds bounds[3];
-  PartitionedSorter sorter;
-  // 4n words: packed (key, index) items and the sort's scratch while sorting, then the
-  // secondary stream (2 words per endpoint) while pairing.
-  std::vector<uint64_t> endpoint_words;
-  std::vector<uint32_t> sweep_order;  // 2n endpoint indexes: primary order, then secondary
-  CandidateRanges ranges;
-  std::vector<RankedKeys> ranked_keys;
-  std::vector<RankedFilter> ranked_filters;
-  std::vector<RankedSlabs> ranked_slabs;
-  SlabGrid slab_grid;
-  SweepWorkspace workspace;
-  SuccTree sequential_tree;
-  std::vector<PairChunks> pairs_per_thread;
+  FrameReport report;
+  FrameHistory history;
+  SweepAndPrune sweep;
+  SkinList kept;  // kept candidates of the last grown sweep (skin_list.h)
+  double kept_skin = 0.0;
+  StaticSplit resting;              // boxes guessed static (index_static_boxes)
+  StaticIndex scenery;              // boxes declared static (setStaticBoxes)
+  std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
+  BoxSet collidable;                // the frame without boxes that can pair with nothing
+  BoxSet grown;                     // the swept boxes grown by the skin
   PairList pairs;
   PairSortScratch pair_scratch;
-  BoxSet collidable;            // the frame without boxes that can collide with nothing
-  BoxSet previous_boxes;        // the last swept frame, to recognise an unchanged one
-  bool previous_valid = false;  // previous_boxes holds the last frame
-  SkinList skin_list;
-  StaticSplit static_split;
-  BoxSet inflated;                    // the frame grown by the skin, while sweeping for skin reuse
-  bool previous_reusable = false;     // pairs still holds previous_boxes' pairs
-  StaticIndex declared_static;        // the scenery of setStaticBoxes()
-  std::vector<uint32_t> all_indexes;  // 0..n-1, the queries of the declared static index
-  void addDeclaredStaticPairs(const BoxSet& inBoxes, int inThreads);
+  bool pairs_valid = false;  // pairs hold the last frame's whole answer
+  SkinCosts costs;
+  double recent_motion[tuning::kMotionWindow] = {};
+  int motion_slot = 0;
+  int small_frames = 0;
 
-  bool sameAsPreviousFrame(const BoxSet& inBoxes) const;
-  void rememberFrame(const BoxSet& inBoxes, FramePath inPath);
-  const BoxSet& dropBoxesThatCollideWithNothing(const BoxSet& inBoxes);
-
-  FramePath choosePath(std::size_t inBoxes, int inThreads) const;
-  double sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
-                  std::vector<uint32_t>& outOrder);
-  void gatherByRank(const BoxSet& inBoxes, int inThreads);
-  void pair(const BoxSet& inBoxes, FramePath inPath, int inThreads);
-  void sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, int inThreads);
-  void sweepIntoPairs(const BoxSet& inBoxes, FramePath inPath, int inThreads);
-  void skinFrame(const BoxSet& inBoxes, int inThreads);
-  bool staticFrame(const BoxSet& inBoxes, int inThreads);
-  void decideAxes(bool inWarm);
+  const BoxSet& dropBoxesThatPairWithNothing(const BoxSet& inBoxes);
+  const BoxSet& setAsideRestingBoxes(const BoxSet& inBoxes, const FrameDelta& inDelta,
+                                     int inThreads);
+  PlanInputs planInputs(const BoxSet& inBoxes, const BoxSet& inSwept, const FrameDelta& inDelta,
+                        int inThreads);
+  void execute(const FramePlan& inPlan, const BoxSet& inBoxes, const BoxSet& inSwept);
+  void testKeptCandidates(const BoxSet& inSwept, int inThreads);
+  void sweepGrown(const BoxSet& inSwept, const FramePlan& inPlan);
+  void addRestingPairs(const BoxSet& inBoxes, int inThreads);
+  void addSceneryPairs(const BoxSet& inBoxes, int inThreads);
+  void learnCosts(const FramePlan& inPlan, const BoxSet& inSwept, std::size_t inSweepPairs);
+  void rememberMotion(const FrameDelta& inDelta);
+  double recentMotion() const;
+  void giveBackMemoryAfterBursts(std::size_t inBoxes);
 };
 
-FramePath Broadphase::Impl::choosePath(std::size_t inBoxes, int inThreads) const {
-  if (inBoxes < 2) return FramePath::kEmpty;
-  switch (config.method) {
-    case Method::kBruteForce:
-      return FramePath::kBruteForce;
-    case Method::kSequential:
-      return FramePath::kSequential;
-    case Method::kParallel:
-      return FramePath::kParallel;
-    case Method::kAuto:
-      return (inThreads == 1 || inBoxes < config.parallel_min_boxes) ? FramePath::kSequential
-                                                                     : FramePath::kParallel;
-  }
-  return FramePath::kSequential;
-}
-
-// Keys of one axis (lows at i, highs at i + n), packed with their indexes, then Algorithm 2.
-// Returns D.
-double Broadphase::Impl::sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
-                                  std::vector<uint32_t>& outOrder) {
-  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
-  const std::size_t endpoints = 2 * std::size_t{n};
-  const double* low = inBoxes.lo[inAxis].data();
-  const double* high = inBoxes.hi[inAxis].data();
-  const Clock::time_point start = Clock::now();
-  resizeDiscarding(endpoint_words, 2 * endpoints);
-  resizeDiscarding(outOrder, endpoints);
-  uint64_t* packed = endpoint_words.data();
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (uint32_t i = 0; i < n; ++i) {
-    packed[i] = packKeyIndex(lowKey(low[i]), i);
-    packed[i + n] = packKeyIndex(highKey(high[i]), i + n);
-  }
-  stats.ms_keys += millisecondsSince(start);
-  const int partitions = endpoints >= kMinPartitionedEndpoints ? kSortPartitions : 1;
-  return sorter.sortPacked(packed, packed + endpoints, static_cast<uint32_t>(endpoints), partitions,
-                           inThreads, bounds[inAxis], outOrder.data());
-}
-
-// Box data in primary-rank order, so a candidate range is a contiguous stretch of memory.
-void Broadphase::Impl::gatherByRank(const BoxSet& inBoxes, int inThreads) {
-  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
-  const bool filtered = inBoxes.hasFilters();
-  resizeDiscarding(ranked_keys, n);
-  resizeDiscarding(ranked_filters, filtered ? n : 0);
-  const int third_axis = unusedAxis(config.primary_axis, config.secondary_axis);
-  slab_grid = chooseSlabGrid(inBoxes, third_axis, config.third_axis_slabs, inThreads);
-  const bool slabbed = slab_grid.count > 1;
-  resizeDiscarding(ranked_slabs, slabbed ? n : 0);
-  const double* third_low = inBoxes.lo[third_axis].data();
-  const double* third_high = inBoxes.hi[third_axis].data();
-  // Reads the boxes in input order (sequential streams of the SoA arrays) and writes each one's
-  // record at its rank: one scattered write a box instead of six scattered reads.
-  const RankRange* ranges_of_object = ranges.of_object.data();
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t rank = ranges_of_object[i].rank;
-    RankedKeys& keys = ranked_keys[rank];
-    for (int axis = 0; axis < 3; ++axis) {
-      keys.lo[axis] = lowKey(inBoxes.lo[axis][i]);
-      keys.hi[axis] = highKey(inBoxes.hi[axis][i]);
-    }
-    if (slabbed)
-      ranked_slabs[rank] = {static_cast<uint8_t>(slab_grid.slabOf(third_low[i])),
-                            static_cast<uint8_t>(slab_grid.slabOf(third_high[i]))};
-    if (filtered) ranked_filters[rank] = {inBoxes.group(i), inBoxes.mask(i)};
-  }
-}
-
-void Broadphase::Impl::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
-  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
-  buildSecondaryStream(sweep_order.data(), n, ranges, inThreads, endpoint_words.data());
-  PairingInput input;
-  input.stream = endpoint_words.data();
-  input.objects = n;
-  input.object_of_rank = ranges.object_of_rank.data();
-  input.keys = ranked_keys.data();
-  input.boxes = config.exact_final_test ? &inBoxes : nullptr;
-  input.filters = ranked_filters.empty() ? nullptr : ranked_filters.data();
-  input.ids = inBoxes.ids.data();
-  input.slabs = ranked_slabs.empty() ? nullptr : ranked_slabs.data();
-  input.slab_count = slab_grid.count;
-  stats.slabs = slab_grid.count;
-  if (inPath == FramePath::kSequential) {
-    pairs_per_thread.resize(1);
-    pairs_per_thread[0].clear();
-    pairSequential(input, workspace, pairs_per_thread[0]);
-  } else {
-    pairParallel(input, inThreads, workspace, pairs_per_thread);
-  }
-}
-
-void Broadphase::Impl::sweepAndPrune(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
-  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
-  const int sort_threads = inPath == FramePath::kParallel ? inThreads : 1;
-  const bool warm = bounds[config.primary_axis].from_previous_frame &&
-                    bounds[config.secondary_axis].from_previous_frame;
-
-  // The primary order is consumed by candidate generation before the secondary axis is
-  // sorted, so both orders share one buffer (sweep_order).
-  Clock::time_point phase = Clock::now();
-  stats.dispersion_primary = sortAxis(inBoxes, config.primary_axis, sort_threads, sweep_order);
-  stats.ms_sort = millisecondsSince(phase);
-
-  phase = Clock::now();
-  if (inPath == FramePath::kParallel) {
-    computeCandidatesParallel(sweep_order.data(), n, inThreads, workspace, ranges);
-  } else {
-    computeCandidatesSequential(sweep_order.data(), n, sequential_tree, ranges);
-  }
-  stats.ms_candidates = millisecondsSince(phase);
-
-  phase = Clock::now();
-  stats.dispersion_secondary = sortAxis(inBoxes, config.secondary_axis, sort_threads, sweep_order);
-  stats.ms_sort += millisecondsSince(phase) - stats.ms_keys;
-
-  phase = Clock::now();
-  gatherByRank(inBoxes, sort_threads);
-  pair(inBoxes, inPath, sort_threads);
-  stats.ms_pairing = millisecondsSince(phase);
-
-  decideAxes(warm && config.axis_swapping && 2 * std::size_t{n} >= kMinPartitionedEndpoints);
-}
-
-void Broadphase::Impl::decideAxes(bool inWarm) {
-  const AxisDecision decision =
-      chooseAxes(config.primary_axis, config.secondary_axis, stats.dispersion_primary,
-                 stats.dispersion_secondary, inWarm, config.axis_swap_threshold);
-  stats.axes_swapped = decision.swapped;
-  if (!decision.swapped) return;
-  const int incoming =
-      decision.primary != config.primary_axis ? decision.primary : decision.secondary;
-  bounds[incoming].from_previous_frame = false;  // re-initialise B from the new axis's span
-  config.primary_axis = decision.primary;
-  config.secondary_axis = decision.secondary;
-}
-
-// A box with group 0 or mask 0 passes no filter: it is left out before the sweep. The copy is
-// made only when such boxes exist.
-const BoxSet& Broadphase::Impl::dropBoxesThatCollideWithNothing(const BoxSet& inBoxes) {
+// A box with group 0 or mask 0 passes no filter: it is left out before anything else. The
+// copy is made only when such boxes exist.
+const BoxSet& Broadphase::Impl::dropBoxesThatPairWithNothing(const BoxSet& inBoxes) {
   if (!inBoxes.hasFilters()) return inBoxes;
   std::size_t excluded = 0;
   for (std::size_t i = 0; i < inBoxes.size(); ++i)
     excluded += inBoxes.group(i) == 0 || inBoxes.mask(i) == 0;
-  stats.boxes_filtered_out = excluded;
+  report.boxes_filtered_out = excluded;
   if (excluded == 0) return inBoxes;
   collidable.clear();
   collidable.reserve(inBoxes.size() - excluded);
@@ -325,120 +198,170 @@ const BoxSet& Broadphase::Impl::dropBoxesThatCollideWithNothing(const BoxSet& in
   return collidable;
 }
 
-// Bitwise comparison with the last swept frame (so -0.0 after 0.0 counts as a change).
-bool Broadphase::Impl::sameAsPreviousFrame(const BoxSet& inBoxes) const {
-  if (!previous_reusable || previous_boxes.size() != inBoxes.size()) return false;
-  const auto same = [](const auto& inA, const auto& inB) {
-    return inA.size() == inB.size() &&
-           (inA.empty() || std::memcmp(inA.data(), inB.data(), inA.size() * sizeof inA[0]) == 0);
-  };
-  if (!same(previous_boxes.ids, inBoxes.ids) || !same(previous_boxes.groups, inBoxes.groups) ||
-      !same(previous_boxes.masks, inBoxes.masks))
-    return false;
-  for (int axis = 0; axis < 3; ++axis)
-    if (!same(previous_boxes.lo[axis], inBoxes.lo[axis]) ||
-        !same(previous_boxes.hi[axis], inBoxes.hi[axis]))
-      return false;
-  return true;
+// Resting boxes (bit for bit unchanged, of group/mask classes that cannot pair among
+// themselves) answer from an index; the rest is what the strategy sweeps.
+const BoxSet& Broadphase::Impl::setAsideRestingBoxes(const BoxSet& inBoxes,
+                                                     const FrameDelta& inDelta, int inThreads) {
+  if (!config.index_static_boxes || config.method == Method::kBruteForce || !inDelta.sameIds() ||
+      reusesLastPairs(config, inDelta, pairs_valid)) {
+    resting.clear();
+    return inBoxes;
+  }
+  PhaseTimer timer(report.ms_static);
+  return resting.prepare(inBoxes, *inDelta.unchanged, inThreads) ? resting.moving() : inBoxes;
 }
 
-void Broadphase::Impl::rememberFrame(const BoxSet& inBoxes, FramePath inPath) {
-  previous_reusable = config.reuse_unchanged_frames && inPath != FramePath::kEmpty &&
-                      inPath != FramePath::kBruteForce;
-  if (!config.reuse_unchanged_frames && !config.index_static_boxes) {
-    previous_valid = false;
-    return;
+PlanInputs Broadphase::Impl::planInputs(const BoxSet& inBoxes, const BoxSet& inSwept,
+                                        const FrameDelta& inDelta, int inThreads) {
+  PlanInputs inputs;
+  inputs.config = &config;
+  inputs.delta = inDelta;
+  inputs.boxes = inBoxes.size();
+  inputs.swept = inSwept.size();
+  inputs.threads = inThreads;
+  inputs.last_pairs_valid = pairs_valid;
+  inputs.kept_candidates = kept.valid();
+  inputs.kept_skin = kept_skin;
+  if (inputs.kept_candidates && !reusesLastPairs(config, inDelta, pairs_valid)) {
+    PhaseTimer timer(report.ms_pairing);
+    inputs.kept_covers = kept.covers(inSwept, inThreads);
   }
-  const bool same_shape = previous_valid && static_split.compared() &&
-                          previous_boxes.groups.size() == inBoxes.groups.size() &&
-                          previous_boxes.masks.size() == inBoxes.masks.size();
-  if (!same_shape) {
-    previous_boxes = inBoxes;  // vectors keep their capacity
-  } else {
-    // Same ids in the same order: only the boxes that changed need copying.
-    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-      if (static_split.unchanged(i)) continue;
-      for (int axis = 0; axis < 3; ++axis) {
-        previous_boxes.lo[axis][i] = inBoxes.lo[axis][i];
-        previous_boxes.hi[axis][i] = inBoxes.hi[axis][i];
-      }
-      if (!inBoxes.groups.empty()) previous_boxes.groups[i] = inBoxes.groups[i];
-      if (!inBoxes.masks.empty()) previous_boxes.masks[i] = inBoxes.masks[i];
+  inputs.motion = recentMotion();
+  inputs.costs = costs;
+  return inputs;
+}
+
+void Broadphase::Impl::testKeptCandidates(const BoxSet& inSwept, int inThreads) {
+  double pass_ms = 0.0;
+  {
+    PhaseTimer timer(pass_ms);
+    kept.collect(inSwept, inThreads, pairs);
+  }
+  report.ms_pairing += pass_ms;
+  report.skin_candidates = kept.candidates();
+}
+
+// Sweeps the boxes grown by the plan's skin; its pairs become the kept candidates, and the
+// exact pairs are those of them that overlap now.
+void Broadphase::Impl::sweepGrown(const BoxSet& inSwept, const FramePlan& inPlan) {
+  {
+    PhaseTimer timer(report.ms_keys);
+    kept.inflate(inSwept, inPlan.sweep_skin, grown);
+  }
+  sweep.run(grown, inPlan.sweep_path, inPlan.threads, report, pairs);
+  {
+    PhaseTimer timer(report.ms_pairing);
+    kept.adopt(inSwept, pairs);
+  }
+  kept_skin = inPlan.sweep_skin;
+  testKeptCandidates(inSwept, inPlan.threads);
+}
+
+void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
+                               const BoxSet& inSwept) {
+  switch (inPlan.work) {
+    case FrameWork::kEmpty:
+      pairs.clear();
+      break;
+    case FrameWork::kReuse:
+      break;  // pairs still hold this very frame's pairs
+    case FrameWork::kBruteForce: {
+      PhaseTimer timer(report.ms_pairing);
+      pairs = bruteForcePairs(inBoxes);
+      break;
     }
+    case FrameWork::kKeptCandidates:
+      testKeptCandidates(inSwept, inPlan.threads);
+      break;
+    case FrameWork::kSweep:
+      if (inPlan.sweep_skin > 0.0) {
+        sweepGrown(inSwept, inPlan);
+      } else {
+        kept.clear();
+        sweep.run(inSwept, inPlan.sweep_path, inPlan.threads, report, pairs);
+      }
+      break;
   }
-  previous_valid = true;
 }
 
-void Broadphase::Impl::sweepIntoPairs(const BoxSet& inBoxes, FramePath inPath, int inThreads) {
-  sweepAndPrune(inBoxes, inPath, inThreads);
-  const Clock::time_point phase = Clock::now();
-  // Each thread's pairs are disjoint from the others': merging them is the whole set. The
-  // sweep order is dead by now: the sort borrows its memory for its histogram.
-  std::swap(sweep_order, pair_scratch.offsets);
-  sortPairsCanonical(pairs_per_thread, pairs, pair_scratch);
-  std::swap(sweep_order, pair_scratch.offsets);
-  stats.ms_output = millisecondsSince(phase);
-}
-
-// Skin reuse: test the kept candidates when every box is inside its skin, else sweep the
-// grown boxes for new candidates first.
-void Broadphase::Impl::skinFrame(const BoxSet& inBoxes, int inThreads) {
-  Clock::time_point phase = Clock::now();
-  if (skin_list.covers(inBoxes, inThreads)) {
-    stats.path = FramePath::kSkin;
-    stats.threads = inThreads;
-  } else {
-    skin_list.inflate(inBoxes, *config.skin, inflated);
-    stats.ms_keys += millisecondsSince(phase);
-    sweepIntoPairs(inflated, stats.path, inThreads);
-    skin_list.adopt(inBoxes, pairs);
-  }
-  phase = Clock::now();
-  skin_list.collect(inBoxes, inThreads, pairs);
-  stats.ms_pairing += millisecondsSince(phase);
-  stats.skin_candidates = skin_list.candidates();
-}
-
-// Static boxes: when the index covers part of the frame, sweep only the moving boxes and ask
-// the index for their pairs with the resting ones.
-bool Broadphase::Impl::staticFrame(const BoxSet& inBoxes, int inThreads) {
-  if (!config.index_static_boxes || !previous_valid) return false;
-  Clock::time_point phase = Clock::now();
-  const bool split = static_split.prepare(inBoxes, previous_boxes, inThreads);
-  stats.ms_keys += millisecondsSince(phase);
-  if (!split) return false;
-  const BoxSet& moving = static_split.moving();
-  const FramePath sweep_path = choosePath(moving.size(), inThreads);
-  if (sweep_path == FramePath::kSequential || sweep_path == FramePath::kParallel)
-    sweepIntoPairs(moving, sweep_path, inThreads);
-  else
-    pairs = bruteForcePairs(moving);  // fewer than two boxes, or the brute-force method
-  phase = Clock::now();
-  static_split.crossPairs(inBoxes, inThreads, pairs);
+void Broadphase::Impl::addRestingPairs(const BoxSet& inBoxes, int inThreads) {
+  if (resting.indexedBoxes() == 0) return;
+  PhaseTimer timer(report.ms_static);
+  resting.crossPairs(inBoxes, inThreads, pairs);
   sortPairsCanonical(pairs, pair_scratch);
-  stats.ms_pairing += millisecondsSince(phase);
-  stats.path = FramePath::kStatic;
-  stats.threads = inThreads;
-  stats.static_boxes = static_split.indexedBoxes();
-  return true;
+  report.static_boxes += resting.indexedBoxes();
 }
 
 // Pairs between this frame's boxes and the declared scenery, merged into canonical order.
-void Broadphase::Impl::addDeclaredStaticPairs(const BoxSet& inBoxes, int inThreads) {
-  if (declared_static.size() == 0 || inBoxes.size() == 0) return;
-  const Clock::time_point phase = Clock::now();
-  all_indexes.resize(inBoxes.size());
-  for (std::size_t i = 0; i < all_indexes.size(); ++i) all_indexes[i] = static_cast<uint32_t>(i);
+void Broadphase::Impl::addSceneryPairs(const BoxSet& inBoxes, int inThreads) {
+  if (scenery.size() == 0) return;
+  PhaseTimer timer(report.ms_static);
+  report.static_boxes += scenery.size();
+  if (inBoxes.size() == 0) return;
+  every_box.resize(inBoxes.size());
+  for (std::size_t i = 0; i < every_box.size(); ++i) every_box[i] = static_cast<uint32_t>(i);
   const std::size_t before = pairs.size();
-  declared_static.queryAll(inBoxes, all_indexes, inThreads, pairs);
+  scenery.queryAll(inBoxes, every_box, inThreads, pairs);
   if (pairs.size() != before) sortPairsCanonical(pairs, pair_scratch);
-  stats.static_boxes += declared_static.size();
-  stats.ms_static = millisecondsSince(phase);
 }
 
-Broadphase::Broadphase(const BroadphaseConfig& inConfig) : impl_(std::make_unique<Impl>()) {
+// What this frame's work cost, for the automatic skin's next choice.
+void Broadphase::Impl::learnCosts(const FramePlan& inPlan, const BoxSet& inSwept,
+                                  std::size_t inSweepPairs) {
+  const double boxes = static_cast<double>(inSwept.size());
+  if (inPlan.work == FrameWork::kSweep && inSwept.size() >= tuning::kMinSkinBoxes) {
+    const double candidates =
+        static_cast<double>(inPlan.sweep_skin > 0.0 ? kept.candidates() : inSweepPairs);
+    costs.sweep_ns_per_box = (report.ms_keys + report.ms_sort + report.ms_candidates) * 1e6 / boxes;
+    costs.pairing_ns_per_item = (report.ms_pairing + report.ms_output) * 1e6 / (boxes + candidates);
+    costs.reference_boxes = inSwept.size();
+    costs.reference_candidates = candidates;
+    costs.reference_skin = inPlan.sweep_skin;
+    measureExtents(inSwept, costs);
+  }
+  if (inPlan.work == FrameWork::kKeptCandidates && kept.candidates() > 0) {
+    // The whole pass is charged to its candidates and boxes in the proportion of the
+    // initial estimates; what matters to the model is the pass's total at this size.
+    const double estimate = tuning::kInitialNsPerBox * boxes +
+                            tuning::kInitialNsPerCandidate * static_cast<double>(kept.candidates());
+    const double scale = report.ms_pairing * 1e6 / estimate;
+    costs.pass_ns_per_box = smoothed(costs.pass_ns_per_box, tuning::kInitialNsPerBox * scale);
+    costs.pass_ns_per_candidate =
+        smoothed(costs.pass_ns_per_candidate, tuning::kInitialNsPerCandidate * scale);
+  }
+}
+
+void Broadphase::Impl::rememberMotion(const FrameDelta& inDelta) {
+  if (!inDelta.sameIds()) {
+    for (double& motion : recent_motion) motion = 0.0;
+    return;
+  }
+  recent_motion[motion_slot] = inDelta.max_displacement;
+  motion_slot = (motion_slot + 1) % tuning::kMotionWindow;
+}
+
+double Broadphase::Impl::recentMotion() const {
+  return *std::max_element(std::begin(recent_motion), std::end(recent_motion));
+}
+
+// Buffers sized for a burst of large frames are given back once frames have stayed much
+// smaller for a while; the next frame sizes them again.
+void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
+  const bool small = inBoxes * tuning::kShrinkRatio < sweep.capacityBoxes();
+  small_frames = small ? small_frames + 1 : 0;
+  if (small_frames < tuning::kShrinkAfterSmallFrames) return;
+  small_frames = 0;
+  sweep.releaseBuffers();
+  history.shrinkToFit();
+  grown = BoxSet();
+  collidable = BoxSet();
+  pairs.shrink_to_fit();
+  pair_scratch = PairSortScratch();
+}
+
+Broadphase::Broadphase(const BroadphaseConfig& inConfig) {
   if (auto problem = configProblem(inConfig)) throw std::invalid_argument(*problem);
-  impl_->config = inConfig;
+  impl_ = std::make_unique<Impl>(inConfig);
 }
 
 Broadphase::~Broadphase() = default;
@@ -447,90 +370,85 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 
 const PairList& Broadphase::update(const BoxSet& inBoxes) {
   Impl& impl = *impl_;
-  const Clock::time_point start = Clock::now();
-  const int threads = resolveThreadCount(impl.config.threads);
-  FrameReport& stats = impl.stats;
-  const FrameReport previous_stats = stats;
-  stats = FrameReport();
-  stats.boxes = inBoxes.size();
-  const BoxSet& boxes = impl.dropBoxesThatCollideWithNothing(inBoxes);
-  stats.primary_axis = impl.config.primary_axis;
-  stats.secondary_axis = impl.config.secondary_axis;
-  stats.path = impl.choosePath(boxes.size(), threads);
-  stats.threads = stats.path == FramePath::kParallel ? threads : 1;
-  if ((stats.path == FramePath::kSequential || stats.path == FramePath::kParallel) &&
-      impl.sameAsPreviousFrame(boxes)) {
-    stats.path = FramePath::kReused;
-    stats.threads = 1;
-    stats.dispersion_primary = previous_stats.dispersion_primary;
-    stats.dispersion_secondary = previous_stats.dispersion_secondary;
-    stats.slabs = previous_stats.slabs;
-  }
-
-  switch (stats.path) {
-    case FramePath::kEmpty:
-      impl.pairs.clear();
-      break;
-    case FramePath::kReused:
-      break;  // impl.pairs still holds this very frame's pairs
-    case FramePath::kBruteForce: {
-      const Clock::time_point phase = Clock::now();
-      impl.pairs = bruteForcePairs(boxes);
-      stats.ms_pairing = millisecondsSince(phase);
-      break;
+  const FrameReport last_report = impl.report;
+  FrameReport& report = impl.report;
+  report = FrameReport();
+  {
+    PhaseTimer total(report.ms_total);
+    report.boxes = inBoxes.size();
+    const int threads = resolveThreadCount(impl.config.threads);
+    const BoxSet& boxes = impl.dropBoxesThatPairWithNothing(inBoxes);
+    const FrameDelta delta = [&] {
+      PhaseTimer timer(report.ms_history);
+      return impl.history.compare(boxes, threads);
+    }();
+    impl.rememberMotion(delta);
+    const BoxSet& swept = impl.setAsideRestingBoxes(boxes, delta, threads);
+    const FramePlan plan = planFrame(impl.planInputs(boxes, swept, delta, threads));
+    impl.execute(plan, boxes, swept);
+    const std::size_t sweep_pairs = impl.pairs.size();
+    if (plan.work != FrameWork::kReuse) {
+      impl.addRestingPairs(boxes, threads);
+      impl.addSceneryPairs(boxes, threads);
     }
-    case FramePath::kSequential:
-    case FramePath::kParallel:
-      if (impl.staticFrame(boxes, threads)) break;
-      if (impl.config.skin.value_or(0.0) > 0)
-        impl.skinFrame(boxes, threads);
-      else
-        impl.sweepIntoPairs(boxes, stats.path, threads);
-      break;
-    case FramePath::kSkin:
-    case FramePath::kStatic:
-      break;  // decided and computed inside skinFrame() and staticFrame()
+    {
+      PhaseTimer timer(report.ms_history);
+      impl.history.remember(boxes);
+    }
+    impl.pairs_valid = true;
+    impl.learnCosts(plan, swept, sweep_pairs);
+    impl.giveBackMemoryAfterBursts(boxes.size());
+    report.path = framePathOf(plan, impl.resting.indexedBoxes() > 0);
+    report.threads = plan.threads;
+    report.skin = plan.skin;
+    report.skin_choice = plan.skin_choice;
+    report.moved_boxes = delta.moved_boxes;
+    report.max_displacement = delta.max_displacement;
+    report.pairs = impl.pairs.size();
+    if (plan.work != FrameWork::kSweep) {
+      // No sort ran: the sweep's measures of the last sorted frame still describe it.
+      report.dispersion_primary = last_report.dispersion_primary;
+      report.dispersion_secondary = last_report.dispersion_secondary;
+      report.slabs = last_report.slabs;
+      report.primary_axis = impl.sweep.primaryAxis();
+      report.secondary_axis = impl.sweep.secondaryAxis();
+      if (plan.work == FrameWork::kReuse) report.static_boxes = last_report.static_boxes;
+    }
+    impl.config.primary_axis = impl.sweep.primaryAxis();
+    impl.config.secondary_axis = impl.sweep.secondaryAxis();
   }
-  if (stats.path != FramePath::kReused) {
-    impl.rememberFrame(boxes, stats.path);
-    impl.addDeclaredStaticPairs(boxes, threads);
-  } else {
-    stats.static_boxes = previous_stats.static_boxes;
-  }
-  stats.pairs = impl.pairs.size();
-  stats.ms_total = millisecondsSince(start);
   return impl.pairs;
 }
 
-void Broadphase::setStaticBoxes(const BoxSet& inStaticBoxes) {
-  std::vector<uint32_t> every_box(inStaticBoxes.size());
-  for (std::size_t i = 0; i < every_box.size(); ++i) every_box[i] = static_cast<uint32_t>(i);
-  impl_->declared_static.build(inStaticBoxes, every_box, resolveThreadCount(impl_->config.threads));
-  impl_->previous_reusable = false;  // the last pairs were computed against other scenery
-}
-
-void Broadphase::clearStaticBoxes() {
-  impl_->declared_static = StaticIndex();
-  impl_->previous_reusable = false;
-}
-
-std::size_t Broadphase::staticBoxCount() const {
-  return impl_->declared_static.size();
-}
-
 const FrameReport& Broadphase::stats() const {
-  return impl_->stats;
+  return impl_->report;
 }
 const BroadphaseConfig& Broadphase::config() const {
   return impl_->config;
 }
 
 void Broadphase::reset() {
-  for (AxisBounds& axis_bounds : impl_->bounds) axis_bounds.from_previous_frame = false;
-  impl_->previous_reusable = false;
-  impl_->skin_list.clear();
-  impl_->static_split.clear();
-  impl_->previous_valid = false;
+  impl_->sweep.forgetCoherence();
+  impl_->history.forget();
+  impl_->kept.clear();
+  impl_->resting.clear();
+  impl_->pairs_valid = false;
+}
+
+void Broadphase::setStaticBoxes(const BoxSet& inStaticBoxes) {
+  std::vector<uint32_t> every_box(inStaticBoxes.size());
+  for (std::size_t i = 0; i < every_box.size(); ++i) every_box[i] = static_cast<uint32_t>(i);
+  impl_->scenery.build(inStaticBoxes, every_box, resolveThreadCount(impl_->config.threads));
+  impl_->pairs_valid = false;  // the last pairs were computed against other scenery
+}
+
+void Broadphase::clearStaticBoxes() {
+  impl_->scenery = StaticIndex();
+  impl_->pairs_valid = false;
+}
+
+std::size_t Broadphase::staticBoxCount() const {
+  return impl_->scenery.size();
 }
 
 }  // namespace sap_broadphase

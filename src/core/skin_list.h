@@ -29,6 +29,8 @@ class SkinList {
   /// The candidates that overlap exactly in inBoxes (filters are already honoured by the
   /// candidates), in canonical order.
   void collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs);
+  /// True while candidates are kept (after adopt(), until clear() or the next inflate()).
+  bool valid() const { return valid_; }
   /// Number of candidate pairs kept.
   std::size_t candidates() const { return candidate_indexes_.size(); }
   /// Forgets the candidates (the next frame sweeps).

@@ -9,10 +9,6 @@ namespace {
 // Most distinct group/mask classes looked at among the unchanged boxes.
 constexpr std::size_t kMaxFilterClasses = 64;
 
-bool sameBits(double inA, double inB) {
-  return std::memcmp(&inA, &inB, sizeof inA) == 0;
-}
-
 }  // namespace
 
 void StaticSplit::clear() {
@@ -21,19 +17,17 @@ void StaticSplit::clear() {
   left_ = 0;
 }
 
-bool StaticSplit::prepare(const BoxSet& inBoxes, const BoxSet& inPrevious, int inThreads) {
+bool StaticSplit::prepare(const BoxSet& inBoxes, const std::vector<uint8_t>& inUnchanged,
+                          int inThreads) {
   const std::size_t n = inBoxes.size();
-  compared_ = false;
-  if (n < kMinIndexedBoxes || inPrevious.size() != n ||
-      std::memcmp(inPrevious.ids.data(), inBoxes.ids.data(), n * sizeof(uint32_t)) != 0) {
+  if (n < kMinIndexedBoxes || inUnchanged.size() != n) {
     clear();
     return false;
   }
-  findUnchanged(inBoxes, inPrevious, inThreads);
-  compared_ = true;
+  if (active_ && indexed_.size() != n) clear();
   if (active_) {
     for (std::size_t i = 0; i < n; ++i) {
-      if (indexed_[i] && !unchanged_[i]) {
+      if (indexed_[i] && !inUnchanged[i]) {
         index_.remove(inBoxes.ids[i]);
         indexed_[i] = 0;
         ++left_;
@@ -43,10 +37,10 @@ bool StaticSplit::prepare(const BoxSet& inBoxes, const BoxSet& inPrevious, int i
   std::size_t resting = 0;  // unchanged boxes of indexable classes not in the index yet
   if (active_)
     for (std::size_t i = 0; i < n; ++i)
-      resting += unchanged_[i] && !indexed_[i] && inChosenClass(inBoxes, i);
+      resting += inUnchanged[i] && !indexed_[i] && inChosenClass(inBoxes, i);
   const std::size_t quarter = built_size_ / 4;
   if (!active_ || left_ > quarter || resting > std::max(kMinIndexedBoxes, quarter)) {
-    if (!rebuild(inBoxes, inThreads)) {
+    if (!rebuild(inBoxes, inUnchanged, inThreads)) {
       clear();
       return false;
     }
@@ -55,26 +49,13 @@ bool StaticSplit::prepare(const BoxSet& inBoxes, const BoxSet& inPrevious, int i
   return true;
 }
 
-void StaticSplit::findUnchanged(const BoxSet& inBoxes, const BoxSet& inPrevious, int inThreads) {
-  const std::size_t n = inBoxes.size();
-  unchanged_.resize(n);
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    bool same = inBoxes.group(i) == inPrevious.group(i) && inBoxes.mask(i) == inPrevious.mask(i);
-    for (int axis = 0; axis < 3 && same; ++axis)
-      same = sameBits(inBoxes.lo[axis][i], inPrevious.lo[axis][i]) &&
-             sameBits(inBoxes.hi[axis][i], inPrevious.hi[axis][i]);
-    unchanged_[i] = same;
-  }
-}
-
 // Picks group/mask classes of unchanged boxes, largest first, such that no box of a chosen
 // class can pair with a box of the same or another chosen class.
-bool StaticSplit::chooseClasses(const BoxSet& inBoxes) {
+bool StaticSplit::chooseClasses(const BoxSet& inBoxes, const std::vector<uint8_t>& inUnchanged) {
   std::vector<FilterClass> classes;
   std::size_t last = 0;
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    if (!unchanged_[i]) continue;
+    if (!inUnchanged[i]) continue;
     const uint32_t group = inBoxes.group(i), mask = inBoxes.mask(i);
     if (last >= classes.size() || classes[last].group != group || classes[last].mask != mask) {
       last = 0;
@@ -90,7 +71,7 @@ bool StaticSplit::chooseClasses(const BoxSet& inBoxes) {
   std::sort(classes.begin(), classes.end(),
             [](const FilterClass& inA, const FilterClass& inB) { return inA.boxes > inB.boxes; });
   const auto cannotPair = [](const FilterClass& inA, const FilterClass& inB) {
-    return (inA.group & inB.mask) == 0 || (inB.group & inA.mask) == 0;
+    return !groupsMayPair(inA.group, inA.mask, inB.group, inB.mask);
   };
   chosen_classes_.clear();
   for (const FilterClass& candidate : classes) {
@@ -108,12 +89,13 @@ bool StaticSplit::inChosenClass(const BoxSet& inBoxes, std::size_t inBox) const 
   return false;
 }
 
-bool StaticSplit::rebuild(const BoxSet& inBoxes, int inThreads) {
-  if (!chooseClasses(inBoxes)) return false;
+bool StaticSplit::rebuild(const BoxSet& inBoxes, const std::vector<uint8_t>& inUnchanged,
+                          int inThreads) {
+  if (!chooseClasses(inBoxes, inUnchanged)) return false;
   const std::size_t n = inBoxes.size();
   members_.clear();
   for (std::size_t i = 0; i < n; ++i)
-    if (unchanged_[i] && inChosenClass(inBoxes, i)) members_.push_back(static_cast<uint32_t>(i));
+    if (inUnchanged[i] && inChosenClass(inBoxes, i)) members_.push_back(static_cast<uint32_t>(i));
   if (members_.size() < std::max(kMinIndexedBoxes, n / 4)) return false;
   index_.build(inBoxes, members_, inThreads);
   indexed_.assign(n, 0);

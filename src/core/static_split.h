@@ -23,20 +23,16 @@ class StaticSplit {
   /// Fewest indexed boxes worth an index.
   static constexpr std::size_t kMinIndexedBoxes = 4096;
 
-  /// Compares inBoxes with inPrevious (the last frame) and updates the index. True when this
+  /// Updates the index from inUnchanged (per box of inBoxes, 1 when bit for bit as in the
+  /// last frame, same ids in the same order: the frame history's delta). True when this
   /// frame uses it: then sweep moving() and add crossPairs().
-  bool prepare(const BoxSet& inBoxes, const BoxSet& inPrevious, int inThreads);
+  bool prepare(const BoxSet& inBoxes, const std::vector<uint8_t>& inUnchanged, int inThreads);
   /// The boxes not in the index, as a box set of their own.
   const BoxSet& moving() const { return moving_; }
   /// Appends every pair between a moving box and an indexed box.
   void crossPairs(const BoxSet& inBoxes, int inThreads, PairList& ioPairs) const;
   /// Boxes answering from the index this frame.
   std::size_t indexedBoxes() const { return active_ ? index_.size() : 0; }
-  /// True for box i when it is bit-for-bit unchanged since the previous frame (valid after a
-  /// prepare() that compared the frames).
-  bool unchanged(std::size_t inBox) const { return unchanged_[inBox] != 0; }
-  /// True when the last prepare() compared the frames box by box.
-  bool compared() const { return compared_; }
   /// Drops the index.
   void clear();
 
@@ -46,19 +42,16 @@ class StaticSplit {
     uint32_t mask;
     std::size_t boxes;
   };
-  void findUnchanged(const BoxSet& inBoxes, const BoxSet& inPrevious, int inThreads);
-  bool chooseClasses(const BoxSet& inBoxes);
+  bool chooseClasses(const BoxSet& inBoxes, const std::vector<uint8_t>& inUnchanged);
   bool inChosenClass(const BoxSet& inBoxes, std::size_t inBox) const;
-  bool rebuild(const BoxSet& inBoxes, int inThreads);
+  bool rebuild(const BoxSet& inBoxes, const std::vector<uint8_t>& inUnchanged, int inThreads);
   void collectMoving(const BoxSet& inBoxes);
 
   StaticIndex index_;
   bool active_ = false;
-  bool compared_ = false;
-  std::vector<uint8_t> unchanged_;  // per box of this frame
-  std::vector<uint8_t> indexed_;    // per box: answering from the index
-  std::size_t built_size_ = 0;      // boxes indexed at the last build
-  std::size_t left_ = 0;            // of those, how many moved since
+  std::vector<uint8_t> indexed_;  // per box: answering from the index
+  std::size_t built_size_ = 0;    // boxes indexed at the last build
+  std::size_t left_ = 0;          // of those, how many moved since
   std::vector<FilterClass> chosen_classes_;
   std::vector<uint32_t> members_;         // scratch: boxes to index
   std::vector<uint32_t> moving_indexes_;  // boxes not indexed, by position in the frame

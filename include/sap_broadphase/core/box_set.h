@@ -68,9 +68,17 @@ inline bool boxesOverlap(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
   return true;
 }
 
-/// True when the group/mask filter lets a and b collide (both directions must agree).
+/// The group/mask rule: two boxes may pair when each one's group meets the other's mask
+/// (both directions must agree, as in Box2D's and Bullet's filters). A box with group 0 or
+/// mask 0 pairs with nothing.
+inline bool groupsMayPair(uint32_t inGroupA, uint32_t inMaskA, uint32_t inGroupB,
+                          uint32_t inMaskB) {
+  return (inGroupA & inMaskB) != 0 && (inGroupB & inMaskA) != 0;
+}
+
+/// True when the group/mask filter lets boxes a and b of inBoxes collide.
 inline bool filtersAllow(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
-  return (inBoxes.group(a) & inBoxes.mask(b)) != 0 && (inBoxes.group(b) & inBoxes.mask(a)) != 0;
+  return groupsMayPair(inBoxes.group(a), inBoxes.mask(a), inBoxes.group(b), inBoxes.mask(b));
 }
 
 }  // namespace sap_broadphase

@@ -1,0 +1,109 @@
+#include "core/frame_history.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace sap_broadphase {
+namespace {
+
+template <typename T>
+bool sameElements(const std::vector<T>& inA, const std::vector<T>& inB) {
+  return inA.size() == inB.size() &&
+         (inA.empty() || std::memcmp(inA.data(), inB.data(), inA.size() * sizeof(T)) == 0);
+}
+
+bool sameBits(double inA, double inB) {
+  return std::memcmp(&inA, &inB, sizeof inA) == 0;
+}
+
+// How far one bound moved: 0 when bit for bit equal, infinite when it left or reached an
+// infinity (no finite skin covers that).
+double boundChange(double inNow, double inBefore) {
+  if (sameBits(inNow, inBefore)) return 0.0;
+  const double change = std::fabs(inNow - inBefore);
+  return std::isnan(change) ? HUGE_VAL : change;
+}
+
+}  // namespace
+
+const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
+  delta_ = FrameDelta();
+  if (!valid_) return delta_;
+  delta_.relation = FrameRelation::kOtherIds;
+  if (!sameElements(last_.ids, inBoxes.ids) || last_.groups.empty() != inBoxes.groups.empty() ||
+      last_.masks.empty() != inBoxes.masks.empty())
+    return delta_;
+  compareBoxByBox(inBoxes, inThreads);
+  delta_.relation = delta_.moved_boxes == 0 ? FrameRelation::kIdentical : FrameRelation::kSameIds;
+  delta_.unchanged = &unchanged_;
+  return delta_;
+}
+
+void FrameHistory::compareBoxByBox(const BoxSet& inBoxes, int inThreads) {
+  const std::size_t n = inBoxes.size();
+  unchanged_.resize(n);
+  std::size_t moved = 0, filters_changed = 0;
+  double max_displacement = 0.0;
+#pragma omp parallel for num_threads(inThreads) schedule(static) \
+    reduction(+ : moved, filters_changed) reduction(max : max_displacement)
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool same_filter = inBoxes.group(i) == last_.group(i) && inBoxes.mask(i) == last_.mask(i);
+    double displacement = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+      displacement = std::max({displacement, boundChange(inBoxes.lo[axis][i], last_.lo[axis][i]),
+                               boundChange(inBoxes.hi[axis][i], last_.hi[axis][i])});
+    // A bound that changed by less than the smallest double (0.0 to -0.0) still changed.
+    bool same_bounds = displacement == 0.0;
+    for (int axis = 0; axis < 3 && same_bounds; ++axis)
+      same_bounds = sameBits(inBoxes.lo[axis][i], last_.lo[axis][i]) &&
+                    sameBits(inBoxes.hi[axis][i], last_.hi[axis][i]);
+    const bool unchanged = same_filter && same_bounds;
+    unchanged_[i] = unchanged;
+    moved += !unchanged;
+    filters_changed += !same_filter;
+    max_displacement = std::max(max_displacement, displacement);
+  }
+  delta_.moved_boxes = moved;
+  delta_.filters_changed = filters_changed != 0;
+  delta_.max_displacement = max_displacement;
+}
+
+void FrameHistory::remember(const BoxSet& inBoxes) {
+  if (!valid_ || delta_.relation == FrameRelation::kFirst ||
+      delta_.relation == FrameRelation::kOtherIds || unchanged_.size() != inBoxes.size()) {
+    last_ = inBoxes;  // vectors keep their capacity
+    valid_ = true;
+    return;
+  }
+  if (delta_.relation == FrameRelation::kIdentical) return;
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    if (unchanged_[i]) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      last_.lo[axis][i] = inBoxes.lo[axis][i];
+      last_.hi[axis][i] = inBoxes.hi[axis][i];
+    }
+    if (!inBoxes.groups.empty()) last_.groups[i] = inBoxes.groups[i];
+    if (!inBoxes.masks.empty()) last_.masks[i] = inBoxes.masks[i];
+  }
+}
+
+void FrameHistory::forget() {
+  valid_ = false;
+  delta_ = FrameDelta();
+}
+
+void FrameHistory::shrinkToFit() {
+  last_ = BoxSet(last_);  // a copy holds only what is used
+  unchanged_.shrink_to_fit();
+}
+
+std::size_t FrameHistory::memoryBytes() const {
+  std::size_t bytes = last_.ids.capacity() * sizeof(uint32_t) + unchanged_.capacity();
+  for (int axis = 0; axis < 3; ++axis)
+    bytes += (last_.lo[axis].capacity() + last_.hi[axis].capacity()) * sizeof(double);
+  bytes += (last_.groups.capacity() + last_.masks.capacity()) * sizeof(uint32_t);
+  return bytes;
+}
+
+}  // namespace sap_broadphase

@@ -1,0 +1,169 @@
+#include "core/frame_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/tuning.h"
+
+namespace sap_broadphase {
+namespace {
+
+// Candidates a sweep of inBoxes boxes grown by inSkin would find if the boxes were spread
+// uniformly over the frame: two boxes are candidates when their grown intervals overlap on
+// every axis, on one axis with probability (sum of extents + skin) / span.
+double uniformCandidates(const SkinCosts& inCosts, double inBoxes, double inSkin) {
+  double pairs = inBoxes * (inBoxes - 1.0) / 2.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double reach = 2.0 * inCosts.mean_extent[axis] + inSkin;
+    const double span = inCosts.span[axis];
+    pairs *= span > 0.0 ? std::min(1.0, reach / span) : 1.0;
+  }
+  return pairs;
+}
+
+// Expected candidates at skin inSkin: the uniform estimate, scaled up by how much more the
+// last sweep found than that estimate at its own skin (clustered scenes), never down (a
+// sweep that found no pair says little about how many a grown one would find).
+double expectedCandidates(const SkinCosts& inCosts, double inBoxes, double inSkin) {
+  const double reference_boxes = static_cast<double>(inCosts.reference_boxes);
+  const double reference_estimate =
+      uniformCandidates(inCosts, reference_boxes, inCosts.reference_skin);
+  const double clustering = reference_estimate > 0.0
+                                ? std::max(1.0, inCosts.reference_candidates / reference_estimate)
+                                : 1.0;
+  return uniformCandidates(inCosts, inBoxes, inSkin) * clustering;
+}
+
+// Expected nanoseconds of a sweep of inBoxes boxes grown by inSkin, and the candidates found.
+double sweepNs(const SkinCosts& inCosts, double inBoxes, double inSkin, double& outCandidates) {
+  outCandidates = expectedCandidates(inCosts, inBoxes, inSkin);
+  return inCosts.sweep_ns_per_box * inBoxes +
+         inCosts.pairing_ns_per_item * (inBoxes + outCandidates);
+}
+
+// Expected nanoseconds a frame of a cycle at skin inSkin: one sweep of the grown boxes, then
+// kept-candidate passes until a box has moved half the skin (the sweep frame passes too).
+double cycleNsPerFrame(const SkinCosts& inCosts, double inBoxes, double inSkin, double inMotion) {
+  double candidates = 0.0;
+  const double sweep_ns = sweepNs(inCosts, inBoxes, inSkin, candidates);
+  const double pass_ns =
+      inCosts.pass_ns_per_box * inBoxes + inCosts.pass_ns_per_candidate * candidates;
+  const double frames = 1.0 + std::floor(inSkin / (2.0 * inMotion));
+  return (sweep_ns + frames * pass_ns) / frames;
+}
+
+}  // namespace
+
+FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads) {
+  switch (inConfig.method) {
+    case Method::kParallel:
+      return FramePath::kParallel;
+    case Method::kSequential:
+    case Method::kBruteForce:
+      return FramePath::kSequential;
+    case Method::kAuto:
+      break;
+  }
+  return inThreads == 1 || inBoxes < inConfig.parallel_min_boxes ? FramePath::kSequential
+                                                                 : FramePath::kParallel;
+}
+
+double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts,
+                  SkinChoice& outChoice) {
+  outChoice = SkinChoice::kNotWorthIt;
+  if (inBoxes < tuning::kMinSkinBoxes || inCosts.reference_boxes == 0 || !(inMotion > 0.0))
+    return 0.0;
+  outChoice = SkinChoice::kTooFast;
+  if (!std::isfinite(inMotion)) return 0.0;
+  SkinCosts costs = inCosts;
+  if (costs.pass_ns_per_box <= 0.0) {
+    costs.pass_ns_per_box = tuning::kInitialNsPerBox;
+    costs.pass_ns_per_candidate = tuning::kInitialNsPerCandidate;
+  }
+  const double boxes = static_cast<double>(inBoxes);
+  double plain_candidates = 0.0;
+  double best_skin = 0.0;
+  double best_ns = tuning::kSkinWorthIt * sweepNs(costs, boxes, 0.0, plain_candidates);
+  const double widest_box =
+      *std::max_element(std::begin(inCosts.mean_extent), std::end(inCosts.mean_extent));
+  for (double motions : tuning::kSkinInMotions) {
+    const double skin = motions * inMotion;
+    if (skin > tuning::kMaxSkinInExtents * widest_box) break;
+    const double ns = cycleNsPerFrame(costs, boxes, skin, inMotion);
+    if (ns < best_ns) {
+      best_ns = ns;
+      best_skin = skin;
+    }
+  }
+  if (best_skin > 0.0) outChoice = SkinChoice::kChosen;
+  return best_skin;
+}
+
+FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed) {
+  switch (inPlan.work) {
+    case FrameWork::kEmpty:
+      return FramePath::kEmpty;
+    case FrameWork::kBruteForce:
+      return FramePath::kBruteForce;
+    case FrameWork::kReuse:
+      return FramePath::kReused;
+    case FrameWork::kKeptCandidates:
+      return FramePath::kSkin;
+    case FrameWork::kSweep:
+      break;
+  }
+  return inRestingIndexed ? FramePath::kStatic : inPlan.sweep_path;
+}
+
+bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
+                     bool inLastPairsValid) {
+  return inConfig.reuse_unchanged_frames && inDelta.relation == FrameRelation::kIdentical &&
+         inLastPairsValid;
+}
+
+FramePlan planFrame(const PlanInputs& inInputs) {
+  const BroadphaseConfig& config = *inInputs.config;
+  const FrameDelta& delta = inInputs.delta;
+  FramePlan plan;
+  const bool skin_off = config.skin && *config.skin == 0.0;
+  const bool skin_fixed = config.skin && *config.skin > 0.0;
+  plan.skin_choice = skin_off ? SkinChoice::kOff : SkinChoice::kNotWorthIt;
+  if (inInputs.boxes < 2) return plan;  // kEmpty
+  if (config.method == Method::kBruteForce) {
+    plan.work = FrameWork::kBruteForce;
+    return plan;
+  }
+  if (reusesLastPairs(config, delta, inInputs.last_pairs_valid)) {
+    plan.work = FrameWork::kReuse;
+    if (inInputs.kept_candidates) plan.skin = inInputs.kept_skin;
+    plan.skin_choice = skin_fixed ? SkinChoice::kFixed : plan.skin_choice;
+    return plan;
+  }
+  plan.threads = inInputs.threads;
+  if (!skin_off && inInputs.kept_candidates && inInputs.kept_covers) {
+    plan.work = FrameWork::kKeptCandidates;
+    plan.skin = inInputs.kept_skin;
+    plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;
+    return plan;
+  }
+  plan.work = FrameWork::kSweep;
+  plan.sweep_path = sweepPath(config, inInputs.swept, inInputs.threads);
+  if (plan.sweep_path == FramePath::kSequential) plan.threads = 1;
+  if (skin_off) return plan;
+  if (skin_fixed) {
+    plan.sweep_skin = *config.skin;
+    plan.skin_choice = SkinChoice::kFixed;
+  } else if (delta.relation == FrameRelation::kFirst) {
+    plan.skin_choice = SkinChoice::kFirstFrame;
+  } else if (!delta.sameIds()) {
+    plan.skin_choice = SkinChoice::kIdsChanged;
+  } else {
+    plan.sweep_skin = chooseSkin(inInputs.motion, inInputs.swept, inInputs.costs, plan.skin_choice);
+  }
+  plan.skin = plan.sweep_skin;
+  // The kept-candidate passes of a grown sweep run on every thread.
+  if (plan.sweep_skin > 0.0) plan.threads = inInputs.threads;
+  return plan;
+}
+
+}  // namespace sap_broadphase

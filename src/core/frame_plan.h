@@ -1,0 +1,83 @@
+// The plan of a frame: which work computes it, decided from the configuration, what changed
+// since the last frame, the frame's size and the measured costs. A pure function, so every
+// choice the engine makes can be tested on its own (test_frame_plan.cpp).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/frame_history.h"
+#include "sap_broadphase/core/broadphase.h"
+
+namespace sap_broadphase {
+
+/// The work that computes a frame's pairs (besides the declared scenery, always queried).
+enum class FrameWork : uint8_t {
+  kEmpty,           ///< fewer than two boxes can pair
+  kBruteForce,      ///< all pairs tested
+  kReuse,           ///< identical to the last frame: its pairs stand
+  kKeptCandidates,  ///< every box inside its skin: test the kept candidates only
+  kSweep,           ///< sweep and prune (grown by a skin when sweep_skin > 0)
+};
+
+/// What earlier frames measured, for choosing a skin. A sweep costs a part per box (keys,
+/// sorts, candidate ranges) and a part per box and candidate (pairing, output); a
+/// kept-candidate pass a part per box (containment) and one per candidate (the exact test).
+struct SkinCosts {
+  double sweep_ns_per_box = 0.0;     ///< 0: no sweep measured yet
+  double pairing_ns_per_item = 0.0;  ///< per box + candidate of that sweep
+  double pass_ns_per_box = 0.0;      ///< 0: no pass measured yet
+  double pass_ns_per_candidate = 0.0;
+  std::size_t reference_boxes = 0;          ///< boxes of the last sweep
+  double reference_candidates = 0.0;        ///< pairs it found (of its grown boxes)
+  double reference_skin = 0.0;              ///< its skin
+  double mean_extent[3] = {0.0, 0.0, 0.0};  ///< mean finite box extent per axis, then
+  double span[3] = {0.0, 0.0, 0.0};         ///< extent of the frame's finite bounds per axis
+};
+
+/// Everything the plan depends on.
+struct PlanInputs {
+  const BroadphaseConfig* config = nullptr;
+  FrameDelta delta;
+  std::size_t boxes = 0;  ///< boxes that can pair (filtered)
+  std::size_t swept = 0;  ///< boxes left to sweep (after resting boxes went to an index)
+  int threads = 1;
+  bool last_pairs_valid = false;  ///< the output still holds the last frame's pairs
+  bool kept_candidates = false;   ///< a kept-candidate list exists for these boxes
+  bool kept_covers = false;       ///< every box is inside its grown box of that list
+  double kept_skin = 0.0;         ///< the skin of that list
+  double motion = 0.0;            ///< per-frame motion: recent largest displacement
+  SkinCosts costs;
+};
+
+/// The plan.
+struct FramePlan {
+  FrameWork work = FrameWork::kEmpty;
+  FramePath sweep_path = FramePath::kSequential;  ///< kSweep: kSequential or kParallel
+  int threads = 1;                                ///< threads the work uses
+  double sweep_skin = 0.0;                        ///< kSweep: grow boxes by this skin (0: plain)
+  double skin = 0.0;                              ///< skin of the candidates used this frame
+  SkinChoice skin_choice = SkinChoice::kOff;
+};
+
+/// The sequential or parallel sweep for inBoxes boxes (Method::kAuto's rule).
+FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
+
+/// True when the frame's pairs are the last frame's: identical boxes, reuse on, the last
+/// pairs still held.
+bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
+                     bool inLastPairsValid);
+
+/// Picks the work of a frame.
+FramePlan planFrame(const PlanInputs& inInputs);
+
+/// The path a frame reports for its plan (inRestingIndexed: resting boxes answered by their
+/// index this frame).
+FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed);
+
+/// The automatic skin for motion inMotion: the skin whose sweep-then-passes cycle the cost
+/// model expects cheapest per frame, or 0 when none beats a plain sweep. outChoice says why.
+double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts,
+                  SkinChoice& outChoice);
+
+}  // namespace sap_broadphase

@@ -1,0 +1,253 @@
+#include "core/sweep_and_prune.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/axis_policy.h"
+#include "core/buffers.h"
+#include "core/phase_timer.h"
+#include "core/sort_keys.h"
+#include "core/tuning.h"
+
+namespace sap_broadphase {
+namespace {
+
+// x - origin = outDifference + (returned error), exactly (TwoSum, Knuth), unless x is
+// infinite (then the error is NaN and the difference the same infinity).
+double differenceError(double inValue, double inOrigin, double& outDifference) {
+  const double difference = inValue - inOrigin;
+  const double back = difference - inValue;
+  outDifference = difference;
+  return (inValue - (difference - back)) + (-inOrigin - back);
+}
+
+bool isFloat(double inValue) {
+  return static_cast<double>(static_cast<float>(inValue)) == inValue;
+}
+
+// Smallest and largest finite value of inValues, or nothing finite (then low > high).
+void finiteSpan(const std::vector<double>& inValues, int inThreads, double& ioLow, double& ioHigh) {
+  double low = ioLow, high = ioHigh;
+  const std::size_t n = inValues.size();
+  const double* values = inValues.data();
+#pragma omp parallel for num_threads(inThreads) schedule(static) reduction(min    \
+                                                                           : low) \
+    reduction(max                                                                 \
+              : high)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(values[i])) continue;
+    low = std::min(low, values[i]);
+    high = std::max(high, values[i]);
+  }
+  ioLow = low;
+  ioHigh = high;
+}
+
+}  // namespace
+
+uint32_t KeyOrigin::low(int inAxis, double inValue) const {
+  double difference;
+  const double error = differenceError(inValue, origin[inAxis], difference);
+  uint32_t key = lowKey(difference);
+  // The difference was rounded up onto a float: the exact value lies below that float.
+  if (error < 0.0 && isFloat(difference)) key -= (key == kZeroKey) ? 2 : 1;
+  return key;
+}
+
+uint32_t KeyOrigin::high(int inAxis, double inValue) const {
+  double difference;
+  const double error = differenceError(inValue, origin[inAxis], difference);
+  uint32_t key = highKey(difference);
+  if (error > 0.0 && isFloat(difference)) key += (key == kZeroKey - 2) ? 2 : 1;
+  return key;
+}
+
+SweepAndPrune::SweepAndPrune(const BroadphaseConfig& inConfig)
+    : exact_final_test_(inConfig.exact_final_test),
+      axis_swapping_(inConfig.axis_swapping),
+      axis_swap_threshold_(inConfig.axis_swap_threshold),
+      third_axis_slabs_(inConfig.third_axis_slabs),
+      primary_axis_(inConfig.primary_axis),
+      secondary_axis_(inConfig.secondary_axis) {}
+
+void SweepAndPrune::forgetCoherence() {
+  for (int axis = 0; axis < 3; ++axis) {
+    bounds_[axis].from_previous_frame = false;
+    origin_placed_[axis] = false;
+  }
+}
+
+void SweepAndPrune::releaseBuffers() {
+  std::vector<uint64_t>().swap(endpoint_words_);
+  std::vector<uint32_t>().swap(sweep_order_);
+  ranges_ = CandidateRanges();
+  std::vector<RankedKeys>().swap(ranked_keys_);
+  std::vector<RankedFilter>().swap(ranked_filters_);
+  std::vector<RankedSlabs>().swap(ranked_slabs_);
+  workspace_ = SweepWorkspace();
+  sequential_tree_ = SuccTree();
+  pairs_per_thread_.clear();
+  pair_scratch_ = PairSortScratch();
+  sorter_ = PartitionedSorter();
+}
+
+// Each axis's origin is the centre of the frame's finite span, kept while the frame stays
+// around it (a moved origin shifts every key, and B with them).
+void SweepAndPrune::placeKeyOrigins(const BoxSet& inBoxes, int inThreads) {
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = HUGE_VAL, high = -HUGE_VAL;
+    finiteSpan(inBoxes.lo[axis], inThreads, low, high);
+    finiteSpan(inBoxes.hi[axis], inThreads, low, high);
+    if (!(low <= high)) continue;              // no finite bound: any origin serves
+    const double centre = low / 2 + high / 2;  // halves first: no overflow
+    const double half_span = high / 2 - low / 2;
+    const double drift = std::fabs(centre - key_origin_.origin[axis]);
+    if (origin_placed_[axis] && drift <= tuning::kOriginDriftInSpans * 2 * half_span) continue;
+    key_origin_.origin[axis] = centre;
+    origin_placed_[axis] = true;
+    bounds_[axis].from_previous_frame = false;  // B was measured in the old keys
+  }
+}
+
+// Keys of one axis (lows at i, highs at i + n), packed with their indexes, then Algorithm 2.
+// Returns D.
+double SweepAndPrune::sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
+                               FrameReport& ioReport) {
+  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
+  const std::size_t endpoints = 2 * std::size_t{n};
+  {
+    PhaseTimer timer(ioReport.ms_keys);
+    const double* low = inBoxes.lo[inAxis].data();
+    const double* high = inBoxes.hi[inAxis].data();
+    resizeDiscarding(endpoint_words_, 2 * endpoints);
+    resizeDiscarding(sweep_order_, endpoints);
+    uint64_t* packed = endpoint_words_.data();
+    const KeyOrigin origin = key_origin_;
+#pragma omp parallel for num_threads(inThreads) schedule(static)
+    for (uint32_t i = 0; i < n; ++i) {
+      packed[i] = packKeyIndex(origin.low(inAxis, low[i]), i);
+      packed[i + n] = packKeyIndex(origin.high(inAxis, high[i]), i + n);
+    }
+  }
+  PhaseTimer timer(ioReport.ms_sort);
+  uint64_t* packed = endpoint_words_.data();
+  const int partitions =
+      endpoints >= tuning::kMinPartitionedEndpoints ? tuning::kSortPartitions : 1;
+  return sorter_.sortPacked(packed, packed + endpoints, static_cast<uint32_t>(endpoints),
+                            partitions, inThreads, bounds_[inAxis], sweep_order_.data());
+}
+
+// Box data in primary-rank order, so a candidate range is a contiguous stretch of memory.
+void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, int inThreads) {
+  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
+  const bool filtered = inBoxes.hasFilters();
+  resizeDiscarding(ranked_keys_, n);
+  resizeDiscarding(ranked_filters_, filtered ? n : 0);
+  const int third_axis = unusedAxis(primary_axis_, secondary_axis_);
+  slab_grid_ = chooseSlabGrid(inBoxes, third_axis, third_axis_slabs_, inThreads);
+  const bool slabbed = slab_grid_.count > 1;
+  resizeDiscarding(ranked_slabs_, slabbed ? n : 0);
+  const double* third_low = inBoxes.lo[third_axis].data();
+  const double* third_high = inBoxes.hi[third_axis].data();
+  const KeyOrigin origin = key_origin_;
+  // Reads the boxes in input order (sequential streams of the SoA arrays) and writes each one's
+  // record at its rank: one scattered write a box instead of six scattered reads.
+  const RankRange* ranges_of_object = ranges_.of_object.data();
+#pragma omp parallel for num_threads(inThreads) schedule(static)
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t rank = ranges_of_object[i].rank;
+    RankedKeys& keys = ranked_keys_[rank];
+    for (int axis = 0; axis < 3; ++axis) {
+      keys.lo[axis] = origin.low(axis, inBoxes.lo[axis][i]);
+      keys.hi[axis] = origin.high(axis, inBoxes.hi[axis][i]);
+    }
+    if (slabbed)
+      ranked_slabs_[rank] = {static_cast<uint8_t>(slab_grid_.slabOf(third_low[i])),
+                             static_cast<uint8_t>(slab_grid_.slabOf(third_high[i]))};
+    if (filtered) ranked_filters_[rank] = {inBoxes.group(i), inBoxes.mask(i)};
+  }
+}
+
+void SweepAndPrune::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads,
+                         FrameReport& ioReport) {
+  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
+  buildSecondaryStream(sweep_order_.data(), n, ranges_, inThreads, endpoint_words_.data());
+  PairingInput input;
+  input.stream = endpoint_words_.data();
+  input.objects = n;
+  input.object_of_rank = ranges_.object_of_rank.data();
+  input.keys = ranked_keys_.data();
+  input.boxes = exact_final_test_ ? &inBoxes : nullptr;
+  input.filters = ranked_filters_.empty() ? nullptr : ranked_filters_.data();
+  input.ids = inBoxes.ids.data();
+  input.slabs = ranked_slabs_.empty() ? nullptr : ranked_slabs_.data();
+  input.slab_count = slab_grid_.count;
+  ioReport.slabs = slab_grid_.count;
+  if (inPath == FramePath::kSequential) {
+    pairs_per_thread_.resize(1);
+    pairs_per_thread_[0].clear();
+    pairSequential(input, workspace_, pairs_per_thread_[0]);
+  } else {
+    pairParallel(input, inThreads, workspace_, pairs_per_thread_);
+  }
+}
+
+void SweepAndPrune::run(const BoxSet& inBoxes, FramePath inPath, int inThreads,
+                        FrameReport& ioReport, PairList& outPairs) {
+  const uint32_t n = static_cast<uint32_t>(inBoxes.size());
+  ioReport.primary_axis = primary_axis_;
+  ioReport.secondary_axis = secondary_axis_;
+  if (n < 2) {
+    outPairs.clear();
+    return;
+  }
+  const int threads = inPath == FramePath::kParallel ? inThreads : 1;
+  {
+    PhaseTimer timer(ioReport.ms_keys);
+    placeKeyOrigins(inBoxes, threads);
+  }
+  const bool warm =
+      bounds_[primary_axis_].from_previous_frame && bounds_[secondary_axis_].from_previous_frame;
+
+  // The primary order is consumed by candidate generation before the secondary axis is
+  // sorted, so both orders share one buffer (sweep_order_).
+  ioReport.dispersion_primary = sortAxis(inBoxes, primary_axis_, threads, ioReport);
+  {
+    PhaseTimer timer(ioReport.ms_candidates);
+    if (inPath == FramePath::kParallel)
+      computeCandidatesParallel(sweep_order_.data(), n, threads, workspace_, ranges_);
+    else
+      computeCandidatesSequential(sweep_order_.data(), n, sequential_tree_, ranges_);
+  }
+  ioReport.dispersion_secondary = sortAxis(inBoxes, secondary_axis_, threads, ioReport);
+  {
+    PhaseTimer timer(ioReport.ms_pairing);
+    gatherByRank(inBoxes, threads);
+    pair(inBoxes, inPath, threads, ioReport);
+  }
+  {
+    PhaseTimer timer(ioReport.ms_output);
+    // Each thread's pairs are disjoint from the others': merging them is the whole set. The
+    // sweep order is dead by now: the sort borrows its memory for its histogram.
+    std::swap(sweep_order_, pair_scratch_.offsets);
+    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_);
+    std::swap(sweep_order_, pair_scratch_.offsets);
+  }
+  decideAxes(warm && axis_swapping_ && 2 * std::size_t{n} >= tuning::kMinPartitionedEndpoints,
+             ioReport);
+}
+
+void SweepAndPrune::decideAxes(bool inWarm, FrameReport& ioReport) {
+  const AxisDecision decision =
+      chooseAxes(primary_axis_, secondary_axis_, ioReport.dispersion_primary,
+                 ioReport.dispersion_secondary, inWarm, axis_swap_threshold_);
+  ioReport.axes_swapped = decision.swapped;
+  if (!decision.swapped) return;
+  const int incoming = decision.primary != primary_axis_ ? decision.primary : decision.secondary;
+  bounds_[incoming].from_previous_frame = false;  // re-initialise B from the new axis's span
+  primary_axis_ = decision.primary;
+  secondary_axis_ = decision.secondary;
+}
+
+}  // namespace sap_broadphase

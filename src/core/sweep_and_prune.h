@@ -1,0 +1,83 @@
+// The sweep strategy: one frame of the paper's pipeline on a box set, with the state it
+// carries from frame to frame (partition bounds B, sweep axes, key origins) and every buffer
+// it needs (no allocation per frame once sizes are stable).
+//
+//   keys (relative to the frame) -> Algorithm 2 sort of the primary axis -> Algorithm 3
+//   candidates -> Algorithm 2 sort of the secondary axis -> Algorithm 4 pairing (exact 3-axis
+//   test) -> pairs in canonical order -> §5 axis decision
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/radix_sort.h"
+#include "core/slab_grid.h"
+#include "core/succ_tree.h"
+#include "core/sweep.h"
+#include "sap_broadphase/core/broadphase.h"
+
+namespace sap_broadphase {
+
+/// Where the sort keys of one axis are measured from. Keys are float32 images of
+/// (coordinate - origin), rounded outward exactly (the float64 difference is rounded to
+/// nearest, and its rounding error, recovered exactly by TwoSum, decides whether the key must
+/// step one further out). Near the origin float32 resolves far finer than at 4e6 m (UTM,
+/// ECEF), where boxes of a few centimetres would all share keys and become mutual candidates.
+struct KeyOrigin {
+  double origin[3] = {0.0, 0.0, 0.0};
+  uint32_t low(int inAxis, double inValue) const;
+  uint32_t high(int inAxis, double inValue) const;
+};
+
+class SweepAndPrune {
+ public:
+  explicit SweepAndPrune(const BroadphaseConfig& inConfig);
+
+  /// Every overlapping, filter-allowed pair of inBoxes into outPairs, in canonical order.
+  /// inPath is FramePath::kSequential (Algorithm 1) or kParallel (Algorithms 2-4). Fills the
+  /// report's sweep phases, dispersions, axes and slabs.
+  void run(const BoxSet& inBoxes, FramePath inPath, int inThreads, FrameReport& ioReport,
+           PairList& outPairs);
+  /// The sweep axes in force (§5 may have swapped them).
+  int primaryAxis() const { return primary_axis_; }
+  int secondaryAxis() const { return secondary_axis_; }
+  /// Forgets temporal state: the next sort initialises B from the span.
+  void forgetCoherence();
+  /// Gives back every per-frame buffer (they grow again on the next frame).
+  void releaseBuffers();
+  /// Boxes the buffers were last sized for.
+  std::size_t capacityBoxes() const { return ranges_.of_object.capacity(); }
+
+ private:
+  void placeKeyOrigins(const BoxSet& inBoxes, int inThreads);
+  double sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads, FrameReport& ioReport);
+  void gatherByRank(const BoxSet& inBoxes, int inThreads);
+  void pair(const BoxSet& inBoxes, FramePath inPath, int inThreads, FrameReport& ioReport);
+  void decideAxes(bool inWarm, FrameReport& ioReport);
+
+  const bool exact_final_test_;
+  const bool axis_swapping_;
+  const double axis_swap_threshold_;
+  const int third_axis_slabs_;
+  int primary_axis_;
+  int secondary_axis_;
+  AxisBounds bounds_[3];
+  KeyOrigin key_origin_;
+  bool origin_placed_[3] = {false, false, false};
+  PartitionedSorter sorter_;
+  // 4n words: packed (key, index) items and the sort's scratch while sorting, then the
+  // secondary stream (2 words per endpoint) while pairing.
+  std::vector<uint64_t> endpoint_words_;
+  std::vector<uint32_t> sweep_order_;  // 2n endpoint indexes: primary order, then secondary
+  CandidateRanges ranges_;
+  std::vector<RankedKeys> ranked_keys_;
+  std::vector<RankedFilter> ranked_filters_;
+  std::vector<RankedSlabs> ranked_slabs_;
+  SlabGrid slab_grid_;
+  SweepWorkspace workspace_;
+  SuccTree sequential_tree_;
+  std::vector<PairChunks> pairs_per_thread_;
+  PairSortScratch pair_scratch_;
+};
+
+}  // namespace sap_broadphase

@@ -1,0 +1,185 @@
+// The plan on its own: which work each combination of configuration, delta, size and costs
+// gets, and the automatic skin's cost model.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/frame_plan.h"
+#include "core/tuning.h"
+
+namespace sap_broadphase {
+namespace {
+
+// Costs of a uniform scene as a 2-thread sweep measures them: 300 ns a box to sort, 40 ns a
+// box or candidate to pair, 4 candidates a box at skin 0, boxes about one unit wide.
+SkinCosts uniformCosts() {
+  SkinCosts costs;
+  costs.sweep_ns_per_box = 300.0;
+  costs.pairing_ns_per_item = 40.0;
+  costs.reference_boxes = 100000;
+  costs.reference_candidates = 400000.0;
+  costs.reference_skin = 0.0;
+  costs.pass_ns_per_box = 3.0;
+  costs.pass_ns_per_candidate = 4.0;
+  for (double& extent : costs.mean_extent) extent = 1.0;
+  for (double& span : costs.span) span = 46.4;  // 400000 candidates at skin 0
+  return costs;
+}
+
+PlanInputs coherentFrame(const BroadphaseConfig& inConfig) {
+  PlanInputs inputs;
+  inputs.config = &inConfig;
+  inputs.delta.relation = FrameRelation::kSameIds;
+  inputs.delta.moved_boxes = 100000;
+  inputs.delta.max_displacement = 0.01;
+  inputs.boxes = inputs.swept = 100000;
+  inputs.threads = 2;
+  inputs.last_pairs_valid = true;
+  inputs.motion = 0.01;
+  inputs.costs = uniformCosts();
+  return inputs;
+}
+
+TEST(FramePlan, FewerThanTwoBoxesIsEmpty) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  inputs.boxes = inputs.swept = 1;
+  EXPECT_EQ(planFrame(inputs).work, FrameWork::kEmpty);
+}
+
+TEST(FramePlan, BruteForceMethodIsHonoured) {
+  BroadphaseConfig config;
+  config.method = Method::kBruteForce;
+  EXPECT_EQ(planFrame(coherentFrame(config)).work, FrameWork::kBruteForce);
+}
+
+TEST(FramePlan, IdenticalFrameReusesOnlyWhenAllowedAndHeld) {
+  BroadphaseConfig config;
+  config.reuse_unchanged_frames = true;
+  PlanInputs inputs = coherentFrame(config);
+  inputs.delta.relation = FrameRelation::kIdentical;
+  EXPECT_EQ(planFrame(inputs).work, FrameWork::kReuse);
+  inputs.last_pairs_valid = false;
+  EXPECT_NE(planFrame(inputs).work, FrameWork::kReuse);
+  inputs.last_pairs_valid = true;
+  config.reuse_unchanged_frames = false;
+  EXPECT_NE(planFrame(inputs).work, FrameWork::kReuse);
+}
+
+TEST(FramePlan, FirstFrameIsAPlainSweepEvenWithAutomaticSkin) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  inputs.delta = FrameDelta();
+  const FramePlan plan = planFrame(inputs);
+  EXPECT_EQ(plan.work, FrameWork::kSweep);
+  EXPECT_EQ(plan.sweep_skin, 0.0);
+  EXPECT_EQ(plan.skin_choice, SkinChoice::kFirstFrame);
+}
+
+TEST(FramePlan, OtherIdsGiveAPlainSweep) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  inputs.delta.relation = FrameRelation::kOtherIds;
+  const FramePlan plan = planFrame(inputs);
+  EXPECT_EQ(plan.sweep_skin, 0.0);
+  EXPECT_EQ(plan.skin_choice, SkinChoice::kIdsChanged);
+}
+
+TEST(FramePlan, SlowMotionChoosesASkinAndKeptCandidatesAnswerWhileCovered) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  const FramePlan sweep = planFrame(inputs);
+  EXPECT_EQ(sweep.work, FrameWork::kSweep);
+  EXPECT_EQ(sweep.skin_choice, SkinChoice::kChosen);
+  EXPECT_GE(sweep.sweep_skin, 2 * inputs.motion);
+  EXPECT_EQ(sweep.threads, 2);
+  inputs.kept_candidates = true;
+  inputs.kept_covers = true;
+  inputs.kept_skin = sweep.sweep_skin;
+  const FramePlan pass = planFrame(inputs);
+  EXPECT_EQ(pass.work, FrameWork::kKeptCandidates);
+  EXPECT_EQ(pass.skin, sweep.sweep_skin);
+  EXPECT_EQ(pass.skin_choice, SkinChoice::kKept);
+  inputs.kept_covers = false;
+  EXPECT_EQ(planFrame(inputs).work, FrameWork::kSweep);
+}
+
+TEST(FramePlan, FastMotionTurnsTheSkinOff) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  inputs.motion = 0.5;  // half a box edge a frame
+  const FramePlan plan = planFrame(inputs);
+  EXPECT_EQ(plan.sweep_skin, 0.0);
+  EXPECT_EQ(plan.skin_choice, SkinChoice::kTooFast);
+  inputs.motion = HUGE_VAL;  // a box jumped to infinity
+  EXPECT_EQ(planFrame(inputs).skin_choice, SkinChoice::kTooFast);
+}
+
+TEST(FramePlan, SmallFramesAndUnmeasuredCostsTakeNoSkin) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  inputs.boxes = inputs.swept = tuning::kMinSkinBoxes - 1;
+  EXPECT_EQ(planFrame(inputs).skin_choice, SkinChoice::kNotWorthIt);
+  inputs = coherentFrame(config);
+  inputs.costs.reference_boxes = 0;
+  EXPECT_EQ(planFrame(inputs).skin_choice, SkinChoice::kNotWorthIt);
+  inputs = coherentFrame(config);
+  inputs.motion = 0.0;
+  EXPECT_EQ(planFrame(inputs).skin_choice, SkinChoice::kNotWorthIt);
+}
+
+TEST(FramePlan, FixedSkinAndSkinOffAreObeyed) {
+  BroadphaseConfig config;
+  config.skin = 0.3;
+  PlanInputs inputs = coherentFrame(config);
+  inputs.motion = 5.0;
+  FramePlan plan = planFrame(inputs);
+  EXPECT_EQ(plan.sweep_skin, 0.3);
+  EXPECT_EQ(plan.skin_choice, SkinChoice::kFixed);
+  config.skin = 0.0;
+  inputs.kept_candidates = inputs.kept_covers = true;
+  plan = planFrame(inputs);
+  EXPECT_EQ(plan.work, FrameWork::kSweep);
+  EXPECT_EQ(plan.sweep_skin, 0.0);
+  EXPECT_EQ(plan.skin_choice, SkinChoice::kOff);
+}
+
+TEST(FramePlan, SweepPathFollowsMethodSizeAndThreads) {
+  BroadphaseConfig config;
+  config.parallel_min_boxes = 1000;
+  EXPECT_EQ(sweepPath(config, 999, 2), FramePath::kSequential);
+  EXPECT_EQ(sweepPath(config, 1000, 2), FramePath::kParallel);
+  EXPECT_EQ(sweepPath(config, 1000000, 1), FramePath::kSequential);
+  config.method = Method::kParallel;
+  EXPECT_EQ(sweepPath(config, 10, 2), FramePath::kParallel);
+  config.method = Method::kSequential;
+  EXPECT_EQ(sweepPath(config, 1000000, 8), FramePath::kSequential);
+  PlanInputs inputs = coherentFrame(config);
+  inputs.motion = 1.0;  // no skin: a plain sequential sweep on one thread
+  EXPECT_EQ(planFrame(inputs).threads, 1);
+}
+
+TEST(FramePlan, SkinGrowsWithMotionWhileItPays) {
+  const SkinCosts costs = uniformCosts();
+  SkinChoice choice;
+  const double slow = chooseSkin(0.001, 100000, costs, choice);
+  EXPECT_EQ(choice, SkinChoice::kChosen);
+  const double faster = chooseSkin(0.01, 100000, costs, choice);
+  EXPECT_EQ(choice, SkinChoice::kChosen);
+  EXPECT_LT(slow, faster);
+}
+
+TEST(FramePlan, PathsNameThePlan) {
+  FramePlan plan;
+  plan.work = FrameWork::kSweep;
+  plan.sweep_path = FramePath::kParallel;
+  EXPECT_EQ(framePathOf(plan, false), FramePath::kParallel);
+  EXPECT_EQ(framePathOf(plan, true), FramePath::kStatic);
+  plan.work = FrameWork::kKeptCandidates;
+  EXPECT_EQ(framePathOf(plan, false), FramePath::kSkin);
+  plan.work = FrameWork::kReuse;
+  EXPECT_EQ(framePathOf(plan, false), FramePath::kReused);
+}
+
+}  // namespace
+}  // namespace sap_broadphase
