@@ -52,6 +52,10 @@ class BaselineSkinList {
   std::vector<std::pair<uint32_t, uint32_t>> candidate_indexes_;
 };
 
+double skinArg(const benchmark::State& inState) {
+  return static_cast<double>(inState.range(1)) / 100.0;
+}
+
 /// Frame 0 of the uniform scene swept with the skin, and frame 1 to answer from it.
 struct SkinScene {
   BoxSet swept;     // frame 0
@@ -61,29 +65,31 @@ struct SkinScene {
   PairList exact;   // frame 1's pairs
 };
 
-const SkinScene& skinScene(int inLog2Boxes, double inSkin) {
-  static std::map<std::pair<int, double>, std::unique_ptr<SkinScene>> cache;
-  auto& slot = cache[{inLog2Boxes, inSkin}];
+/// The scene of a benchmark's arguments (log2 boxes, skin and density in hundredths), built
+/// once.
+const SkinScene& skinScene(const benchmark::State& inState) {
+  const int log2_boxes = static_cast<int>(inState.range(0));
+  const double skin = skinArg(inState);
+  const double density = static_cast<double>(inState.range(3)) / 100.0;
+  static std::map<std::tuple<int, double, double>, std::unique_ptr<SkinScene>> cache;
+  auto& slot = cache[{log2_boxes, skin, density}];
   if (slot) return *slot;
   slot = std::make_unique<SkinScene>();
   SceneConfig config;
-  config.n = std::size_t{1} << inLog2Boxes;
+  config.n = std::size_t{1} << log2_boxes;
+  config.density = density;
   SceneSimulator simulator(config);
   slot->swept = simulator.boxes();
   simulator.step();
   slot->next = simulator.boxes();
   SkinList list;
-  list.inflate(slot->swept, inSkin, slot->inflated);
+  list.inflate(slot->swept, skin, slot->inflated);
   BroadphaseConfig sweep;
   sweep.skin = 0.0;
   Broadphase engine(sweep);
   slot->kept = engine.update(slot->inflated);
   slot->exact = engine.update(slot->next);
   return *slot;
-}
-
-double skinArg(const benchmark::State& inState) {
-  return static_cast<double>(inState.range(1)) / 100.0;
 }
 
 void reportPerCandidate(benchmark::State& ioState, const SkinScene& inScene) {
@@ -96,7 +102,7 @@ void reportPerCandidate(benchmark::State& ioState, const SkinScene& inScene) {
 
 // Containment, gather, rows and the canonical copy: the whole frame from the candidates.
 void BM_SkinPass(benchmark::State& state) {
-  const SkinScene& scene = skinScene(static_cast<int>(state.range(0)), skinArg(state));
+  const SkinScene& scene = skinScene(state);
   const int threads = static_cast<int>(state.range(2));
   SkinList list;
   BoxSet inflated;
@@ -112,7 +118,7 @@ void BM_SkinPass(benchmark::State& state) {
 }
 
 void BM_SkinPassBaseline(benchmark::State& state) {
-  const SkinScene& scene = skinScene(static_cast<int>(state.range(0)), skinArg(state));
+  const SkinScene& scene = skinScene(state);
   BaselineSkinList list;
   list.adopt(scene.inflated, scene.kept);
   PairList pairs;
@@ -127,7 +133,7 @@ void BM_SkinPassBaseline(benchmark::State& state) {
 
 // What a sweep frame adds to keep the candidates: inflate, then the rows.
 void BM_SkinAdopt(benchmark::State& state) {
-  const SkinScene& scene = skinScene(static_cast<int>(state.range(0)), skinArg(state));
+  const SkinScene& scene = skinScene(state);
   SkinList list;
   BoxSet inflated;
   for (auto _ : state) {
@@ -137,18 +143,16 @@ void BM_SkinAdopt(benchmark::State& state) {
   reportPerCandidate(state, scene);
 }
 
-// (log2 boxes, skin in hundredths of the mean edge, threads)
+// (log2 boxes, skin in hundredths of the mean edge, threads, density in hundredths): the
+// scene's default density 0.05 has about half a candidate per box, 0.5 about five.
 void skinArgs(benchmark::internal::Benchmark* ioBenchmark) {
-  for (int log2_boxes : {17, 20})
-    for (int skin : {25, 50}) ioBenchmark->Args({log2_boxes, skin, 1});
-  ioBenchmark->Args({20, 25, 2})->Unit(benchmark::kMillisecond);
-}
-BENCHMARK(BM_SkinPass)->Apply(skinArgs);
-BENCHMARK(BM_SkinPassBaseline)->Apply([](benchmark::internal::Benchmark* ioBenchmark) {
-  for (int log2_boxes : {17, 20})
-    for (int skin : {25, 50}) ioBenchmark->Args({log2_boxes, skin, 1});
+  for (int density : {5, 50})
+    for (int log2_boxes : {17, 20})
+      for (int skin : {25, 50}) ioBenchmark->Args({log2_boxes, skin, 1, density});
   ioBenchmark->Unit(benchmark::kMillisecond);
-});
-BENCHMARK(BM_SkinAdopt)->Args({17, 25, 1})->Args({20, 25, 1})->Unit(benchmark::kMillisecond);
+}
+BENCHMARK(BM_SkinPass)->Apply(skinArgs)->Args({20, 25, 2, 50});
+BENCHMARK(BM_SkinPassBaseline)->Apply(skinArgs);
+BENCHMARK(BM_SkinAdopt)->Args({17, 25, 1, 5})->Args({20, 25, 1, 50})->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -7,6 +7,9 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/buffers.h"
 #include "core/radix_sort.h"
@@ -36,13 +39,22 @@ inline bool boxInside(const BoxSet& inBoxes, const BoxSet& inOuter, std::size_t 
   return inside;
 }
 
-/// True when the two boxes overlap on all three axes (closed intervals), as boxesOverlap();
-/// lane by lane without branches, so that the compiler makes it two vector comparisons.
+/// True when the two boxes overlap on all three axes (closed intervals), as boxesOverlap().
+/// With SSE2 (every x86-64): the lanes (x, y) and (z, 0) of the four bounds compared two at a
+/// time, one mask for all; elsewhere the same comparisons lane by lane without branches.
 inline bool recordsOverlap(const BoundsRecord& inA, const BoundsRecord& inB) {
+#if defined(__SSE2__)
+  const auto overlapping = [&](int inLane) {
+    return _mm_and_pd(_mm_cmple_pd(_mm_load_pd(inA.lo + inLane), _mm_load_pd(inB.hi + inLane)),
+                      _mm_cmple_pd(_mm_load_pd(inB.lo + inLane), _mm_load_pd(inA.hi + inLane)));
+  };
+  return _mm_movemask_pd(_mm_and_pd(overlapping(0), overlapping(2))) == 0x3;
+#else
   bool overlap = true;
   for (int lane = 0; lane < 4; ++lane)
     overlap &= (inA.lo[lane] <= inB.hi[lane]) & (inB.lo[lane] <= inA.hi[lane]);
   return overlap;
+#endif
 }
 
 /// The box index of an id of the reference: a table indexed by id when the ids are dense
@@ -110,6 +122,10 @@ int widestAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inMembers) {
   return widest;
 }
 
+/// How many boxes or candidates ahead a pass asks for the cache line it will need: enough to
+/// cover a memory latency with the work of the ones in between.
+constexpr int kPrefetchAhead = 16;
+
 /// Starts of inParts contiguous ranges of [0, inCount), as even as integers allow.
 std::size_t shareBegin(std::size_t inCount, int inPart, int inParts) {
   return inCount * static_cast<std::size_t>(inPart) / static_cast<std::size_t>(inParts);
@@ -159,7 +175,6 @@ void SkinList::adopt(const BoxSet& inBoxes, const PairList& inCandidates) {
   }
   keepSpatialOrder(candidate_indexes);
   keepSpatialCandidates(candidate_indexes);
-  resizeDiscarding(overlaps_, count);
   valid_ = true;
 }
 
@@ -238,6 +253,9 @@ bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
   constexpr std::size_t kBlock = 4096;
   const std::size_t n = inBoxes.size();
   resizeDiscarding(gathered_, std::size_t{spatial_count_} + std::max(1, inThreads));
+  const uint32_t* position_of = position_of_.data();
+  BoundsRecord* gathered = gathered_.data();
+  const uint32_t scratch = spatial_count_;
   bool inside = true;
 #pragma omp parallel num_threads(inThreads)
   {
@@ -248,9 +266,13 @@ bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
     for (std::size_t block = shareBegin(n, thread, team); mine && block < end; block += kBlock) {
       const std::size_t block_end = std::min(end, block + kBlock);
       for (std::size_t i = block; i < block_end; ++i) {
+        // The line written kPrefetchAhead boxes later is fetched now, so that the scattered
+        // stores do not wait for their lines one by one.
+        if (i + kPrefetchAhead < block_end)
+          __builtin_prefetch(gathered + position_of[i + kPrefetchAhead], 1);
         mine &= boxInside(inBoxes, reference_, i);
-        const uint32_t position = position_of_[i];
-        gathered_[position == spatial_count_ ? position + thread : position] = recordOf(inBoxes, i);
+        const uint32_t position = position_of[i];
+        gathered[position == scratch ? position + thread : position] = recordOf(inBoxes, i);
       }
     }
     if (!mine) {
@@ -265,25 +287,46 @@ bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
 // lies a little further on; the verdict goes to the candidate's canonical slot.
 void SkinList::testSpatialCandidates(int inThreads) {
   const auto count = static_cast<std::ptrdiff_t>(first_positions_.size());
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (std::ptrdiff_t k = 0; k < count; ++k)
-    overlaps_[canonical_slots_[k]] =
-        recordsOverlap(gathered_[first_positions_[k]], gathered_[partner_positions_[k]]);
-}
-
-// Canonical candidates whose verdict is set, in order: each thread counts its share, then
-// copies it behind the shares before it, so the list is the same for any thread count.
-void SkinList::copyHits(int inThreads, PairList& outPairs) {
-  const std::size_t count = canonical_pairs_.size();
-  std::vector<std::size_t> share_start(static_cast<std::size_t>(std::max(1, inThreads)) + 1, 0);
+  const std::size_t words = verdictWords();
+  resizeDiscarding(verdicts_, words * static_cast<std::size_t>(std::max(1, inThreads)));
+  const uint32_t* first = first_positions_.data();
+  const uint32_t* partner = partner_positions_.data();
+  const uint32_t* slot = canonical_slots_.data();
+  const BoundsRecord* gathered = gathered_.data();
 #pragma omp parallel num_threads(inThreads)
   {
     const int thread = omp_get_thread_num();
     const int team = omp_get_num_threads();
-    const std::size_t begin = shareBegin(count, thread, team);
-    std::size_t end = shareBegin(count, thread + 1, team);
+    uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(thread);
+    std::fill(verdicts, verdicts + words, 0);
+    const auto end = static_cast<std::ptrdiff_t>(shareBegin(count, thread + 1, team));
+    for (auto k = static_cast<std::ptrdiff_t>(shareBegin(count, thread, team)); k < end; ++k) {
+      // Partners lie ahead of the first box, mostly in lines no candidate has read yet.
+      if (k + kPrefetchAhead < end) __builtin_prefetch(gathered + partner[k + kPrefetchAhead]);
+      const uint64_t overlap = recordsOverlap(gathered[first[k]], gathered[partner[k]]);
+      verdicts[slot[k] / 64] |= overlap << (slot[k] % 64);
+    }
+  }
+}
+
+// Canonical candidates whose verdict is set, in order: each thread merges the verdicts of its
+// share of words and counts them, then copies its hits behind the shares before it, so the
+// list is the same for any thread count.
+void SkinList::copyHits(int inThreads, PairList& outPairs) {
+  const std::size_t words = verdictWords();
+  std::vector<std::size_t> share_start(static_cast<std::size_t>(std::max(1, inThreads)) + 1, 0);
+  uint64_t* merged = verdicts_.data();  // the first thread's row receives the others'
+#pragma omp parallel num_threads(inThreads)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    const std::size_t begin = shareBegin(words, thread, team);
+    const std::size_t end = shareBegin(words, thread + 1, team);
     std::size_t hits = 0;
-    for (std::size_t k = begin; k < end; ++k) hits += overlaps_[k];
+    for (std::size_t word = begin; word < end; ++word) {
+      for (int row = 1; row < team; ++row) merged[word] |= merged[words * row + word];
+      hits += static_cast<std::size_t>(__builtin_popcountll(merged[word]));
+    }
     share_start[thread + 1] = hits;
 #pragma omp barrier
 #pragma omp single
@@ -291,13 +334,11 @@ void SkinList::copyHits(int inThreads, PairList& outPairs) {
       for (int part = 0; part < team; ++part) share_start[part + 1] += share_start[part];
       resizeDiscarding(outPairs, share_start[team]);
     }
-    // Stores every candidate and advances past the hits only (no branch to mispredict); the
-    // share stops at its last hit, so no store lands beyond it.
-    while (end > begin && !overlaps_[end - 1]) --end;
     IdPair* out = outPairs.data() + share_start[thread];
-    for (std::size_t k = begin; k < end; ++k) {
-      *out = canonical_pairs_[k];
-      out += overlaps_[k];
+    for (std::size_t word = begin; word < end; ++word) {
+      const IdPair* candidates = canonical_pairs_.data() + 64 * word;
+      for (uint64_t bits = merged[word]; bits != 0; bits &= bits - 1)
+        *out++ = candidates[__builtin_ctzll(bits)];
     }
   }
 }

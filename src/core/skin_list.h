@@ -16,9 +16,9 @@
 // partners overlap along that axis too, so they lie a few thousand positions apart and their
 // bounds are still in the cache. A pass checks containment while it gathers the frame's
 // bounds into that order (one sequential read, one scattered cache line per box), tests the
-// candidates in order without a branch, writes each verdict into a byte per candidate in
-// canonical order, and copies the canonical candidates whose byte is set. The result is the
-// same for any thread count.
+// candidates in order without a branch, sets each overlap's bit in a bit set in canonical
+// order (small enough to stay in the cache), and copies the canonical candidates whose bit is
+// set. The result is the same for any thread count.
 #pragma once
 
 #include <cstddef>
@@ -65,6 +65,7 @@ class SkinList {
   bool gatherInside(const BoxSet& inBoxes, int inThreads);
   void testSpatialCandidates(int inThreads);
   void copyHits(int inThreads, PairList& outPairs);
+  std::size_t verdictWords() const { return (canonical_pairs_.size() + 63) / 64; }
 
   BoxSet reference_;  // the inflated boxes of the last sweep (ids, groups, masks included)
   // The spatial order: positions 0..m-1 for the m boxes that have candidates; the others all
@@ -77,9 +78,10 @@ class SkinList {
   std::vector<uint32_t> partner_positions_;
   std::vector<uint32_t> canonical_slots_;  // the candidate's index in canonical_pairs_
   PairList canonical_pairs_;               // the candidates, as adopted
-  // Per pass: the frame's bounds by position, and a verdict per canonical candidate.
+  // Per pass: the frame's bounds by position, and a verdict bit per canonical candidate, one
+  // row of verdictWords() words per thread (bit k of the row: candidate k overlaps).
   std::vector<BoundsRecord> gathered_;
-  std::vector<uint8_t> overlaps_;
+  std::vector<uint64_t> verdicts_;
   bool valid_ = false;
 };
 
