@@ -124,7 +124,7 @@ int widestAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inMembers) {
 
 /// How many boxes or candidates ahead a pass asks for the cache line it will need: enough to
 /// cover a memory latency with the work of the ones in between.
-constexpr int kPrefetchAhead = 16;
+constexpr int kPrefetchAhead = 32;
 
 /// Starts of inParts contiguous ranges of [0, inCount), as even as integers allow.
 std::size_t shareBegin(std::size_t inCount, int inPart, int inParts) {
@@ -301,8 +301,12 @@ void SkinList::testSpatialCandidates(int inThreads) {
     std::fill(verdicts, verdicts + words, 0);
     const auto end = static_cast<std::ptrdiff_t>(shareBegin(count, thread + 1, team));
     for (auto k = static_cast<std::ptrdiff_t>(shareBegin(count, thread, team)); k < end; ++k) {
-      // Partners lie ahead of the first box, mostly in lines no candidate has read yet.
-      if (k + kPrefetchAhead < end) __builtin_prefetch(gathered + partner[k + kPrefetchAhead]);
+      // Partners lie ahead of the first box, mostly in lines no candidate has read yet, and
+      // the verdict bits of consecutive candidates lie anywhere in the bit set.
+      if (k + kPrefetchAhead < end) {
+        __builtin_prefetch(gathered + partner[k + kPrefetchAhead]);
+        __builtin_prefetch(verdicts + slot[k + kPrefetchAhead] / 64, 1);
+      }
       const uint64_t overlap = recordsOverlap(gathered[first[k]], gathered[partner[k]]);
       verdicts[slot[k] / 64] |= overlap << (slot[k] % 64);
     }
