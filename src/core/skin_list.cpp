@@ -126,7 +126,7 @@ int widestAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inMembers) {
 /// cover a memory latency with the work of the ones in between.
 constexpr int kPrefetchAhead = 32;
 
-/// Starts of inParts contiguous ranges of [0, inCount), as even as integers allow.
+/// Start of part inPart of inParts contiguous ranges of [0, inCount), as even as integers allow.
 std::size_t shareBegin(std::size_t inCount, int inPart, int inParts) {
   return inCount * static_cast<std::size_t>(inPart) / static_cast<std::size_t>(inParts);
 }
