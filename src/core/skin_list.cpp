@@ -299,6 +299,8 @@ void SkinList::testSpatialCandidates(int inThreads) {
     const int team = omp_get_num_threads();
     uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(thread);
     std::fill(verdicts, verdicts + words, 0);
+#pragma omp master
+    verdict_rows_ = team;
     const auto end = static_cast<std::ptrdiff_t>(shareBegin(count, thread + 1, team));
     for (auto k = static_cast<std::ptrdiff_t>(shareBegin(count, thread, team)); k < end; ++k) {
       // Partners lie ahead of the first box, mostly in lines no candidate has read yet, and
@@ -313,9 +315,9 @@ void SkinList::testSpatialCandidates(int inThreads) {
   }
 }
 
-// Canonical candidates whose verdict is set, in order: each thread merges the verdicts of its
-// share of words and counts them, then copies its hits behind the shares before it, so the
-// list is the same for any thread count.
+// Canonical candidates whose verdict is set, in order: each thread merges the verdict rows of
+// the test's threads over its share of words and counts them, then copies its hits behind the
+// shares before it, so the list is the same for any thread count.
 void SkinList::copyHits(int inThreads, PairList& outPairs) {
   const std::size_t words = verdictWords();
   std::vector<std::size_t> share_start(static_cast<std::size_t>(std::max(1, inThreads)) + 1, 0);
@@ -328,7 +330,7 @@ void SkinList::copyHits(int inThreads, PairList& outPairs) {
     const std::size_t end = shareBegin(words, thread + 1, team);
     std::size_t hits = 0;
     for (std::size_t word = begin; word < end; ++word) {
-      for (int row = 1; row < team; ++row) merged[word] |= merged[words * row + word];
+      for (int row = 1; row < verdict_rows_; ++row) merged[word] |= merged[words * row + word];
       hits += static_cast<std::size_t>(__builtin_popcountll(merged[word]));
     }
     share_start[thread + 1] = hits;

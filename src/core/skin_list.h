@@ -82,6 +82,7 @@ class SkinList {
   // row of verdictWords() words per thread (bit k of the row: candidate k overlaps).
   std::vector<BoundsRecord> gathered_;
   std::vector<uint64_t> verdicts_;
+  int verdict_rows_ = 1;  // the threads of the last test, each with its row
   bool valid_ = false;
 };
 
