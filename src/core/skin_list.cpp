@@ -6,7 +6,14 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <unordered_map>
+#include <stdexcept>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "core/buffers.h"
+#include "core/radix_sort.h"
+#include "core/sort_keys.h"
 
 namespace sap_broadphase {
 namespace {
@@ -17,32 +24,132 @@ bool sameElements(const std::vector<T>& inA, const std::vector<T>& inB) {
          (inA.empty() || std::memcmp(inA.data(), inB.data(), inA.size() * sizeof(T)) == 0);
 }
 
+/// Box i of inBoxes as a record (lane 3 zero).
+BoundsRecord recordOf(const BoxSet& inBoxes, std::size_t i) {
+  return {{inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i], 0.0},
+          {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i], 0.0}};
+}
+
+/// True when box i of inBoxes lies inside box i of inOuter (closed: equal bounds are inside).
+inline bool boxInside(const BoxSet& inBoxes, const BoxSet& inOuter, std::size_t i) {
+  bool inside = true;
+  for (int axis = 0; axis < 3; ++axis)
+    inside &=
+        (inBoxes.lo[axis][i] >= inOuter.lo[axis][i]) & (inBoxes.hi[axis][i] <= inOuter.hi[axis][i]);
+  return inside;
+}
+
+/// True when the two boxes overlap on all three axes (closed intervals), as boxesOverlap().
+/// With SSE2 (every x86-64): the lanes (x, y) and (z, 0) of the four bounds compared two at a
+/// time, one mask for all; elsewhere the same comparisons lane by lane without branches.
+inline bool recordsOverlap(const BoundsRecord& inA, const BoundsRecord& inB) {
+#if defined(__SSE2__)
+  const auto overlapping = [&](int inLane) {
+    return _mm_and_pd(_mm_cmple_pd(_mm_load_pd(inA.lo + inLane), _mm_load_pd(inB.hi + inLane)),
+                      _mm_cmple_pd(_mm_load_pd(inB.lo + inLane), _mm_load_pd(inA.hi + inLane)));
+  };
+  return _mm_movemask_pd(_mm_and_pd(overlapping(0), overlapping(2))) == 0x3;
+#else
+  bool overlap = true;
+  for (int lane = 0; lane < 4; ++lane)
+    overlap &= (inA.lo[lane] <= inB.hi[lane]) & (inB.lo[lane] <= inA.hi[lane]);
+  return overlap;
+#endif
+}
+
+/// The box index of an id of the reference: a table indexed by id when the ids are dense
+/// (the usual 0..n-1), else open addressing with linear probing in twice the boxes' room.
+class IndexOfId {
+ public:
+  explicit IndexOfId(const std::vector<uint32_t>& inIds) {
+    const std::size_t n = inIds.size();
+    const uint32_t largest = n == 0 ? 0 : *std::max_element(inIds.begin(), inIds.end());
+    dense_ = largest < 4 * n + 1024;
+    if (dense_) {
+      slots_.assign(std::size_t{largest} + 1, 0);
+      for (std::size_t i = 0; i < n; ++i) slots_[inIds[i]] = static_cast<uint32_t>(i);
+      return;
+    }
+    while ((std::size_t{1} << shift_bits_) < 2 * n) ++shift_bits_;
+    slots_.assign(std::size_t{2} << shift_bits_, kEmpty);  // (id, index) per slot
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t slot = home(inIds[i]);
+      while (slots_[2 * slot + 1] != kEmpty) slot = next(slot);
+      slots_[2 * slot] = inIds[i];
+      slots_[2 * slot + 1] = static_cast<uint32_t>(i);
+    }
+  }
+  /// The index of inId (which must be one of the ids).
+  uint32_t operator()(uint32_t inId) const {
+    if (dense_) return slots_[inId];
+    std::size_t slot = home(inId);
+    while (slots_[2 * slot] != inId || slots_[2 * slot + 1] == kEmpty) slot = next(slot);
+    return slots_[2 * slot + 1];
+  }
+
+ private:
+  static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();  // > kMaxBoxes
+  std::size_t home(uint32_t inId) const {
+    return (uint64_t{inId} * 0x9E3779B97F4A7C15ull) >> (64 - shift_bits_);
+  }
+  std::size_t next(std::size_t inSlot) const {
+    return (inSlot + 1) & ((std::size_t{1} << shift_bits_) - 1);
+  }
+  std::vector<uint32_t> slots_;
+  int shift_bits_ = 1;
+  bool dense_ = true;
+};
+
+/// The axis along which the finite lower bounds of inMembers spread widest: sorting along it
+/// puts the fewest boxes between a box and its partners.
+int widestAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inMembers) {
+  int widest = 0;
+  double widest_spread = -1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
+    for (uint32_t i : inMembers) {
+      const double value = inBoxes.lo[axis][i];
+      if (!std::isfinite(value)) continue;
+      low = std::min(low, value);
+      high = std::max(high, value);
+    }
+    if (high - low > widest_spread) {
+      widest = axis;
+      widest_spread = high - low;
+    }
+  }
+  return widest;
+}
+
+/// How many boxes or candidates ahead a pass asks for the cache line it will need: enough to
+/// cover a memory latency with the work of the ones in between.
+constexpr int kPrefetchAhead = 32;
+
+/// Start of part inPart of inParts contiguous ranges of [0, inCount), as even as integers allow.
+std::size_t shareBegin(std::size_t inCount, int inPart, int inParts) {
+  return inCount * static_cast<std::size_t>(inPart) / static_cast<std::size_t>(inParts);
+}
+
 }  // namespace
 
 bool SkinList::covers(const BoxSet& inBoxes, int inThreads) const {
-  if (!valid_ || !sameElements(reference_.ids, inBoxes.ids) ||
-      !sameElements(reference_.groups, inBoxes.groups) ||
-      !sameElements(reference_.masks, inBoxes.masks))
-    return false;
+  if (!valid_ || !sameIdsAndFilters(inBoxes)) return false;
   const std::size_t n = inBoxes.size();
   bool inside = true;
 #pragma omp parallel for num_threads(inThreads) reduction(&& : inside) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int axis = 0; axis < 3; ++axis)
-      inside = inside && inBoxes.lo[axis][i] >= reference_.lo[axis][i] &&
-               inBoxes.hi[axis][i] <= reference_.hi[axis][i];
-  }
+  for (std::size_t i = 0; i < n; ++i) inside = inside && boxInside(inBoxes, reference_, i);
   return inside;
 }
 
 void SkinList::inflate(const BoxSet& inBoxes, double inSkin, BoxSet& outInflated) {
   const double margin = inSkin / 2;
   const double infinity = std::numeric_limits<double>::infinity();
+  const std::size_t n = inBoxes.size();
   outInflated.ids = inBoxes.ids;
   outInflated.groups = inBoxes.groups;
   outInflated.masks = inBoxes.masks;
   for (int axis = 0; axis < 3; ++axis) {
-    const std::size_t n = inBoxes.size();
     outInflated.lo[axis].resize(n);
     outInflated.hi[axis].resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -56,34 +163,190 @@ void SkinList::inflate(const BoxSet& inBoxes, double inSkin, BoxSet& outInflated
 }
 
 void SkinList::adopt(const BoxSet& inBoxes, const PairList& inCandidates) {
-  std::unordered_map<uint32_t, uint32_t> index_of_id;
-  index_of_id.reserve(inBoxes.size());
-  for (std::size_t i = 0; i < inBoxes.size(); ++i)
-    index_of_id.emplace(inBoxes.ids[i], static_cast<uint32_t>(i));
-  candidate_indexes_.resize(inCandidates.size());
-  for (std::size_t k = 0; k < inCandidates.size(); ++k)
-    candidate_indexes_[k] = {index_of_id[inCandidates[k].a], index_of_id[inCandidates[k].b]};
+  const std::size_t count = inCandidates.size();
+  if (count > std::numeric_limits<uint32_t>::max())
+    throw std::length_error("skin reuse keeps fewer than 2^32 candidate pairs");
+  canonical_pairs_ = inCandidates;
+  const IndexOfId index_of(inBoxes.ids);
+  std::vector<uint32_t> candidate_indexes(2 * count);  // both boxes of candidate k at 2k, 2k+1
+  for (std::size_t k = 0; k < count; ++k) {
+    candidate_indexes[2 * k] = index_of(inCandidates[k].a);
+    candidate_indexes[2 * k + 1] = index_of(inCandidates[k].b);
+  }
+  keepSpatialOrder(candidate_indexes);
+  keepSpatialCandidates(candidate_indexes);
   valid_ = true;
 }
 
-void SkinList::collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs) {
-  const std::size_t count = candidate_indexes_.size();
-  per_thread_.resize(std::max(1, inThreads));
-  for (PairList& part : per_thread_) part.clear();  // a smaller team leaves lists untouched
-    // Contiguous slices in canonical order, concatenated in order: the result stays canonical.
+// The boxes that have candidates, sorted by their inflated lower bound's sort key along the
+// widest axis: partners overlap along that axis too, so they sit a few thousand positions
+// apart at most.
+void SkinList::keepSpatialOrder(const std::vector<uint32_t>& inCandidateIndexes) {
+  const std::size_t n = reference_.size();
+  std::vector<uint8_t> has_candidates(n, 0);
+  for (uint32_t i : inCandidateIndexes) has_candidates[i] = 1;
+  std::vector<uint32_t> members;
+  for (std::size_t i = 0; i < n; ++i)
+    if (has_candidates[i]) members.push_back(static_cast<uint32_t>(i));
+  const auto spatial_count = static_cast<uint32_t>(members.size());
+  const int axis = widestAxis(reference_, members);
+  std::vector<uint32_t> keys(spatial_count), order(spatial_count);
+  for (uint32_t j = 0; j < spatial_count; ++j) keys[j] = lowKey(reference_.lo[axis][members[j]]);
+  radixIndexSort(keys.data(), spatial_count, order.data());
+  position_of_.assign(n, spatial_count);
+  for (uint32_t position = 0; position < spatial_count; ++position)
+    position_of_[members[order[position]]] = position;
+  spatial_count_ = spatial_count;
+}
+
+// The candidates by (first, partner) position: a counting sort by first position, then each
+// short run of one first position sorted by partner.
+void SkinList::keepSpatialCandidates(const std::vector<uint32_t>& inCandidateIndexes) {
+  const std::size_t count = inCandidateIndexes.size() / 2;
+  const std::size_t spatial_count = spatial_count_;
+  std::vector<uint32_t> run_begin(spatial_count + 1, 0);
+  for (std::size_t k = 0; k < count; ++k) {
+    const uint32_t a = position_of_[inCandidateIndexes[2 * k]];
+    const uint32_t b = position_of_[inCandidateIndexes[2 * k + 1]];
+    ++run_begin[std::min(a, b) + 1];
+  }
+  for (std::size_t first = 0; first < spatial_count; ++first)
+    run_begin[first + 1] += run_begin[first];
+  std::vector<uint64_t> runs(count);  // partner position << 32 | canonical slot
+  std::vector<uint32_t> fill(run_begin.begin(), run_begin.end() - 1);
+  for (std::size_t k = 0; k < count; ++k) {
+    const uint32_t a = position_of_[inCandidateIndexes[2 * k]];
+    const uint32_t b = position_of_[inCandidateIndexes[2 * k + 1]];
+    runs[fill[std::min(a, b)]++] = (uint64_t{std::max(a, b)} << 32) | k;
+  }
+  resizeDiscarding(first_positions_, count);
+  resizeDiscarding(partner_positions_, count);
+  resizeDiscarding(canonical_slots_, count);
+  for (std::size_t first = 0; first < spatial_count; ++first) {
+    std::sort(runs.begin() + run_begin[first], runs.begin() + run_begin[first + 1]);
+    for (uint32_t k = run_begin[first]; k < run_begin[first + 1]; ++k) {
+      first_positions_[k] = static_cast<uint32_t>(first);
+      partner_positions_[k] = static_cast<uint32_t>(runs[k] >> 32);
+      canonical_slots_[k] = static_cast<uint32_t>(runs[k]);
+    }
+  }
+}
+
+bool SkinList::collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs) {
+  if (!valid_ || !sameIdsAndFilters(inBoxes) || !gatherInside(inBoxes, inThreads)) return false;
+  testSpatialCandidates(inThreads);
+  copyHits(inThreads, outPairs);
+  return true;
+}
+
+bool SkinList::sameIdsAndFilters(const BoxSet& inBoxes) const {
+  return sameElements(reference_.ids, inBoxes.ids) &&
+         sameElements(reference_.groups, inBoxes.groups) &&
+         sameElements(reference_.masks, inBoxes.masks);
+}
+
+// The containment check fused with the gather into spatial order: inBoxes and the reference
+// are read in index order, each box written once at its position (boxes without candidates
+// onto their thread's scratch record behind the positions, which stays in the cache). Blocks
+// of boxes end the pass early when one box has left its skin.
+bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t n = inBoxes.size();
+  resizeDiscarding(gathered_, std::size_t{spatial_count_} + std::max(1, inThreads));
+  const uint32_t* position_of = position_of_.data();
+  BoundsRecord* gathered = gathered_.data();
+  const uint32_t scratch = spatial_count_;
+  bool inside = true;
 #pragma omp parallel num_threads(inThreads)
   {
     const int thread = omp_get_thread_num();
     const int team = omp_get_num_threads();
-    PairList& mine = per_thread_[thread];
-    for (std::size_t k = count * thread / team; k < count * (thread + 1) / team; ++k) {
-      const auto [a, b] = candidate_indexes_[k];
-      if (boxesOverlap(inBoxes, a, b)) mine.push_back(makeIdPair(inBoxes.ids[a], inBoxes.ids[b]));
+    const std::size_t end = shareBegin(n, thread + 1, team);
+    bool mine = true;
+    for (std::size_t block = shareBegin(n, thread, team); mine && block < end; block += kBlock) {
+      const std::size_t block_end = std::min(end, block + kBlock);
+      for (std::size_t i = block; i < block_end; ++i) {
+        // The line written kPrefetchAhead boxes later is fetched now, so that the scattered
+        // stores do not wait for their lines one by one.
+        if (i + kPrefetchAhead < block_end)
+          __builtin_prefetch(gathered + position_of[i + kPrefetchAhead], 1);
+        mine &= boxInside(inBoxes, reference_, i);
+        const uint32_t position = position_of[i];
+        gathered[position == scratch ? position + thread : position] = recordOf(inBoxes, i);
+      }
+    }
+    if (!mine) {
+#pragma omp atomic write
+      inside = false;
     }
   }
-  outPairs.clear();
-  for (const PairList& part : per_thread_)
-    outPairs.insert(outPairs.end(), part.begin(), part.end());
+  return inside;
+}
+
+// In (first, partner) order: the first box's record is read again and again, the partner's
+// lies a little further on; the verdict goes to the candidate's canonical slot.
+void SkinList::testSpatialCandidates(int inThreads) {
+  const auto count = static_cast<std::ptrdiff_t>(first_positions_.size());
+  const std::size_t words = verdictWords();
+  resizeDiscarding(verdicts_, words * static_cast<std::size_t>(std::max(1, inThreads)));
+  const uint32_t* first = first_positions_.data();
+  const uint32_t* partner = partner_positions_.data();
+  const uint32_t* slot = canonical_slots_.data();
+  const BoundsRecord* gathered = gathered_.data();
+#pragma omp parallel num_threads(inThreads)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(thread);
+    std::fill(verdicts, verdicts + words, 0);
+#pragma omp master
+    verdict_rows_ = team;
+    const auto end = static_cast<std::ptrdiff_t>(shareBegin(count, thread + 1, team));
+    for (auto k = static_cast<std::ptrdiff_t>(shareBegin(count, thread, team)); k < end; ++k) {
+      // Partners lie ahead of the first box, mostly in lines no candidate has read yet, and
+      // the verdict bits of consecutive candidates lie anywhere in the bit set.
+      if (k + kPrefetchAhead < end) {
+        __builtin_prefetch(gathered + partner[k + kPrefetchAhead]);
+        __builtin_prefetch(verdicts + slot[k + kPrefetchAhead] / 64, 1);
+      }
+      const uint64_t overlap = recordsOverlap(gathered[first[k]], gathered[partner[k]]);
+      verdicts[slot[k] / 64] |= overlap << (slot[k] % 64);
+    }
+  }
+}
+
+// Canonical candidates whose verdict is set, in order: each thread merges the verdict rows of
+// the test's threads over its share of words and counts them, then copies its hits behind the
+// shares before it, so the list is the same for any thread count.
+void SkinList::copyHits(int inThreads, PairList& outPairs) {
+  const std::size_t words = verdictWords();
+  std::vector<std::size_t> share_start(static_cast<std::size_t>(std::max(1, inThreads)) + 1, 0);
+  uint64_t* merged = verdicts_.data();  // the first thread's row receives the others'
+#pragma omp parallel num_threads(inThreads)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    const std::size_t begin = shareBegin(words, thread, team);
+    const std::size_t end = shareBegin(words, thread + 1, team);
+    std::size_t hits = 0;
+    for (std::size_t word = begin; word < end; ++word) {
+      for (int row = 1; row < verdict_rows_; ++row) merged[word] |= merged[words * row + word];
+      hits += static_cast<std::size_t>(__builtin_popcountll(merged[word]));
+    }
+    share_start[thread + 1] = hits;
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int part = 0; part < team; ++part) share_start[part + 1] += share_start[part];
+      resizeDiscarding(outPairs, share_start[team]);
+    }
+    IdPair* out = outPairs.data() + share_start[thread];
+    for (std::size_t word = begin; word < end; ++word) {
+      const IdPair* candidates = canonical_pairs_.data() + 64 * word;
+      for (uint64_t bits = merged[word]; bits != 0; bits &= bits - 1)
+        *out++ = candidates[__builtin_ctzll(bits)];
+    }
+  }
 }
 
 }  // namespace sap_broadphase

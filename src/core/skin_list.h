@@ -7,8 +7,21 @@
 // the candidates exactly gives every pair. Containment is checked with plain comparisons, so
 // no rounding argument is needed; a box that left its inflated box (moved more than about
 // skin/2), a new, removed or reordered id, or changed groups/masks force a new sweep.
+//
+// Layout of a pass. Box indexes carry no locality (the uniform scene's positions are random),
+// so testing (index, index) pairs reads the second box at random: a cache miss per candidate
+// once the bounds outgrow the cache. adopt() therefore gives the boxes that have candidates a
+// spatial order (sorted by their inflated lower bound along the axis of widest spread) and
+// keeps the candidates as (first position, partner position) sorted by first, then partner:
+// partners overlap along that axis too, so they lie a few thousand positions apart and their
+// bounds are still in the cache. A pass checks containment while it gathers the frame's
+// bounds into that order (one sequential read, one scattered cache line per box), tests the
+// candidates in order without a branch, sets each overlap's bit in a bit set in canonical
+// order (small enough to stay in the cache), and copies the canonical candidates whose bit is
+// set. The result is the same for any thread count.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,29 +30,61 @@
 
 namespace sap_broadphase {
 
+/// One box's bounds in one cache line, laid out for a four-lane comparison: lanes 0-2 are the
+/// axes, lane 3 holds 0 in both halves so that it passes every overlap and containment test.
+struct alignas(64) BoundsRecord {
+  double lo[4];
+  double hi[4];
+};
+
 class SkinList {
  public:
-  /// True when inBoxes can be answered from the kept candidates (see above).
-  bool covers(const BoxSet& inBoxes, int inThreads) const;
   /// Writes into outInflated the boxes of inBoxes grown by inSkin / 2 on every side (rounded
   /// outward) and remembers them as the reference of the next candidates.
   void inflate(const BoxSet& inBoxes, double inSkin, BoxSet& outInflated);
-  /// Keeps inCandidates (pairs of the inflated boxes, canonical order) as the candidates.
+  /// Keeps inCandidates (pairs of the inflated boxes, canonical order, filters honoured) as the
+  /// candidates; inBoxes are the boxes given to inflate(). Throws std::length_error when there
+  /// are 2^32 candidates or more (their rows are indexed in 32 bits).
   void adopt(const BoxSet& inBoxes, const PairList& inCandidates);
-  /// The candidates that overlap exactly in inBoxes (filters are already honoured by the
-  /// candidates), in canonical order.
-  void collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs);
+  /// When every box of inBoxes lies inside its inflated box (same ids, groups and masks in the
+  /// same order): writes into outPairs the candidates that overlap exactly in inBoxes, in
+  /// canonical order, and returns true. Otherwise returns false and leaves outPairs alone:
+  /// the caller sweeps (inflate, sweep, adopt), after which collect() answers the frame.
+  bool collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs);
+  /// The containment test of collect() alone, without computing pairs.
+  bool covers(const BoxSet& inBoxes, int inThreads) const;
   /// True while candidates are kept (after adopt(), until clear() or the next inflate()).
   bool valid() const { return valid_; }
   /// Number of candidate pairs kept.
-  std::size_t candidates() const { return candidate_indexes_.size(); }
+  std::size_t candidates() const { return canonical_pairs_.size(); }
   /// Forgets the candidates (the next frame sweeps).
   void clear() { valid_ = false; }
 
  private:
+  bool sameIdsAndFilters(const BoxSet& inBoxes) const;
+  void keepSpatialOrder(const std::vector<uint32_t>& inCandidateIndexes);
+  void keepSpatialCandidates(const std::vector<uint32_t>& inCandidateIndexes);
+  bool gatherInside(const BoxSet& inBoxes, int inThreads);
+  void testSpatialCandidates(int inThreads);
+  void copyHits(int inThreads, PairList& outPairs);
+  std::size_t verdictWords() const { return (canonical_pairs_.size() + 63) / 64; }
+
   BoxSet reference_;  // the inflated boxes of the last sweep (ids, groups, masks included)
-  std::vector<std::pair<uint32_t, uint32_t>> candidate_indexes_;  // box indexes, canonical
-  std::vector<PairList> per_thread_;
+  // The spatial order: positions 0..m-1 for the m boxes that have candidates; the others all
+  // have position m, which a pass turns into a scratch record per thread that no candidate
+  // reads.
+  std::vector<uint32_t> position_of_;  // box index -> position
+  uint32_t spatial_count_ = 0;         // m
+  // The candidates by (first position, partner position), first < partner.
+  std::vector<uint32_t> first_positions_;
+  std::vector<uint32_t> partner_positions_;
+  std::vector<uint32_t> canonical_slots_;  // the candidate's index in canonical_pairs_
+  PairList canonical_pairs_;               // the candidates, as adopted
+  // Per pass: the frame's bounds by position, and a verdict bit per canonical candidate, one
+  // row of verdictWords() words per thread (bit k of the row: candidate k overlaps).
+  std::vector<BoundsRecord> gathered_;
+  std::vector<uint64_t> verdicts_;
+  int verdict_rows_ = 1;  // the threads of the last test, each with its row
   bool valid_ = false;
 };
 

@@ -1,0 +1,180 @@
+// SkinList on its own against the brute-force oracle: candidates kept from the oracle's pairs
+// of the inflated boxes, then frames whose boxes move inside their skins (exact pairs for every
+// thread count), and every change that must force a new sweep.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "core/skin_list.h"
+#include "sap_broadphase/core/brute_force.h"
+#include "test_support.h"
+
+namespace sap_broadphase {
+namespace {
+
+using test_support::TestRandom;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// Keeps the candidates of inBoxes grown by inSkin, as a sweep of the inflated boxes would.
+void keepCandidates(SkinList& ioList, const BoxSet& inBoxes, double inSkin) {
+  BoxSet inflated;
+  ioList.inflate(inBoxes, inSkin, inflated);
+  ioList.adopt(inBoxes, bruteForcePairs(inflated));
+}
+
+/// Moves and reshapes every box by less than inReach on each side (infinite bounds stay).
+BoxSet movedWithin(const BoxSet& inBoxes, double inReach, TestRandom& ioRandom) {
+  BoxSet moved = inBoxes;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      double& low = moved.lo[axis][i];
+      double& high = moved.hi[axis][i];
+      const double shift = ioRandom.between(-0.5, 0.5) * inReach;
+      const double grow = ioRandom.between(0.0, 0.5) * inReach;
+      low += shift - grow;
+      high = std::max(low, high + shift + (ioRandom.unit() < 0.5 ? grow : -grow));
+    }
+  }
+  return moved;
+}
+
+/// Expects collect() to answer inBoxes with the oracle's pairs for 1 to 4 threads.
+void expectExactForAllThreadCounts(SkinList& ioList, const BoxSet& inBoxes, const char* inLabel) {
+  const PairList oracle = bruteForcePairs(inBoxes);
+  for (int threads = 1; threads <= 4; ++threads) {
+    EXPECT_TRUE(ioList.covers(inBoxes, threads)) << inLabel << ", threads " << threads;
+    PairList pairs;
+    ASSERT_TRUE(ioList.collect(inBoxes, threads, pairs)) << inLabel << ", threads " << threads;
+    EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << ", threads " << threads;
+  }
+}
+
+TEST(SkinList, MovingFramesMatchOracle) {
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    BoxSet boxes = test_support::randomBoxes(1500, 40.0, 4.0, seed);
+    if (seed % 2 == 0) test_support::addRandomFilters(boxes, seed);
+    if (seed % 3 == 0) boxes = test_support::shuffledSubset(boxes, 0.8, true, seed);  // sparse ids
+    const double skin = 0.6;
+    SkinList list;
+    keepCandidates(list, boxes, skin);
+    EXPECT_GT(list.candidates(), bruteForcePairs(boxes).size()) << "seed " << seed;
+    expectExactForAllThreadCounts(list, boxes, "the swept frame");
+    TestRandom random(seed);
+    for (int step = 0; step < 4; ++step)
+      expectExactForAllThreadCounts(list, movedWithin(boxes, skin / 2, random),
+                                    "a frame inside the skins");
+  }
+}
+
+TEST(SkinList, BoxThatLeavesItsSkinForcesASweep) {
+  const BoxSet boxes = test_support::randomBoxes(800, 20.0, 3.0, 11);
+  const double skin = 0.5;
+  SkinList list;
+  keepCandidates(list, boxes, skin);
+  for (const std::size_t leaver : {std::size_t{0}, std::size_t{417}, boxes.size() - 1}) {
+    BoxSet frame = boxes;
+    frame.hi[1][leaver] += skin;  // past the margin of skin / 2
+    const PairList untouched = {{7, 8}};
+    for (int threads = 1; threads <= 4; ++threads) {
+      PairList pairs = untouched;
+      EXPECT_FALSE(list.covers(frame, threads));
+      EXPECT_FALSE(list.collect(frame, threads, pairs)) << "box " << leaver;
+      EXPECT_EQ(pairs, untouched);
+    }
+    SkinList swept;
+    keepCandidates(swept, frame, skin);
+    expectExactForAllThreadCounts(swept, frame, "after the new sweep");
+  }
+}
+
+TEST(SkinList, ChangedIdsOrFiltersForceASweep) {
+  BoxSet boxes = test_support::randomBoxes(300, 10.0, 2.0, 5);
+  test_support::addRandomFilters(boxes, 5);
+  SkinList list;
+  keepCandidates(list, boxes, 0.4);
+  PairList pairs;
+  BoxSet reordered = boxes;
+  std::swap(reordered.ids[3], reordered.ids[4]);
+  EXPECT_FALSE(list.collect(reordered, 1, pairs));
+  BoxSet regrouped = boxes;
+  regrouped.groups[9] ^= 0x4u;
+  EXPECT_FALSE(list.collect(regrouped, 1, pairs));
+  BoxSet remasked = boxes;
+  remasked.masks[0] ^= 0x1u;
+  EXPECT_FALSE(list.collect(remasked, 2, pairs));
+  BoxSet fewer = boxes;
+  for (auto* column : {&fewer.ids, &fewer.groups, &fewer.masks}) column->pop_back();
+  for (int axis = 0; axis < 3; ++axis) {
+    fewer.lo[axis].pop_back();
+    fewer.hi[axis].pop_back();
+  }
+  EXPECT_FALSE(list.collect(fewer, 1, pairs));
+  EXPECT_TRUE(list.collect(boxes, 1, pairs));
+  list.clear();
+  EXPECT_FALSE(list.collect(boxes, 1, pairs));
+  EXPECT_FALSE(list.covers(boxes, 1));
+}
+
+// Boxes that touch at zero from both sides, with zeros of either sign swapped between frames:
+// -0.0 == 0.0, so touching pairs stay pairs and no box leaves its skin.
+TEST(SkinList, SignedZerosTouch) {
+  BoxSet boxes;
+  const double left_lo[3] = {-1.0, -1.0, -1.0}, left_hi[3] = {-0.0, 0.0, -0.0};
+  const double right_lo[3] = {0.0, -0.0, 0.0}, right_hi[3] = {1.0, 1.0, 1.0};
+  const double far_lo[3] = {5.0, 5.0, 5.0}, far_hi[3] = {6.0, 6.0, 6.0};
+  boxes.add(10, left_lo, left_hi);
+  boxes.add(20, right_lo, right_hi);
+  boxes.add(30, far_lo, far_hi);
+  SkinList list;
+  keepCandidates(list, boxes, 0.0);  // inflated by one step outward only
+  expectExactForAllThreadCounts(list, boxes, "touching at signed zeros");
+  BoxSet flipped = boxes;
+  for (int axis = 0; axis < 3; ++axis) {
+    flipped.hi[axis][0] = -flipped.hi[axis][0];
+    flipped.lo[axis][1] = -flipped.lo[axis][1];
+  }
+  expectExactForAllThreadCounts(list, flipped, "zeros of the other sign");
+  PairList pairs;
+  ASSERT_TRUE(list.collect(flipped, 1, pairs));
+  EXPECT_EQ(pairs, (PairList{{10, 20}}));
+}
+
+// Planes and slabs that reach infinity on some axes among finite boxes.
+TEST(SkinList, InfiniteBoundsStayInsideAndPair) {
+  BoxSet boxes = test_support::randomBoxes(400, 20.0, 2.0, 23);
+  for (std::size_t i = 0; i < boxes.size(); i += 37) {
+    boxes.lo[i % 3][i] = -kInfinity;
+    if (i % 2 == 0) boxes.hi[(i + 1) % 3][i] = kInfinity;
+  }
+  SkinList list;
+  keepCandidates(list, boxes, 0.5);
+  expectExactForAllThreadCounts(list, boxes, "infinite bounds");
+  TestRandom random(23);
+  expectExactForAllThreadCounts(list, movedWithin(boxes, 0.25, random), "infinite, moved");
+}
+
+TEST(SkinList, FewBoxesAndNoCandidates) {
+  for (std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{2}}) {
+    const BoxSet boxes = test_support::randomBoxes(count, 1000.0, 1.0, 3);
+    SkinList list;
+    keepCandidates(list, boxes, 0.1);
+    expectExactForAllThreadCounts(list, boxes, "few boxes");
+  }
+}
+
+// Many candidates per box (dense, with filters): every thread count gives the same list.
+TEST(SkinList, DenseFramesAgreeAcrossThreadCounts) {
+  BoxSet boxes = test_support::latticeBoxes(2000, 12, 3, 41);
+  test_support::addRandomFilters(boxes, 41);
+  SkinList list;
+  keepCandidates(list, boxes, 1.0);
+  TestRandom random(41);
+  expectExactForAllThreadCounts(list, movedWithin(boxes, 0.5, random), "dense lattice");
+}
+
+}  // namespace
+}  // namespace sap_broadphase
