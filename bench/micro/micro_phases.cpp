@@ -177,8 +177,8 @@ enum SmallFrameVariant : int64_t {
   kBruteForce,     // bruteForcePairs
 };
 
-// Small frames, one thread, by wall clock. Args: n, density %, variant. The small-frame path
-// keeps no state, so its steady state and one-shot are the same thing.
+// Small frames by wall clock, one thread except kEngineAuto. Args: n, density %, variant. The
+// small-frame path keeps no state, so its steady state and one-shot are the same thing.
 void BM_SmallFrame(benchmark::State& state) {
   const PreparedFrame& frame = preparedFrame(state.range(0), densityArg(state));
   BroadphaseConfig config;
@@ -189,7 +189,12 @@ void BM_SmallFrame(benchmark::State& state) {
   SmallFrameWorkspace work;
   PairList out;
   switch (state.range(2)) {
-    case kEngineSteady: {
+    case kEngineSteady:
+    case kEngineAuto: {
+      if (state.range(2) == kEngineAuto) {
+        config.method = Method::kAuto;
+        config.threads = 0;
+      }
       Broadphase engine(config);
       engine.update(frame.boxes);
       for (auto _ : state) benchmark::DoNotOptimize(pairs = engine.update(frame.boxes).size());
@@ -220,7 +225,8 @@ BENCHMARK(BM_SmallFrame)
     ->ArgNames({"n", "d_pct", "variant"})
     ->ArgsProduct({{1 << 6, 1 << 8, 1 << 10, 1 << 12, 1 << 13, 1 << 14, 1 << 15, 1 << 16},
                    {5, 35},
-                   {kEngineSteady, kEngineOneShot, kSmallFrame, kSmallPortable, kBruteForce}})
+                   {kEngineSteady, kEngineOneShot, kSmallFrame, kSmallPortable, kBruteForce,
+                    kEngineAuto}})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

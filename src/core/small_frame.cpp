@@ -83,8 +83,10 @@ inline void reportIfExact(const BoxSet& inBoxes, const uint32_t* inBoxOf, uint32
     outPairs.push_back(makeIdPair(inBoxes.ids[a], inBoxes.ids[b]));
 }
 
-// The sweep, one candidate at a time. Sorted lows make the first low past the end of box i
-// the end of its candidates; the NaN padding ends the last box's.
+// The sweep in blocks of kBlock candidates: sorted lows make the first low past the end of
+// box i the end of its candidates, and the NaN padding ends the last box's. Each block's test
+// is branch-free (bitwise, not short-circuit), so mispredictions stay with the rare hits and
+// the compiler may vectorise the lanes with whatever the target has.
 void sweepPortable(const BoxSet& inBoxes, const SmallFrameWorkspace& inWork, PairList& outPairs) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   const float* lo0 = inWork.lo[0].data();
@@ -94,18 +96,25 @@ void sweepPortable(const BoxSet& inBoxes, const SmallFrameWorkspace& inWork, Pai
   const float* lo2 = inWork.lo[2].data();
   const float* hi2 = inWork.hi[2].data();
   for (uint32_t i = 0; i < n; ++i) {
-    const float end = hi0[i];
-    for (uint32_t j = i + 1; lo0[j] <= end; ++j) {
-      if (lo0[i] <= hi0[j] && lo1[j] <= hi1[i] && lo1[i] <= hi1[j] && lo2[j] <= hi2[i] &&
-          lo2[i] <= hi2[j])
-        reportIfExact(inBoxes, inWork.box_of.data(), i, j, outPairs);
+    const float low0 = lo0[i], high0 = hi0[i], low1 = lo1[i], high1 = hi1[i];
+    const float low2 = lo2[i], high2 = hi2[i];
+    for (uint32_t j = i + 1; lo0[j] <= high0; j += kBlock) {
+      unsigned lanes = 0;
+      for (uint32_t lane = 0; lane < kBlock; ++lane) {
+        const uint32_t k = j + lane;
+        const bool hit = (lo0[k] <= high0) & (low0 <= hi0[k]) & (lo1[k] <= high1) &
+                         (low1 <= hi1[k]) & (lo2[k] <= high2) & (low2 <= hi2[k]);
+        lanes |= unsigned{hit} << lane;
+      }
+      for (; lanes != 0; lanes &= lanes - 1)
+        reportIfExact(inBoxes, inWork.box_of.data(), i, j + __builtin_ctz(lanes), outPairs);
     }
   }
 }
 
 #if SAP_SMALL_FRAME_AVX2
-// The same sweep testing kBlock candidates per step with AVX2 compares; a block may extend
-// past the last candidate, whose extra lanes fail the sweep-axis test (or meet NaN padding).
+// The same sweep with each block's six compares as AVX2 instructions; a block may extend past
+// the last candidate, whose extra lanes fail the sweep-axis test (or meet NaN padding).
 __attribute__((target("avx2"))) void sweepAvx2(const BoxSet& inBoxes,
                                                const SmallFrameWorkspace& inWork,
                                                PairList& outPairs) {
