@@ -175,6 +175,7 @@ enum SmallFrameVariant : int64_t {
   kSmallFrame,     // pairSmallFrame (AVX2 blocks where the CPU has them)
   kSmallPortable,  // pairSmallFramePortable
   kBruteForce,     // bruteForcePairs
+  kEngineAuto,     // the default engine on all cores (parallel from parallel_min_boxes), steady
 };
 
 // Small frames by wall clock, one thread except kEngineAuto. Args: n, density %, variant. The
