@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "core/radix_sort.h"
+#include "core/small_frame.h"
 #include "core/sort_keys.h"
 #include "core/sweep.h"  // Algorithms 1 and 3 (candidates)
 #include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"
 
 namespace {
@@ -164,6 +166,69 @@ BENCHMARK(BM_Update)
     ->ArgNames({"n", "d_pct", "threads"})
     ->ArgsProduct({{1 << 17, 1 << 20}, {5, 35}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// What BM_SmallFrame runs on one frame.
+enum SmallFrameVariant : int64_t {
+  kEngineSteady,   // the sequential engine, same frame again (its skips disabled)
+  kEngineOneShot,  // a fresh sequential engine per frame
+  kSmallFrame,     // pairSmallFrame (AVX2 blocks where the CPU has them)
+  kSmallPortable,  // pairSmallFramePortable
+  kBruteForce,     // bruteForcePairs
+  kEngineAuto,     // the default engine on all cores (parallel from parallel_min_boxes), steady
+};
+
+// Small frames by wall clock, one thread except kEngineAuto. Args: n, density %, variant. The
+// small-frame path keeps no state, so its steady state and one-shot are the same thing.
+void BM_SmallFrame(benchmark::State& state) {
+  const PreparedFrame& frame = preparedFrame(state.range(0), densityArg(state));
+  BroadphaseConfig config;
+  config.method = Method::kSequential;
+  config.threads = 1;
+  config.skin = 0.0;
+  std::size_t pairs = 0;
+  SmallFrameWorkspace work;
+  PairList out;
+  switch (state.range(2)) {
+    case kEngineSteady:
+    case kEngineAuto: {
+      if (state.range(2) == kEngineAuto) {
+        config.method = Method::kAuto;
+        config.threads = 0;
+      }
+      Broadphase engine(config);
+      engine.update(frame.boxes);
+      for (auto _ : state) benchmark::DoNotOptimize(pairs = engine.update(frame.boxes).size());
+      break;
+    }
+    case kEngineOneShot:
+      for (auto _ : state) {
+        Broadphase engine(config);
+        benchmark::DoNotOptimize(pairs = engine.update(frame.boxes).size());
+      }
+      break;
+    case kSmallFrame:
+    case kSmallPortable:
+      for (auto _ : state) {
+        if (state.range(2) == kSmallFrame)
+          pairSmallFrame(frame.boxes, work, out);
+        else
+          pairSmallFramePortable(frame.boxes, work, out);
+        benchmark::DoNotOptimize(pairs = out.size());
+      }
+      break;
+    default:
+      for (auto _ : state) benchmark::DoNotOptimize(pairs = bruteForcePairs(frame.boxes).size());
+  }
+  state.counters["pairs"] = static_cast<double>(pairs);
+}
+BENCHMARK(BM_SmallFrame)
+    ->ArgNames({"n", "d_pct", "variant"})
+    ->ArgsProduct({{1 << 6, 1 << 8, 1 << 10, 1 << 12, 1 << 13, 1 << 14, 1 << 15, 1 << 16},
+                   {5, 35},
+                   {kEngineSteady, kEngineOneShot, kSmallFrame, kSmallPortable, kBruteForce,
+                    kEngineAuto}})
+    ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 
 }  // namespace

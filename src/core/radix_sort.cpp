@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -41,6 +42,8 @@ inline uint8_t partitionOf(uint32_t inKey, const uint32_t* inBounds, int inBound
 // partition outright, and only keys in a prefix that a bound splits need the search.
 constexpr int kPrefixShift = 16;
 constexpr uint8_t kSplitPrefix = 0xFF;
+static_assert(kMaxSortPartitions - 1 < kSplitPrefix,
+              "partition numbers are stored in 8 bits, with kSplitPrefix reserved");
 
 void buildPrefixTable(const uint32_t* inBounds, int inBoundCount, std::vector<uint8_t>& outTable) {
   outTable.resize(std::size_t{1} << (32 - kPrefixShift));
@@ -160,6 +163,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
                                               int inThreads) {
   const int partitions = static_cast<int>(inBounds.bounds.size()) + 1;
   const int bound_count = partitions - 1;
+  assert(partitions >= 1 && partitions <= kMaxSortPartitions);  // partition_of_ is 8 bits
   const uint32_t* bounds = inBounds.bounds.data();
   counts_.assign(static_cast<std::size_t>(inThreads) * partitions, 0);
   resizeDiscarding(partition_of_, inCount);

@@ -1,6 +1,7 @@
 #include "core/slab_grid.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -45,6 +46,7 @@ SlabGrid chooseSlabGrid(const BoxSet& inBoxes, int inAxis, int inRequested, int 
     count = static_cast<int>(std::min<double>(kMaxSlabs, std::ceil(span / width)));
   }
   count = std::clamp(count, 1, kMaxSlabs);
+  assert(count <= kMaxSlabs);  // RankedSlabs holds slab numbers in 8 bits
   grid.count = count;
   grid.origin = lowest;
   grid.width = span / count;

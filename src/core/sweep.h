@@ -54,6 +54,7 @@ struct RankedSlabs {
   uint8_t first;
   uint8_t last;
 };
+static_assert(kMaxSlabs - 1 <= 0xFF, "slab numbers are stored in 8 bits");
 
 /// The secondary-axis order with all that pairing reads about each endpoint's box, two 64-bit
 /// words an endpoint, in sweep order: word 0 = rank | kind << 31 | L << 32, word 1 = U.

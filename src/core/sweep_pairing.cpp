@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cassert>
 
 #include "core/buffers.h"
 #include "core/sweep.h"
@@ -17,8 +18,13 @@ namespace {
 //   bits 47-62 (low endpoints) end of the candidate range, local to the partition
 constexpr uint64_t kEntryHighBit = uint64_t{1} << 63;
 constexpr uint32_t kRankMask = 0x7FFFFFFFu;
+constexpr uint32_t kLocalRankMask = 0xFFFFu;
+static_assert(kMaxBoxes - 1 <= kRankMask, "every rank must fit in an entry's 31 rank bits");
+static_assert(kPairingPartitionRanks <= kLocalRankMask,
+              "a partition's local candidate range (ends included) must fit in 16 bits");
 
 inline uint64_t lowEntry(uint32_t inRank, uint32_t inLocalBegin, uint32_t inLocalEnd) {
+  assert(inRank <= kRankMask && inLocalBegin <= inLocalEnd && inLocalEnd <= kLocalRankMask);
   return inRank | (uint64_t{inLocalBegin} << 31) | (uint64_t{inLocalEnd} << 47);
 }
 inline uint64_t highEntry(uint32_t inRank) {
@@ -70,8 +76,8 @@ struct PartitionReader {
     const uint64_t entry = entries[inK];
     outRank = static_cast<uint32_t>(entry) & kRankMask;
     outHigh = (entry & kEntryHighBit) != 0;
-    outBegin = static_cast<uint32_t>(entry >> 31) & 0xFFFFu;
-    outEnd = static_cast<uint32_t>(entry >> 47) & 0xFFFFu;
+    outBegin = static_cast<uint32_t>(entry >> 31) & kLocalRankMask;
+    outEnd = static_cast<uint32_t>(entry >> 47) & kLocalRankMask;
   }
 };
 
@@ -258,6 +264,7 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
       std::max<uint32_t>(threads, (n + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
   const uint32_t partition_size = std::max<uint32_t>(1, (n + wanted - 1) / wanted);  // Δ
   const uint32_t partitions = (n + partition_size - 1) / partition_size;
+  assert(partition_size <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
   scatterToPartitions(inInput, threads, partition_size, partitions, ioWork);
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, partition_size);

@@ -3,12 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 #include "core/radix_sort.h"
+#include "core/small_frame.h"
 #include "core/sort_keys.h"
 #include "core/sweep.h"
+#include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 
 namespace sap_broadphase {
@@ -104,6 +108,106 @@ TEST(Candidates, ZeroObjectsWithAFreshWorkspace) {
         std::exit(sequential.of_object.empty() && parallel.of_object.empty() ? 0 : 1);
       },
       ::testing::ExitedWithCode(0), "");
+}
+
+// ---- The small-frame path: exactly the oracle's pairs, on both sweeps. ----
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void addBox(BoxSet& ioBoxes, double inX0, double inY0, double inZ0, double inX1, double inY1,
+            double inZ1) {
+  const double low[3] = {inX0, inY0, inZ0};
+  const double high[3] = {inX1, inY1, inZ1};
+  ioBoxes.add(static_cast<uint32_t>(ioBoxes.size()), low, high);
+}
+
+// Runs the dispatched sweep (AVX2 where the CPU has it) and the portable one, twice each on one
+// workspace (the second run reuses grown buffers), against the oracle.
+void expectSmallFrameMatches(const BoxSet& inBoxes, const std::string& inLabel) {
+  const PairList oracle = bruteForcePairs(inBoxes);
+  SmallFrameWorkspace work;
+  PairList pairs;
+  for (int run = 0; run < 2; ++run) {
+    pairSmallFrame(inBoxes, work, pairs);
+    EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << " (dispatched)";
+    pairSmallFramePortable(inBoxes, work, pairs);
+    EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << " (portable)";
+  }
+}
+
+TEST(SmallFrame, RandomBoxesOfEverySize) {
+  for (std::size_t n : {0u, 1u, 2u, 3u, 7u, 8u, 9u, 17u, 255u, 256u, 1000u, 5000u}) {
+    for (double edge : {0.5, 5.0, 40.0}) {
+      const BoxSet boxes = test_support::randomBoxes(n, 100.0, edge, n * 31 + 7);
+      expectSmallFrameMatches(boxes, std::to_string(n) + " boxes, edge " + std::to_string(edge));
+    }
+  }
+}
+
+TEST(SmallFrame, TouchingLatticeWithZeroExtents) {
+  for (uint64_t seed : {1u, 2u, 3u}) {
+    expectSmallFrameMatches(test_support::latticeBoxes(1500, 12, 2, seed), "lattice");
+    expectSmallFrameMatches(test_support::latticeBoxes(300, 3, 0, seed), "dense points");
+  }
+}
+
+TEST(SmallFrame, FiltersIncludingZeroGroupsAndMasks) {
+  BoxSet boxes = test_support::randomBoxes(2000, 50.0, 6.0, 11);
+  test_support::addRandomFilters(boxes, 12);
+  for (std::size_t i = 0; i < boxes.size(); i += 17) boxes.groups[i] = 0;
+  for (std::size_t i = 5; i < boxes.size(); i += 23) boxes.masks[i] = 0;
+  expectSmallFrameMatches(boxes, "filters");
+}
+
+TEST(SmallFrame, IdsOutOfOrderAndSparse) {
+  const BoxSet boxes = test_support::randomBoxes(3000, 60.0, 5.0, 21);
+  expectSmallFrameMatches(test_support::shuffledSubset(boxes, 0.7, false, 22), "shuffled");
+  expectSmallFrameMatches(test_support::shuffledSubset(boxes, 0.7, true, 23), "sparse ids");
+}
+
+TEST(SmallFrame, SignedZerosAndInfinities) {
+  BoxSet boxes;
+  addBox(boxes, -1, -1, -1, -0.0, -0.0, -0.0);
+  addBox(boxes, 0.0, 0.0, 0.0, 1, 1, 1);
+  addBox(boxes, -1, -1, -1, 0.0, 0.0, 0.0);
+  addBox(boxes, -0.0, -0.0, -0.0, 1, 1, 1);
+  addBox(boxes, -0.0, 0.0, -0.0, 0.0, -0.0, 0.0);
+  addBox(boxes, 1e-320, 1e-320, 1e-320, 1, 1, 1);
+  addBox(boxes, -1, -1, -1, -1e-320, 0, 0);
+  EXPECT_EQ(bruteForcePairs(boxes).size(), 14u);
+  expectSmallFrameMatches(boxes, "signed zeros");
+  addBox(boxes, -kInf, -kInf, -kInf, kInf, kInf, 0.0);
+  addBox(boxes, 5, -kInf, -kInf, 5, kInf, kInf);
+  addBox(boxes, kInf, 0, 0, kInf, 1, 1);
+  addBox(boxes, kInf, 0, 0, kInf, 1, 1);
+  addBox(boxes, -kInf, 0, 0, -kInf, 1, 1);
+  addBox(boxes, 0, -kInf, 0, 1, -1e308, 1);
+  addBox(boxes, -1e300, -1e300, -1e300, 1e300, 1e300, 1e300);
+  expectSmallFrameMatches(boxes, "infinities");
+}
+
+TEST(SmallFrame, GapsSmallerThanAFloat32Step) {
+  TestRandom random(10);
+  BoxSet boxes;
+  for (int i = 0; i < 400; ++i) {
+    const double base = random.between(-100.0, 100.0) * (i % 2 ? 1.0 : 1e-30);
+    const double touch = random.below(2) ? base : std::nextafter(base, kInf);
+    const double y = static_cast<double>(random.below(3));
+    addBox(boxes, base - 0.5, y, 0, base, y + 1, 1);
+    addBox(boxes, touch, y, 0, touch + 0.5, y + 1, 1);
+  }
+  expectSmallFrameMatches(boxes, "sub-float32 gaps");
+}
+
+TEST(SmallFrame, SweepsTheAxisWhereBoxesAreNarrowest) {
+  BoxSet boxes;
+  for (int i = 0; i < 200; ++i) addBox(boxes, 0, i, 0, 100, i + 0.5, 100);  // slices along y
+  EXPECT_EQ(chooseSmallFrameAxis(boxes), 1);
+  expectSmallFrameMatches(boxes, "slices along y");
+  BoxSet flat;
+  for (int i = 0; i < 200; ++i) addBox(flat, i, 7, i % 5, i + 3, 7, i % 5 + 1);  // y span 0
+  EXPECT_NE(chooseSmallFrameAxis(flat), 1);
+  expectSmallFrameMatches(flat, "all at one y");
 }
 
 }  // namespace

@@ -1,0 +1,57 @@
+// The small-frame path: one thread, one axis, no state kept between frames.
+//
+// Below a few thousand boxes the bi-dimensional sweep's fixed costs (two endpoint sorts, the
+// candidate ranges of Algorithm 1, SuccTrees sized to n) outweigh what it saves. A plain
+// single-axis sort-and-sweep then wins: sort the boxes by low end on the sweep axis, and test
+// each box against the boxes that start before it ends, several candidates at a time.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
+
+namespace sap_broadphase {
+
+/// Largest frame worth handing to pairSmallFrame instead of the one-thread engine. Measured
+/// with sap_microbench's BM_SmallFrame (uniform scenes, CPU time of one thread): the small
+/// frame stays ahead up to 2^15 boxes at density 0.35 and beyond 2^16 at 0.05 (at 2^14: 3.3
+/// against 5.3 ms, and 1.6 against 3.9 ms). Its candidates grow as n^(5/3) on a uniform scene,
+/// the engine's as n, hence a crossover; 2^14 keeps a margin for denser scenes.
+constexpr std::size_t kSmallFrameMaxBoxesOneThread = std::size_t{1} << 14;
+/// The same against the parallel engine on two threads, which can at best halve the engine's
+/// time: at density 0.35 that meets the small frame near 2^13 (1.27 against 2.74 / 2 ms).
+/// Derived from the one-thread measurements, not measured on an idle machine.
+constexpr std::size_t kSmallFrameMaxBoxesParallel = std::size_t{1} << 13;
+
+/// Buffers of pairSmallFrame, reused from frame to frame (grown, never shrunk).
+struct SmallFrameWorkspace {
+  std::vector<uint64_t> order;    ///< (low key << 32 | box) on the sweep axis, then sorted
+  std::vector<uint64_t> scratch;  ///< the radix sort's second buffer
+  /// Float32 bounds rounded outward (sort_keys.h), in sweep order, structure of arrays: axis
+  /// 0 is the sweep axis. Low arrays are padded with NaN so a block of candidates may read
+  /// past the last box: NaN compares false, so padding never overlaps anything.
+  std::vector<float> lo[3];
+  std::vector<float> hi[3];
+  std::vector<uint32_t> box_of;  ///< box index of each sweep position
+  PairSortScratch pair_scratch;
+};
+
+/// The sweep axis of a small frame: the one whose mean box extent is smallest relative to the
+/// span of the low ends, i.e. the fewest boxes start inside a box's interval.
+int chooseSmallFrameAxis(const BoxSet& inBoxes);
+
+/// Every overlapping, filter-allowed pair of inBoxes (exactly bruteForcePairs' result), in
+/// canonical order, into outPairs (replaced). One thread; AVX2 blocks of 8 candidates where
+/// the CPU has them, a portable loop otherwise (chosen at run time).
+void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
+
+/// The same, forced onto the portable loop (for tests and benchmarks on AVX2 machines).
+void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
+
+/// True when pairSmallFrame uses the AVX2 blocks on this CPU.
+bool smallFrameUsesAvx2();
+
+}  // namespace sap_broadphase
