@@ -37,7 +37,6 @@ std::string loadSceneConfig(const ros::NodeHandle& inPrivate, SceneConfig& outCo
 
 std::string loadScenePublisherParams(const ros::NodeHandle& inPrivate,
                                      ScenePublisherParams& outParams) {
-  outParams.scene.n = 10000;
   const std::string error = loadSceneConfig(inPrivate, outParams.scene);
   if (!error.empty()) return error;
   inPrivate.param("rate", outParams.rate_hz, outParams.rate_hz);

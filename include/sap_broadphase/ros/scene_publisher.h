@@ -17,14 +17,14 @@ namespace sap_broadphase {
 
 /// Everything ScenePublisher can be told through its private parameters.
 struct ScenePublisherParams {
-  SceneConfig scene;             ///< ~scene, ~n, ~density, ~seed, ~plane_axis, ...
-  double rate_hz = 10.0;         ///< ~rate: frames per second
+  SceneConfig scene{SceneKind::kUniform, 10000};  ///< ~scene, ~n, ~density, ~seed, ...
+  double rate_hz = 10.0;                          ///< ~rate: frames per second
   int max_frames = 0;            ///< ~max_frames: stop after this many; 0 = until shut down
   std::string frame_id = "map";  ///< ~frame_id of every frame's header
 };
 
-/// Reads the private parameters of inPrivate over the defaults of ScenePublisherParams (with
-/// 10^4 boxes). Returns the problem or an empty string.
+/// Reads the private parameters of inPrivate over the defaults of ScenePublisherParams.
+/// Returns the problem or an empty string.
 std::string loadScenePublisherParams(const ros::NodeHandle& inPrivate,
                                      ScenePublisherParams& outParams);
 
