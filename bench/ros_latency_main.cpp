@@ -4,6 +4,13 @@
 // part spent in the engine's sweep and the part spent outside it (serialisation, transport,
 // deserialisation, conversion, output).
 //
+// Two transports, measured side by side in one run on the same frames:
+//   tcp      the node is another process (started beside this one, e.g. by bench_ros.sh): every
+//            BoxArray and PairArray is serialised, sent over loopback TCP and deserialised;
+//   nodelet  sap_broadphase/BroadphaseNodelet is loaded into this process (a nodelet::Loader,
+//            namespace in_process), so publisher, node and this measuring subscriber share one
+//            process and the frames pass as shared pointers, never serialised.
+//
 // Two modes per configuration:
 //   latency     one frame in flight: the next frame is published only after the previous
 //               frame's pairs and stats arrived (nothing can be dropped);
@@ -25,13 +32,17 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <nodelet/loader.h>
 #include <ros/ros.h>
 #include <ros/serialization.h>
+#include <boost/make_shared.hpp>
 
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/FrameStats.h"
@@ -43,6 +54,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using sap_broadphase::BoxArray;
+using sap_broadphase::BoxArrayPtr;
 using sap_broadphase::FrameStats;
 using sap_broadphase::PairArray;
 
@@ -57,11 +69,14 @@ const char* const kUsage =
     "  --frames F              measured frames per mode (default 20)\n"
     "  --warmup W              warm-up frames per mode, excluded (default 3)\n"
     "  --no-throughput         latency mode only\n"
+    "  --transport T[,T...]    tcp (a node in another process), nodelet (the node loaded\n"
+    "                          into this process); default tcp,nodelet\n"
     "  --seed S                scene seed (default 1)\n"
     "  --timeout S             seconds to wait for one frame's answer (default 120)\n"
     "  --out DIR               write ros_latency.csv and ros_latency_frames.csv into DIR\n"
     "  --quick                 n = 2^12,2^14, d = 0.05, 2 warm-up + 5 frames\n"
-    "Topics (relative, remappable): boxes (published), pairs and stats (subscribed).\n";
+    "Topics (relative, remappable): boxes (published), pairs and stats (subscribed); for the\n"
+    "nodelet transport the same names inside the namespace in_process.\n";
 
 bool parseCount(const std::string& inText, std::size_t& outValue) {
   char* end = nullptr;
@@ -92,6 +107,7 @@ struct Options {
   int frames = 0;  // 0: by size
   int warmup = 3;
   bool throughput = true;
+  std::vector<std::string> transports{"tcp", "nodelet"};
   uint64_t seed = 1;
   double timeout_s = 120.0;
   std::string out;
@@ -134,6 +150,10 @@ bool parseOptions(const std::vector<std::string>& inArgs, Options& outOptions) {
       if (outOptions.warmup < 0) return false;
     } else if (arg == "--no-throughput") {
       outOptions.throughput = false;
+    } else if (arg == "--transport" && next(value)) {
+      outOptions.transports = splitComma(value);
+      for (const std::string& transport : outOptions.transports)
+        if (transport != "tcp" && transport != "nodelet") return false;
     } else if (arg == "--seed" && next(value)) {
       outOptions.seed = std::strtoull(value.c_str(), nullptr, 10);
     } else if (arg == "--timeout" && next(value)) {
@@ -145,7 +165,8 @@ bool parseOptions(const std::vector<std::string>& inArgs, Options& outOptions) {
       return false;
     }
   }
-  return !outOptions.sizes.empty() && !outOptions.densities.empty();
+  return !outOptions.sizes.empty() && !outOptions.densities.empty() &&
+         !outOptions.transports.empty();
 }
 
 /// What arrived for one stamp.
@@ -228,6 +249,7 @@ class Collector {
 
 /// One measured frame.
 struct FrameRow {
+  std::string transport;
   std::string mode;
   std::size_t n = 0;
   double density = 0.0;
@@ -236,7 +258,7 @@ struct FrameRow {
   std::size_t pairs = 0;
   std::size_t box_bytes = 0;
   std::size_t pair_bytes = 0;
-  double publish_ms = 0.0;  // publish() call: serialisation + handing bytes to the socket
+  double publish_ms = 0.0;  // publish() call: tcp, serialisation + handing bytes to the socket
   double latency_ms = 0.0;  // publish() called -> pairs callback entered
   FrameStats stats;
   double sweep_ms() const { return stats.ms_sort + stats.ms_candidates + stats.ms_pairing; }
@@ -280,6 +302,7 @@ void serialisationCost(const M& inMsg, int inRepeats, double& outSerialiseMs,
 }
 
 struct Summary {
+  std::string transport;
   std::string mode;
   std::size_t n = 0;
   double density = 0.0;
@@ -295,9 +318,10 @@ struct Summary {
   int threads = 0;
 };
 
-Summary summarise(const std::string& inMode, std::size_t inN, double inDensity,
-                  const std::vector<FrameRow>& inRows, int inLost) {
+Summary summarise(const std::string& inTransport, const std::string& inMode, std::size_t inN,
+                  double inDensity, const std::vector<FrameRow>& inRows, int inLost) {
   Summary s;
+  s.transport = inTransport;
   s.mode = inMode;
   s.n = inN;
   s.density = inDensity;
@@ -331,19 +355,23 @@ Summary summarise(const std::string& inMode, std::size_t inN, double inDensity,
 
 /// The next inCount frames of the simulator as messages (the motion goes on across calls).
 void makeFrames(sap_broadphase::SceneSimulator& ioSimulator, int inCount,
-                std::vector<BoxArray>& outFrames) {
-  outFrames.resize(static_cast<std::size_t>(inCount));
-  for (BoxArray& msg : outFrames) {
-    msg.header.frame_id = "map";
-    sap_broadphase::boxSetToBoxArray(ioSimulator.boxes(), msg.header, msg);
-    msg.ids.clear();  // as scene_publisher: boxes numbered 0..n-1
+                std::vector<BoxArrayPtr>& outFrames) {
+  outFrames.clear();
+  for (int i = 0; i < inCount; ++i) {
+    BoxArrayPtr msg = boost::make_shared<BoxArray>();
+    msg->header.frame_id = "map";
+    sap_broadphase::boxSetToBoxArray(ioSimulator.boxes(), msg->header, *msg);
+    msg->ids.clear();  // as scene_publisher: boxes numbered 0..n-1
+    outFrames.push_back(msg);
     ioSimulator.step();
   }
 }
 
+/// One transport's publisher and subscribers, in the namespace of ioNode.
 class Runner {
  public:
-  Runner(ros::NodeHandle& ioNode, const Options& inOptions) : options_(inOptions) {
+  Runner(ros::NodeHandle& ioNode, const std::string& inTransport, const Options& inOptions)
+      : options_(inOptions), transport_(inTransport) {
     boxes_pub_ = ioNode.advertise<BoxArray>("boxes", 4);
     pairs_sub_ = ioNode.subscribe("pairs", 10, &Collector::onPairs, &collector_,
                                   ros::TransportHints().tcpNoDelay());
@@ -368,8 +396,8 @@ class Runner {
   /// Publishes frames [inFirst, inFirst + inCount) with inInFlight frames in flight; appends the
   /// frames from inFirst + inWarmup on to outRows. Returns the frames lost (no answer).
   int run(const std::string& inMode, std::size_t inN, double inDensity,
-          std::vector<BoxArray>& ioFrames, int inFirst, int inWarmup, int inCount, int inInFlight,
-          std::vector<FrameRow>& outRows, double& outFps) {
+          std::vector<BoxArrayPtr>& ioFrames, int inFirst, int inWarmup, int inCount,
+          int inInFlight, std::vector<FrameRow>& outRows, double& outFps) {
     struct Sent {
       uint64_t stamp;
       Clock::time_point at;
@@ -380,13 +408,18 @@ class Runner {
     int lost = 0;
     int next = 0;
     auto publishNext = [&]() {
-      BoxArray& msg = ioFrames[static_cast<std::size_t>(inFirst + next)];
+      BoxArrayPtr& msg = ioFrames[static_cast<std::size_t>(inFirst + next)];
+      // The frames are published again by the next transport: a message someone still holds
+      // (a node that dropped it, a queue) is copied, never written while shared.
+      if (msg.use_count() > 1) msg = boost::make_shared<BoxArray>(*msg);
       ros::Time stamp = ros::Time::now();
       if (stamp.toNSec() <= last_stamp_) stamp.fromNSec(last_stamp_ + 1);
       last_stamp_ = stamp.toNSec();
-      msg.header.stamp = stamp;
+      msg->header.stamp = stamp;
       const Clock::time_point start = Clock::now();
-      boxes_pub_.publish(msg);  // const reference: serialised here, before returning
+      // A shared pointer: serialised here, before returning, for a subscriber in another
+      // process; handed over as it is to one in this process.
+      boxes_pub_.publish(msg);
       const Clock::time_point end = Clock::now();
       sent.push_back({stamp.toNSec(), start, msBetween(start, end), next});
       ++next;
@@ -410,6 +443,7 @@ class Runner {
       last_reply = reply.pairs_at;
       ++measured_replies;
       FrameRow row;
+      row.transport = transport_;
       row.mode = inMode;
       row.n = inN;
       row.density = inDensity;
@@ -417,7 +451,7 @@ class Runner {
       row.stamp = frame.stamp;
       row.pairs = reply.pair_count;
       row.box_bytes = ros::serialization::serializationLength(
-          ioFrames[static_cast<std::size_t>(inFirst + frame.index)]);
+          *ioFrames[static_cast<std::size_t>(inFirst + frame.index)]);
       row.pair_bytes = reply.pair_bytes;
       row.publish_ms = frame.publish_ms;
       row.latency_ms = msBetween(frame.at, reply.pairs_at);
@@ -435,9 +469,11 @@ class Runner {
   }
 
   Collector& collector() { return collector_; }
+  const std::string& transport() const { return transport_; }
 
  private:
   const Options& options_;
+  std::string transport_;
   ros::Publisher boxes_pub_;
   ros::Subscriber pairs_sub_;
   ros::Subscriber stats_sub_;
@@ -447,27 +483,30 @@ class Runner {
 
 void printTable(const std::vector<Summary>& inSummaries) {
   std::printf(
-      "\n%-10s %8s %5s %3s %4s %8s %7s %6s | %8s %7s %8s %7s %7s %7s %6s | %8s %8s %6s %6s\n",
-      "mode", "n", "d", "fr", "lost", "pairs", "box MB", "prs MB", "latency", "publish", "out-node",
-      "conv", "sweep", "output", "other", "node tot", "out-swp", "share", "fps");
+      "\n%-7s %-10s %8s %5s %3s %4s %8s %7s %6s | %8s %7s %8s %7s %7s %7s %6s | %8s %8s %6s "
+      "%6s\n",
+      "trans", "mode", "n", "d", "fr", "lost", "pairs", "box MB", "prs MB", "latency", "publish",
+      "out-node", "conv", "sweep", "output", "other", "node tot", "out-swp", "share", "fps");
   for (const Summary& s : inSummaries) {
     std::printf(
-        "%-10s %8zu %5.2f %3d %4d %8.0f %7.1f %6.2f | %8.2f %7.2f %8.2f %7.2f %7.2f %7.2f %6.2f | "
-        "%8.2f %8.2f %5.1f%% %6.2f\n",
-        s.mode.c_str(), s.n, s.density, s.frames, s.lost, s.pairs, s.box_mb, s.pair_mb, s.latency,
-        s.publish, s.outside_node, s.conversion, s.sweep, s.output, s.other, s.node_total,
-        s.outside_sweep, 100.0 * s.outside_share, s.fps);
+        "%-7s %-10s %8zu %5.2f %3d %4d %8.0f %7.1f %6.2f | %8.2f %7.2f %8.2f %7.2f %7.2f %7.2f "
+        "%6.2f | %8.2f %8.2f %5.1f%% %6.2f\n",
+        s.transport.c_str(), s.mode.c_str(), s.n, s.density, s.frames, s.lost, s.pairs, s.box_mb,
+        s.pair_mb, s.latency, s.publish, s.outside_node, s.conversion, s.sweep, s.output, s.other,
+        s.node_total, s.outside_sweep, 100.0 * s.outside_share, s.fps);
   }
   std::printf(
-      "(ms, medians over frames. latency: publish() called -> pairs callback entered. out-node:\n"
+      "(ms, medians over frames. trans: tcp = node in another process, nodelet = node loaded\n"
+      " into this process. latency: publish() called -> pairs callback entered. out-node:\n"
       " latency - node ms_total (publisher serialisation, transport, node deserialisation and\n"
-      " hand-off, pairs transport and deserialisation). conv: BoxArray -> BoxSet + validation.\n"
+      " hand-off, pairs transport and deserialisation; with the nodelet only the hand-offs and\n"
+      " whatever the node still serialises). conv: BoxArray -> BoxSet + validation.\n"
       " sweep: ms_sort + ms_candidates + ms_pairing. output: engine canonical pair order +\n"
       " PairArray fill + publish(). other: rest of ms_total (engine bookkeeping, frame copy for\n"
       " reuse). out-swp: latency - sweep; share: its fraction of latency. fps: answers per second\n"
       " in throughput mode, 2 frames in flight.)\n");
   for (const Summary& s : inSummaries) {
-    if (s.mode != "latency") continue;
+    if (s.mode != "latency" || s.transport != "tcp") continue;
     std::printf(
         "offline in this process, n %zu d %.2f: BoxArray serialise %.2f ms, deserialise %.2f ms;"
         " PairArray serialise %.2f ms, deserialise %.2f ms\n",
@@ -478,34 +517,49 @@ void printTable(const std::vector<Summary>& inSummaries) {
 bool writeCsv(const std::string& inDir, const std::vector<Summary>& inSummaries,
               const std::vector<FrameRow>& inRows) {
   std::ofstream summary(inDir + "/ros_latency.csv");
-  summary << "mode,n,density,frames,lost,threads,path,pairs,box_msg_mb,pair_msg_mb,latency_ms,"
+  summary << "transport,mode,n,density,frames,lost,threads,path,pairs,box_msg_mb,pair_msg_mb,"
+             "latency_ms,"
              "publish_ms,outside_node_ms,conversion_ms,sort_ms,candidates_ms,pairing_ms,"
              "sweep_ms,output_ms,other_ms,node_total_ms,outside_sweep_ms,outside_sweep_share,"
              "throughput_fps,node_dropped,offline_serialise_boxes_ms,"
              "offline_deserialise_boxes_ms,offline_serialise_pairs_ms,"
              "offline_deserialise_pairs_ms\n";
   for (const Summary& s : inSummaries) {
-    summary << s.mode << ',' << s.n << ',' << s.density << ',' << s.frames << ',' << s.lost << ','
-            << s.threads << ',' << s.path << ',' << s.pairs << ',' << s.box_mb << ',' << s.pair_mb
-            << ',' << s.latency << ',' << s.publish << ',' << s.outside_node << ',' << s.conversion
-            << ',' << s.sort << ',' << s.candidates << ',' << s.pairing << ',' << s.sweep << ','
-            << s.output << ',' << s.other << ',' << s.node_total << ',' << s.outside_sweep << ','
-            << s.outside_share << ',' << s.fps << ',' << s.dropped << ',' << s.ser_boxes << ','
-            << s.deser_boxes << ',' << s.ser_pairs << ',' << s.deser_pairs << '\n';
+    summary << s.transport << ',' << s.mode << ',' << s.n << ',' << s.density << ',' << s.frames
+            << ',' << s.lost << ',' << s.threads << ',' << s.path << ',' << s.pairs << ','
+            << s.box_mb << ',' << s.pair_mb << ',' << s.latency << ',' << s.publish << ','
+            << s.outside_node << ',' << s.conversion << ',' << s.sort << ',' << s.candidates << ','
+            << s.pairing << ',' << s.sweep << ',' << s.output << ',' << s.other << ','
+            << s.node_total << ',' << s.outside_sweep << ',' << s.outside_share << ',' << s.fps
+            << ',' << s.dropped << ',' << s.ser_boxes << ',' << s.deser_boxes << ',' << s.ser_pairs
+            << ',' << s.deser_pairs << '\n';
   }
   std::ofstream frames(inDir + "/ros_latency_frames.csv");
-  frames << "mode,n,density,frame,stamp_ns,pairs,box_msg_bytes,pair_msg_bytes,publish_ms,"
+  frames << "transport,mode,n,density,frame,stamp_ns,pairs,box_msg_bytes,pair_msg_bytes,publish_ms,"
             "latency_ms,conversion_ms,sort_ms,candidates_ms,pairing_ms,output_ms,node_total_ms,"
             "path,threads,frames_dropped\n";
   for (const FrameRow& r : inRows) {
-    frames << r.mode << ',' << r.n << ',' << r.density << ',' << r.frame << ',' << r.stamp << ','
-           << r.pairs << ',' << r.box_bytes << ',' << r.pair_bytes << ',' << r.publish_ms << ','
-           << r.latency_ms << ',' << r.stats.ms_conversion << ',' << r.stats.ms_sort << ','
-           << r.stats.ms_candidates << ',' << r.stats.ms_pairing << ',' << r.stats.ms_output << ','
-           << r.stats.ms_total << ',' << r.stats.path << ',' << r.stats.threads << ','
-           << r.stats.frames_dropped << '\n';
+    frames << r.transport << ',' << r.mode << ',' << r.n << ',' << r.density << ',' << r.frame
+           << ',' << r.stamp << ',' << r.pairs << ',' << r.box_bytes << ',' << r.pair_bytes << ','
+           << r.publish_ms << ',' << r.latency_ms << ',' << r.stats.ms_conversion << ','
+           << r.stats.ms_sort << ',' << r.stats.ms_candidates << ',' << r.stats.ms_pairing << ','
+           << r.stats.ms_output << ',' << r.stats.ms_total << ',' << r.stats.path << ','
+           << r.stats.threads << ',' << r.stats.frames_dropped << '\n';
   }
   return summary.good() && frames.good();
+}
+
+/// Namespace of the nodelet transport's topics and of the nodelet loaded into this process.
+const char* const kInProcessNamespace = "in_process";
+
+/// Loads sap_broadphase/BroadphaseNodelet into this process as in_process/sap_broadphase, with
+/// the settings bench_ros.sh gives the node of the tcp transport (no markers, the rest default).
+bool loadBroadphaseNodelet(nodelet::Loader& ioLoader) {
+  const std::string name =
+      ros::names::resolve(std::string(kInProcessNamespace) + "/sap_broadphase");
+  ros::param::set(name + "/publish_markers", false);
+  return ioLoader.load(name, "sap_broadphase/BroadphaseNodelet", ros::M_string(),
+                       std::vector<std::string>());
 }
 
 }  // namespace
@@ -520,13 +574,28 @@ int main(int argc, char** argv) {
     std::cerr << kUsage;
     return 2;
   }
-  ros::NodeHandle node;
   ros::AsyncSpinner spinner(1);
   spinner.start();
-  Runner runner(node, options);
-  if (!runner.waitForConnections(30.0)) {
-    std::cerr << "sap_ros_latency: no node on boxes/pairs/stats after 30 s\n";
-    return 1;
+  // The loader outlives the runners (declared first): their subscribers go before its node.
+  std::optional<nodelet::Loader> loader;
+  std::vector<std::unique_ptr<Runner>> runners;
+  for (const std::string& transport : options.transports) {
+    const bool in_process = transport == "nodelet";
+    if (in_process) {
+      loader.emplace(false);  // no load/unload services: only this process loads nodelets
+      if (!loadBroadphaseNodelet(*loader)) {
+        std::cerr << "sap_ros_latency: could not load sap_broadphase/BroadphaseNodelet (is the "
+                     "workspace's setup.bash sourced?)\n";
+        return 1;
+      }
+    }
+    ros::NodeHandle node(in_process ? kInProcessNamespace : "");
+    runners.push_back(std::make_unique<Runner>(node, transport, options));
+    if (!runners.back()->waitForConnections(30.0)) {
+      std::cerr << "sap_ros_latency: no node on " << node.resolveName("boxes")
+                << "/pairs/stats after 30 s\n";
+      return 1;
+    }
   }
 
   std::vector<Summary> summaries;
@@ -537,44 +606,52 @@ int main(int argc, char** argv) {
       const int frames = options.frames > 0 ? options.frames : 20;
       const int per_mode = options.warmup + frames;
       std::cerr << "sap_ros_latency: n " << n << ", d " << density << ": " << options.warmup
-                << " warm-up + " << frames << " frames per mode\n";
+                << " warm-up + " << frames << " frames per mode and transport\n";
       sap_broadphase::SceneConfig scene;
       scene.kind = sap_broadphase::SceneKind::kUniform;
       scene.n = n;
       scene.density = density;
       scene.seed = options.seed;
       sap_broadphase::SceneSimulator simulator(scene);
-      std::vector<BoxArray> messages;
+      std::vector<BoxArrayPtr> messages;
       makeFrames(simulator, per_mode, messages);
 
-      std::vector<FrameRow> rows;
-      double fps = 0.0;
-      int lost =
-          runner.run("latency", n, density, messages, 0, options.warmup, per_mode, 1, rows, fps);
-      total_lost += lost;
-      Summary latency = summarise("latency", n, density, rows, lost);
-      latency.fps = fps;  // one in flight: 1 / (latency + this process's gaps)
-      serialisationCost(messages[0], 3, latency.ser_boxes, latency.deser_boxes);
-      if (auto pairs = runner.collector().lastPairs())
-        serialisationCost(*pairs, 3, latency.ser_pairs, latency.deser_pairs);
-      summaries.push_back(latency);
-      all_rows.insert(all_rows.end(), rows.begin(), rows.end());
-      std::cerr << "sap_ros_latency:   latency mode: median " << latency.latency << " ms, sweep "
-                << latency.sweep << " ms\n";
+      // Every transport gets the same frames, one after the other, so that a load change on
+      // the machine shows as a difference between neighbouring rows, not between runs.
+      for (auto& runner : runners) {
+        std::vector<FrameRow> rows;
+        double fps = 0.0;
+        const int lost =
+            runner->run("latency", n, density, messages, 0, options.warmup, per_mode, 1, rows, fps);
+        total_lost += lost;
+        Summary latency = summarise(runner->transport(), "latency", n, density, rows, lost);
+        latency.fps = fps;  // one in flight: 1 / (latency + this process's gaps)
+        serialisationCost(*messages[0], 3, latency.ser_boxes, latency.deser_boxes);
+        if (auto pairs = runner->collector().lastPairs())
+          serialisationCost(*pairs, 3, latency.ser_pairs, latency.deser_pairs);
+        summaries.push_back(latency);
+        all_rows.insert(all_rows.end(), rows.begin(), rows.end());
+        std::cerr << "sap_ros_latency:   " << runner->transport() << " latency mode: median "
+                  << latency.latency << " ms, sweep " << latency.sweep << " ms\n";
+      }
 
       if (options.throughput) {
-        rows.clear();
         // The throughput frames continue the motion of the latency frames.
         // Two in flight can lose a frame by design ("latest frame wins" when the worker is
         // slow to pick up the pending one): counted in `lost`, not an error.
         makeFrames(simulator, per_mode, messages);
-        lost = runner.run("throughput", n, density, messages, 0, options.warmup, per_mode, 2, rows,
-                          fps);
-        Summary throughput = summarise("throughput", n, density, rows, lost);
-        throughput.fps = fps;
-        summaries.push_back(throughput);
-        all_rows.insert(all_rows.end(), rows.begin(), rows.end());
-        std::cerr << "sap_ros_latency:   throughput mode: " << fps << " frames/s\n";
+        for (auto& runner : runners) {
+          std::vector<FrameRow> rows;
+          double fps = 0.0;
+          const int lost = runner->run("throughput", n, density, messages, 0, options.warmup,
+                                       per_mode, 2, rows, fps);
+          Summary throughput = summarise(runner->transport(), "throughput", n, density, rows, lost);
+          throughput.fps = fps;
+          summaries.push_back(throughput);
+          all_rows.insert(all_rows.end(), rows.begin(), rows.end());
+          std::cerr << "sap_ros_latency:   " << runner->transport() << " throughput mode: " << fps
+                    << " frames/s\n";
+        }
       }
     }
   }
@@ -584,6 +661,7 @@ int main(int argc, char** argv) {
     std::cerr << "sap_ros_latency: could not write CSV into " << options.out << "\n";
     return 1;
   }
+  runners.clear();
   spinner.stop();
   if (total_lost > 0) {
     std::cerr << "sap_ros_latency: " << total_lost << " latency-mode frames got no answer\n";

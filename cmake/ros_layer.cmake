@@ -28,3 +28,19 @@ install(TARGETS ${PROJECT_NAME}_node ${PROJECT_NAME}_ros ${PROJECT_NAME}_scene_p
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY config launch rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+
+# Nodelets: the node and scene_publisher classes loaded into a nodelet manager (one
+# implementation, two wrappers), described to pluginlib by nodelet_plugins.xml.
+target_sources(${PROJECT_NAME}_ros PRIVATE src/ros/scene_publisher.cpp)
+find_package(nodelet REQUIRED)
+find_package(pluginlib REQUIRED)
+add_library(${PROJECT_NAME}_nodelets src/ros/nodelets.cpp)
+target_include_directories(${PROJECT_NAME}_nodelets SYSTEM PRIVATE
+  ${nodelet_INCLUDE_DIRS} ${pluginlib_INCLUDE_DIRS})
+target_link_libraries(${PROJECT_NAME}_nodelets ${PROJECT_NAME}_ros ${PROJECT_NAME}_core
+  ${nodelet_LIBRARIES} ${pluginlib_LIBRARIES} ${catkin_LIBRARIES})
+add_dependencies(${PROJECT_NAME}_nodelets ${PROJECT_NAME}_generate_messages_cpp)
+install(TARGETS ${PROJECT_NAME}_nodelets
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

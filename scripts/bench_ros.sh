@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # End to end through ROS (issue 4, item 11): a roscore on a free loopback port, the node, and
 # sap_ros_latency publishing uniform-scene BoxArray frames and timing publish -> PairArray,
-# split into the engine's sweep and everything outside it (see docs/BENCHMARKS.md).
+# split into the engine's sweep and everything outside it (see docs/BENCHMARKS.md). Two
+# transports on the same frames, case by case: tcp (the node started here, another process)
+# and nodelet (sap_ros_latency loads BroadphaseNodelet into its own process: publisher, node
+# and measuring subscriber share it and pass the messages as pointers).
 # Results: bench/results/<machine>/ros_latency.csv and ros_latency_frames.csv, the table in
 # ros_latency.log, load and conditions in ros_latency_conditions.txt; the build and ROS logs
 # go to build/bench_ros_logs/. Stops every process it started, by PID, on exit or interrupt;
@@ -10,8 +13,9 @@
 # Usage: scripts/bench_ros.sh [--quick] [--out DIR] [--limit S] [-- SAP_ROS_LATENCY_ARGS...]
 #   --quick     n = 2^12, 2^14, d = 0.05, few frames; results go to build/bench_quick/<machine>/
 #   --out DIR   write results to DIR instead
-#   --limit S   seconds sap_ros_latency may run (default 1500, quick 240)
-#   after --, arguments go to sap_ros_latency (e.g. -- --n 2^17 --density 0.05 --frames 30)
+#   --limit S   seconds sap_ros_latency may run (default 3000, quick 240)
+#   after --, arguments go to sap_ros_latency (e.g. -- --n 2^17 --density 0.05 --frames 30,
+#               or -- --transport nodelet)
 # Environment: SAP_WS (catkin workspace, default build/ws), SAP_BENCH_MACHINE (folder name,
 # default: short host name plus core count), OMP_WAIT_POLICY (default passive for the node).
 set -eo pipefail
@@ -28,7 +32,7 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift ;;
     --limit) limit="$2"; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
     *) echo "bench_ros.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -39,7 +43,7 @@ if [ -z "$out" ]; then
   if [ "$quick" -eq 1 ]; then out="$ROOT/build/bench_quick/$machine"; else out="$ROOT/bench/results/$machine"; fi
 fi
 if [ -z "$limit" ]; then
-  if [ "$quick" -eq 1 ]; then limit=240; else limit=1500; fi
+  if [ "$quick" -eq 1 ]; then limit=240; else limit=3000; fi
 fi
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -73,7 +77,7 @@ conditions="$out/ros_latency_conditions.txt"
   echo "kernel: $(uname -sr)"
   lscpu 2>/dev/null | grep -E '^(Model name|CPU\(s\))' || true
   echo "memory: $(awk '/MemTotal/ {print $2 " kB"}' /proc/meminfo)"
-  echo "OMP_WAIT_POLICY=$OMP_WAIT_POLICY; node: threads 0 (all cores), publish_markers false"
+  echo "OMP_WAIT_POLICY=$OMP_WAIT_POLICY; node (tcp) and BroadphaseNodelet (nodelet): threads 0 (all cores), publish_markers false"
   echo "uptime before: $(uptime)"
 } >"$conditions"
 

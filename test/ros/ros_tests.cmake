@@ -26,3 +26,11 @@ catkin_add_gtest(test_ros_units
 target_include_directories(test_ros_units PRIVATE test/ros)
 target_link_libraries(test_ros_units ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_ros_units ${PROJECT_NAME}_generate_messages_cpp)
+
+# ScenePublisherNodelet feeding BroadphaseNodelet in one manager: boxes pass in process, every
+# answered frame equals the oracle's pairs.
+add_rostest_gtest(test_nodelet test/ros/nodelet.test
+  test/ros/test_nodelet.cpp test/ros/test_frames.cpp)
+target_include_directories(test_nodelet PRIVATE test/ros)
+target_link_libraries(test_nodelet ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
+add_dependencies(test_nodelet ${PROJECT_NAME}_nodelets ${PROJECT_NAME}_generate_messages_cpp)

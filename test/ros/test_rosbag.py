@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """rosbag with the node: `rosbag record boxes pairs` captures frames and their pairs, and
-`rosbag play` of the boxes alone makes the node answer with the same pairs and stamps.
+`rosbag play` of the boxes alone makes the node answer with the same pairs and stamps, frame
+by frame.
 
 Every process this test starts (rosbag record, rosbag play) is stopped by its PID.
 """
@@ -131,13 +132,24 @@ class RosbagTest(unittest.TestCase):
 
         with self.lock:
             self.pairs.clear()
+        # Played at the bag's pace, frames could be lost two ways: `rosbag play` publishes
+        # 0.2 s after advertising whether or not the node has connected yet, and frames that
+        # arrive while the node is busy are coalesced (the latest pending frame wins). So the
+        # player waits for the node's subscription and starts paused, and each 's' on its
+        # standard input publishes exactly one frame: the next is stepped only once the pairs
+        # of this one came back, one frame in flight as when the bag was recorded.
         log = open(os.path.join(ARTIFACTS, "rosbag_play.log"), "w")
-        play = subprocess.Popen(["rosbag", "play", "-q", bag, "--topics", "boxes"],
-                                stdout=log, stderr=log)
+        play = subprocess.Popen(["rosbag", "play", "-q", "--pause", "--wait-for-subscribers",
+                                 bag, "--topics", "boxes"],
+                                stdin=subprocess.PIPE, stdout=log, stderr=log)
         self.processes.append(play)
-        self.assertTrue(self.wait_until(lambda: len(self.pairs) == FRAMES),
-                        "replayed boxes did not all come back as pairs")
+        for i, stamp in enumerate(stamps):
+            play.stdin.write(b"s")
+            play.stdin.flush()
+            self.assertTrue(self.wait_until(lambda: stamp in self.pairs),
+                            "replayed frame %d did not come back as pairs" % i)
         self.assertEqual(play.wait(WAIT), 0)
+        play.stdin.close()
         self.assertEqual(self.pairs, recorded)
 
 
