@@ -26,6 +26,8 @@ using sap_broadphase::PairList;
 
 namespace {
 
+/// Motion speeds of the uniform scenes, in mean box edges a frame.
+constexpr double kSpeeds[] = {0.001, 0.01, 0.05, 0.2, 0.5};
 /// Fixed skins of the sweep, in multiples of the measured per-frame motion.
 constexpr double kSkinMultiples[] = {0.5, 1, 2, 4, 8, 16, 32};
 /// Fixed skins above this many mean box edges are left out: candidates grow with the cube of
@@ -133,7 +135,7 @@ std::vector<CoherenceCase> coherenceCases(const Options& inOptions) {
   for (std::size_t n : inOptions.sizes({1u << 17, 1u << 20}, {1u << 12, 1u << 14})) {
     for (double density : {0.05, 0.35}) {
       const BenchCase base = uniformCase(n, density, inOptions.seed);
-      for (double speed : {0.001, 0.01, 0.05, 0.2, 0.5}) {
+      for (double speed : kSpeeds) {
         sap_broadphase::SceneConfig scene = uniformScene(n, density, inOptions.seed);
         scene.speed = speed;
         cases.push_back({base.name + " v=" + fmt(speed, 2), base.name, speed,
@@ -163,7 +165,7 @@ std::size_t differingFrames(const ContenderRun& inRun, const ContenderRun& inRef
 }  // namespace
 
 void runCoherence(const Options& inOptions) {
-  const int frames = inOptions.framesOr(24, 10);
+  const int frames = inOptions.framesOr(20, 10);
   const int warmup = std::max(1, frames / 6);
   const std::vector<CoherenceCase> cases = coherenceCases(inOptions);
   std::unique_ptr<Peer> fcl = makeFclDynamicTreePeer();
@@ -227,6 +229,7 @@ void runCoherence(const Options& inOptions) {
       panels[benchCase.group].series = {
           {"default (automatic skin)", {}, {}}, {"no skin", {}, {}}, {"best fixed skin", {}, {}}};
       if (fcl) panels[benchCase.group].series.push_back({"FCL dynamic AABB tree", {}, {}});
+      for (double speed : kSpeeds) panels[benchCase.group].xtics.push_back({speed, fmt(speed)});
       panelOrder.push_back(benchCase.group);
     }
     std::vector<Series>& series = panels[benchCase.group].series;
