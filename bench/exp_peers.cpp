@@ -26,7 +26,8 @@ using sap_broadphase::PairList;
 namespace {
 
 /// A peer that took longer than this for one frame (one-shot and steady together) is not run
-/// on the rest of the case's frames: its median then covers the frames it did run.
+/// on the rest of the case's frames: its median then covers the frames it did run (the build
+/// frame, when it was stopped there).
 constexpr double kSlowFrameMs = 20000.0;
 
 /// Times, checks and memory of one contender over the frames of a case.
@@ -112,8 +113,10 @@ void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, 
     ioEntry.wrong_steady += !samePairs(once.pairs, inTruth);
     ioEntry.last_pairs = once.pairs.size();
   }
-  if (inTimed) ioEntry.one_shot_ms.push_back(once.ms), ioEntry.steady_ms.push_back(steadyMs);
   ioEntry.stopped_slow = once.ms + steadyMs > kSlowFrameMs;
+  // A peer stopped on the build frame keeps that frame's times: the only ones it has.
+  if (inTimed || (ioEntry.stopped_slow && ioEntry.one_shot_ms.empty()))
+    ioEntry.one_shot_ms.push_back(once.ms), ioEntry.steady_ms.push_back(steadyMs);
 }
 
 /// Runs every contender over the case's frames; frame 0 only builds the steady state.
