@@ -27,7 +27,8 @@ namespace {
 
 /// A peer that took longer than this for one frame (one-shot and steady together) is not run
 /// on the rest of the case's frames: its median then covers the frames it did run (the build
-/// frame, when it was stopped there).
+/// frame, when it was stopped there). A peer whose cost per box on an earlier case predicts
+/// more than this for a frame is not run on the case at all.
 constexpr double kSlowFrameMs = 20000.0;
 
 /// Times, checks and memory of one contender over the frames of a case.
@@ -39,7 +40,13 @@ struct Contender {
   std::size_t last_pairs = 0;
   std::size_t memory_bytes = 0;
   bool stopped_slow = false;
+  bool skipped_slow = false;  ///< not run: its cost per box on a smaller case predicts > limit
 };
+
+/// Per peer, the most milliseconds per box one frame (one-shot and steady together) has cost
+/// so far. Broad phases get no cheaper per box as n grows, so this times the next case's n is
+/// a lower bound of that case's frame time.
+using PeerCosts = std::vector<double>;
 
 std::string pairStatus(std::size_t inWrong, std::size_t inFrames) {
   if (inFrames == 0) return "-";
@@ -88,6 +95,7 @@ void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
     ioContenders[0].memory_bytes = meter.grownBytes();
   }
   for (std::size_t p = 0; p < ioPeers.size(); ++p) {
+    if (ioContenders[p + 1].skipped_slow) continue;
     meter.start();
     ioPeers[p]->begin();
     { const PeerResult result = ioPeers[p]->step(boxes); }
@@ -98,8 +106,8 @@ void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
 
 /// Runs one peer on one frame, checking its pairs against inTruth.
 void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, bool inTimed,
-                  Contender& ioEntry) {
-  if (ioEntry.stopped_slow) return;
+                  Contender& ioEntry, double& ioCostPerBox) {
+  if (ioEntry.stopped_slow || ioEntry.skipped_slow) return;
   ++ioEntry.frames_checked;
   const PeerResult once = ioPeer.oneShot(inBoxes);
   ioEntry.wrong_one_shot += !samePairs(once.pairs, inTruth);
@@ -114,6 +122,8 @@ void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, 
     ioEntry.last_pairs = once.pairs.size();
   }
   ioEntry.stopped_slow = once.ms + steadyMs > kSlowFrameMs;
+  ioCostPerBox =
+      std::max(ioCostPerBox, (once.ms + steadyMs) / std::max<std::size_t>(1, inBoxes.size()));
   // A peer stopped on the build frame keeps that frame's times: the only ones it has.
   if (inTimed || (ioEntry.stopped_slow && ioEntry.one_shot_ms.empty()))
     ioEntry.one_shot_ms.push_back(once.ms), ioEntry.steady_ms.push_back(steadyMs);
@@ -121,12 +131,13 @@ void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, 
 
 /// Runs every contender over the case's frames; frame 0 only builds the steady state.
 std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns, int inThreads,
-                               Peers& ioPeers, Progress& ioProgress) {
+                               Peers& ioPeers, PeerCosts& ioCosts, Progress& ioProgress) {
   std::vector<Contender> contenders(1 + ioPeers.size());
   contenders[0].name = contenders[0].family = "sap_broadphase";
   for (std::size_t p = 0; p < ioPeers.size(); ++p) {
     contenders[p + 1].name = ioPeers[p]->name();
     contenders[p + 1].family = ioPeers[p]->family();
+    contenders[p + 1].skipped_slow = ioCosts[p] * inCase.n > kSlowFrameMs;
   }
   measureMemory(inCase, inThreads, ioPeers, contenders);
   for (int run = 0; run < inRuns; ++run) {
@@ -152,7 +163,7 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
       ours.last_pairs = truth.size();
       if (timed) ours.steady_ms.push_back(steadyMs), ours.one_shot_ms.push_back(oneShotMs);
       for (std::size_t p = 0; p < ioPeers.size(); ++p)
-        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[p + 1]);
+        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[p + 1], ioCosts[p]);
       ioProgress.step(inCase.name);
     }
   }
@@ -198,8 +209,9 @@ void runPeers(const Options& inOptions) {
                     PlotStyle::kPoints};
   std::map<std::string, Series> oneShotSeries, steadySeries;
   Progress progress("peers", cases.size() * frames * runs);
+  PeerCosts costs(peers.size(), 0.0);
   for (std::size_t c = 0; c < cases.size(); ++c) {
-    const auto contenders = runCase(cases[c], frames, runs, threads, peers, progress);
+    const auto contenders = runCase(cases[c], frames, runs, threads, peers, costs, progress);
     const double oursOnce = median(contenders[0].one_shot_ms);
     const double oursKept = median(contenders[0].steady_ms);
     double bestOnce = std::numeric_limits<double>::infinity(), bestKept = bestOnce;
@@ -208,13 +220,16 @@ void runPeers(const Options& inOptions) {
       const Contender& entry = contenders[k];
       const double once = median(entry.one_shot_ms), kept = median(entry.steady_ms);
       const bool ours = k == 0;
+      const bool ran = !entry.one_shot_ms.empty();
       detail.addRow(
-          {cases[c].name, entry.name, fmt(once), ours ? "1" : fmtRatio(oursOnce, once), fmt(kept),
-           ours ? "1" : fmtRatio(oursKept, kept), fmtCount(entry.last_pairs),
+          {cases[c].name, entry.name, ran ? fmt(once) : "-", ours ? "1" : fmtRatio(oursOnce, once),
+           ran ? fmt(kept) : "-", ours ? "1" : fmtRatio(oursKept, kept), fmtCount(entry.last_pairs),
            pairStatus(entry.wrong_one_shot, entry.frames_checked),
            ours ? "reference" : pairStatus(entry.wrong_steady, entry.frames_checked),
-           fmt(static_cast<double>(entry.memory_bytes) / cases[c].n),
-           std::to_string(entry.one_shot_ms.size()) + (entry.stopped_slow ? " (slow)" : ""),
+           ran ? fmt(static_cast<double>(entry.memory_bytes) / cases[c].n) : "-",
+           entry.skipped_slow
+               ? "skipped (slow)"
+               : std::to_string(entry.one_shot_ms.size()) + (entry.stopped_slow ? " (slow)" : ""),
            ours ? "exact, closed intervals" : peers[k - 1]->semantics()});
       if (ours || entry.one_shot_ms.empty()) continue;
       if (once < bestOnce) bestOnce = once, bestOnceName = entry.name;

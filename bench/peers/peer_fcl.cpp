@@ -52,10 +52,10 @@ using ObjectPointers = std::vector<fcl::CollisionObjectd*>;
 
 /// Makes one object per box; later calls move the objects and remake those whose box changed
 /// size (an fcl::Box cannot be resized). Returns true when any object was remade; outMoved
-/// lists the moved objects.
-bool syncObjects(const BoxSet& inBoxes, Objects& ioObjects, ObjectPointers& outMoved) {
+/// tells whether any object moved.
+bool syncObjects(const BoxSet& inBoxes, Objects& ioObjects, bool& outMoved) {
   bool remade = false;
-  outMoved.clear();
+  outMoved = false;
   if (ioObjects.size() != inBoxes.size()) ioObjects.clear();
   ioObjects.resize(inBoxes.size());
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
@@ -69,7 +69,7 @@ bool syncObjects(const BoxSet& inBoxes, Objects& ioObjects, ObjectPointers& outM
       if (position == object->getTranslation()) continue;
       object->setTranslation(position);
       object->computeAABB();
-      outMoved.push_back(object.get());
+      outMoved = true;
       continue;
     }
     fcl::Transform3d pose = fcl::Transform3d::Identity();
@@ -103,7 +103,7 @@ class FclPeer : public Peer {
   }
 
   PeerResult oneShot(const BoxSet& inBoxes) override {
-    ObjectPointers moved;
+    bool moved = false;
     syncObjects(inBoxes, one_shot_objects_, moved);  // the user's scene, not the broad phase
     Stopwatch clock;
     Manager manager;
@@ -124,13 +124,13 @@ class FclPeer : public Peer {
 
   PeerResult step(const BoxSet& inBoxes) override {
     Stopwatch clock;
-    ObjectPointers moved;
+    bool moved = false;
     // Objects that changed size are new objects: the manager is then rebuilt (timed).
     if (syncObjects(inBoxes, steady_objects_, moved) || !manager_) {
       manager_ = std::make_unique<Manager>();
       manager_->registerObjects(pointers(steady_objects_));
       manager_->setup();
-    } else if (!moved.empty()) {
+    } else if (moved) {
       // update() of every object, as FCL's examples do after moving objects: the managers'
       // update(object) is a delete and reinsert, linear in n for the interval tree.
       manager_->update();
