@@ -31,6 +31,8 @@ using sap_broadphase::PairList;
 namespace {
 
 constexpr std::size_t kBruteForceMaxBoxes = std::size_t{1} << 14;
+/// A contender that took longer than this for one frame is not run on the case's later frames.
+constexpr double kSlowFrameMs = 10000.0;
 /// Times below this are drawn at it (the time axis is logarithmic, decades marked).
 constexpr double kLeastPlottedMs = 0.01;
 /// The harness's own passes (quantising, refitting) go parallel where the engine's do.
@@ -275,8 +277,8 @@ void runPareto(const Options& inOptions) {
   Table table(
       "Run time against error (ms per frame: mean of frames >= 1; errors summed over "
       "all frames)",
-      {"case", "contender", "kind", "ms_per_frame", "true_pairs", "missed", "extra", "missed_frac",
-       "extra_frac", "oracle", "grid_vs_brute"});
+      {"case", "contender", "kind", "ms_per_frame", "frames", "true_pairs", "missed", "extra",
+       "missed_frac", "extra_frac", "frac_of", "oracle", "grid_vs_brute"});
   std::vector<Figure> figures;
   Progress progress("pareto", cases.size() * frames);
   for (const BenchCase& benchCase : cases) {
@@ -284,6 +286,8 @@ void runPareto(const Options& inOptions) {
     auto contenders = makeContenders(inOptions.threads, meanEdge(feed.boxes()));
     std::vector<std::vector<double>> times(contenders.size());
     std::vector<PairDiff> totals(contenders.size());
+    std::vector<std::size_t> framesRun(contenders.size(), 0);
+    std::vector<bool> stopped(contenders.size(), false);
     std::string oracleName;
     bool gridChecked = false, gridAgrees = true;
     PairList pairs;
@@ -291,8 +295,12 @@ void runPareto(const Options& inOptions) {
       if (f > 0) feed.step();
       const PairList truth = oracle(feed.boxes(), grid, oracleName, gridChecked, gridAgrees);
       for (std::size_t m = 0; m < contenders.size(); ++m) {
+        if (stopped[m]) continue;
         const double ms = contenders[m]->frame(feed.boxes(), pairs);
-        if (f > 0 || frames == 1) times[m].push_back(ms);
+        ++framesRun[m];
+        stopped[m] = ms > kSlowFrameMs;
+        // One stopped on the build frame keeps that frame's time: the only one it has.
+        if (f > 0 || frames == 1 || (stopped[m] && times[m].empty())) times[m].push_back(ms);
         const PairDiff diff = comparePairs(pairs, truth);
         totals[m].truth += diff.truth;
         totals[m].missed += diff.missed;
@@ -302,7 +310,6 @@ void runPareto(const Options& inOptions) {
     }
     // Errors per true pair; a scene without pairs (the plane before it crosses) has them per
     // box instead.
-    const std::size_t boxFrames = feed.boxes().size() * static_cast<std::size_t>(frames);
     const bool perBox = totals.empty() || totals[0].truth == 0;
     Panel panel{benchCase.name,
                 "ms per frame (mean)",
@@ -313,11 +320,14 @@ void runPareto(const Options& inOptions) {
                 PlotStyle::kPoints};
     double worst = 0.0;
     for (std::size_t m = 0; m < contenders.size(); ++m) {
+      const std::size_t boxFrames = feed.boxes().size() * framesRun[m];
       const double per =
           static_cast<double>(std::max<std::size_t>(1, perBox ? boxFrames : totals[m].truth));
       const double missed = totals[m].missed / per, extra = totals[m].extra / per;
       table.addRow({benchCase.name, contenders[m]->name(), contenders[m]->kind(),
-                    fmt(mean(times[m])), fmtCount(totals[m].truth / frames),
+                    fmt(mean(times[m])),
+                    std::to_string(framesRun[m]) + (stopped[m] ? " (slow)" : ""),
+                    fmtCount(totals[m].truth / std::max<std::size_t>(1, framesRun[m])),
                     fmtCount(totals[m].missed), fmtCount(totals[m].extra), fmt(missed), fmt(extra),
                     perBox ? "box" : "true_pair", oracleName,
                     gridChecked ? (gridAgrees ? "equal" : "DIFFERENT") : "-"});
