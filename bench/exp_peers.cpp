@@ -43,10 +43,14 @@ struct Contender {
   bool skipped_slow = false;  ///< not run: its cost per box on a smaller case predicts > limit
 };
 
-/// Per peer, the most milliseconds per box one frame (one-shot and steady together) has cost
-/// so far. Broad phases get no cheaper per box as n grows, so this times the next case's n is
-/// a lower bound of that case's frame time.
-using PeerCosts = std::vector<double>;
+/// Per scene (kind and density) and peer, the most milliseconds per box one frame (one-shot and
+/// steady together) has cost so far. On the same scene, broad phases get no cheaper per box as
+/// n grows, so this times a larger case's n is a lower bound of that case's frame time.
+using PeerCosts = std::map<std::string, std::vector<double>>;
+
+std::string sceneKey(const BenchCase& inCase) {
+  return inCase.scene + " " + fmt(inCase.density);
+}
 
 std::string pairStatus(std::size_t inWrong, std::size_t inFrames) {
   if (inFrames == 0) return "-";
@@ -132,12 +136,14 @@ void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, 
 /// Runs every contender over the case's frames; frame 0 only builds the steady state.
 std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns, int inThreads,
                                Peers& ioPeers, PeerCosts& ioCosts, Progress& ioProgress) {
+  std::vector<double>& costs = ioCosts[sceneKey(inCase)];
+  costs.resize(ioPeers.size(), 0.0);
   std::vector<Contender> contenders(1 + ioPeers.size());
   contenders[0].name = contenders[0].family = "sap_broadphase";
   for (std::size_t p = 0; p < ioPeers.size(); ++p) {
     contenders[p + 1].name = ioPeers[p]->name();
     contenders[p + 1].family = ioPeers[p]->family();
-    contenders[p + 1].skipped_slow = ioCosts[p] * inCase.n > kSlowFrameMs;
+    contenders[p + 1].skipped_slow = costs[p] * inCase.n > kSlowFrameMs;
   }
   measureMemory(inCase, inThreads, ioPeers, contenders);
   for (int run = 0; run < inRuns; ++run) {
@@ -163,7 +169,7 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
       ours.last_pairs = truth.size();
       if (timed) ours.steady_ms.push_back(steadyMs), ours.one_shot_ms.push_back(oneShotMs);
       for (std::size_t p = 0; p < ioPeers.size(); ++p)
-        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[p + 1], ioCosts[p]);
+        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[p + 1], costs[p]);
       ioProgress.step(inCase.name);
     }
   }
@@ -209,7 +215,7 @@ void runPeers(const Options& inOptions) {
                     PlotStyle::kPoints};
   std::map<std::string, Series> oneShotSeries, steadySeries;
   Progress progress("peers", cases.size() * frames * runs);
-  PeerCosts costs(peers.size(), 0.0);
+  PeerCosts costs;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const auto contenders = runCase(cases[c], frames, runs, threads, peers, costs, progress);
     const double oursOnce = median(contenders[0].one_shot_ms);
