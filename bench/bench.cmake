@@ -24,6 +24,8 @@ add_executable(sap_bench
   ${SAP_BENCH_DIR}/exp_peers.cpp
   ${SAP_BENCH_DIR}/exp_memory.cpp
   ${SAP_BENCH_DIR}/exp_skips.cpp
+  ${SAP_BENCH_DIR}/exp_coherence.cpp
+  ${SAP_BENCH_DIR}/bench_memory.cpp
   ${SAP_BENCH_DIR}/peers/peer_registry.cpp
   ${SAP_BENCH_DIR}/peers/peer_grid.cpp
   ${SAP_BENCH_DIR}/peers/uniform_grid.cpp
@@ -47,6 +49,14 @@ endfunction()
 find_package(CGAL QUIET)
 if(CGAL_FOUND AND TARGET CGAL::CGAL)
   sap_bench_add_peer(cgal peer_cgal.cpp SAP_BENCH_WITH_CGAL CGAL::CGAL)
+  # CGAL's Parallel_tag version needs TBB (libtbb-dev); without it only the sequential one.
+  find_package(TBB QUIET)
+  include(CGAL_TBB_support OPTIONAL)
+  if(TARGET CGAL::TBB_support)
+    target_link_libraries(sap_bench_peer_cgal PUBLIC CGAL::TBB_support)
+    target_compile_definitions(sap_bench_peer_cgal PRIVATE SAP_BENCH_CGAL_PARALLEL)
+    set(SAP_BENCH_PEERS "${SAP_BENCH_PEERS};cgal_tbb")
+  endif()
 endif()
 
 # Debian ships Bullet in float and double builds; the double one (-float64) compares the

@@ -6,10 +6,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <sstream>
 
 namespace sap_bench {
 namespace {
+
+/// Filled circle, square, triangle, diamond, inverted triangle.
+constexpr int kPointShapes[] = {7, 5, 9, 13, 11};
 
 std::string quoted(const std::string& inText) {
   std::string out = "\"";
@@ -90,7 +94,10 @@ void writePanel(std::ostream& ioScript, const Panel& inPanel, std::size_t inPane
         ioScript << " using 1:2 with lines lw 2 title " << title;
         break;
       case PlotStyle::kPoints:
-        ioScript << " using 1:2 with points pt 7 ps 1.5 title " << title;
+        // gnuplot cycles 8 colours: the point shape changes with every cycle, so that a
+        // legend of more series still names each point unambiguously.
+        ioScript << " using 1:2 with points pt " << kPointShapes[(s / 8) % std::size(kPointShapes)]
+                 << " ps 1.5 title " << title;
         break;
       case PlotStyle::kLinesPoints:
         ioScript << " using 1:2 with linespoints lw 2 pt 7 title " << title;

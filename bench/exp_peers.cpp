@@ -1,10 +1,14 @@
-// Peers on the same boxes in the same run: CGAL box_intersection_d, Bullet btDbvtBroadphase,
-// FCL DynamicAABBTreeCollisionManager and our uniform grid, against the engine, one-shot
-// (everything built from scratch each frame) and steady state (state kept across frames).
-// Every peer's count is checked against the engine's.
+// Peers on the same boxes in the same run, each driven the way its documentation advises and
+// each knob setting its own row (CGAL's cutoff, CGAL's TBB version, FCL's four managers,
+// Bullet's dynamic tree with a dispatcher, our uniform grid), against the engine with its
+// default configuration: one-shot (everything built from scratch each frame) and steady state
+// (state kept across frames), the peak memory per box of each, and every frame's pairs
+// compared with ours.
 #include <cmath>
 #include <limits>
+#include <map>
 
+#include "bench_memory.h"
 #include "bench_output.h"
 #include "bench_scenes.h"
 #include "bench_stats.h"
@@ -16,20 +20,42 @@ namespace sap_bench {
 
 using sap_broadphase::BoxSet;
 using sap_broadphase::Broadphase;
+using sap_broadphase::BroadphaseConfig;
+using sap_broadphase::PairList;
 
 namespace {
 
-/// Times and counts of one contender over the frames of a case.
+/// A peer that took longer than this for one frame (one-shot and steady together) is not run
+/// on the rest of the case's frames: its median then covers the frames it did run (the build
+/// frame, when it was stopped there). A peer whose cost per box on an earlier case predicts
+/// more than this for a frame is not run on the case at all.
+constexpr double kSlowFrameMs = 20000.0;
+
+/// Times, checks and memory of one contender over the frames of a case.
 struct Contender {
   std::string name;
+  std::string family;
   std::vector<double> one_shot_ms, steady_ms;
-  std::size_t count_errors_one_shot = 0, count_errors_steady = 0, frames_checked = 0;
+  std::size_t wrong_one_shot = 0, wrong_steady = 0, frames_checked = 0;
   std::size_t last_pairs = 0;
+  std::size_t memory_bytes = 0;
+  bool stopped_slow = false;
+  bool skipped_slow = false;  ///< not run: its cost per box on a smaller case predicts > limit
 };
 
-std::string countStatus(std::size_t inErrors, std::size_t inFrames) {
-  return inErrors == 0 ? "ok"
-                       : "WRONG(" + std::to_string(inErrors) + "/" + std::to_string(inFrames) + ")";
+/// Per scene (kind and density) and peer, the most milliseconds per box one frame (one-shot and
+/// steady together) has cost so far. On the same scene, broad phases get no cheaper per box as
+/// n grows, so this times a larger case's n is a lower bound of that case's frame time.
+using PeerCosts = std::map<std::string, std::vector<double>>;
+
+std::string sceneKey(const BenchCase& inCase) {
+  return inCase.scene + " " + fmt(inCase.density);
+}
+
+std::string pairStatus(std::size_t inWrong, std::size_t inFrames) {
+  if (inFrames == 0) return "-";
+  return inWrong == 0 ? "ok"
+                      : "WRONG(" + std::to_string(inWrong) + "/" + std::to_string(inFrames) + ")";
 }
 
 std::vector<BenchCase> peerCases(const Options& inOptions) {
@@ -42,101 +68,197 @@ std::vector<BenchCase> peerCases(const Options& inOptions) {
   const std::size_t planeBoxes = inOptions.size(750 * 750, 100 * 100);
   const auto side = static_cast<std::size_t>(std::sqrt(static_cast<double>(planeBoxes)));
   cases.push_back(planeCase(side, sceneFrames, inOptions.seed));
+  cases.push_back(latticeCase(inOptions.size(1u << 17, 1u << 12)));
   return cases;
+}
+
+/// Our engine as a user runs it: the default configuration on the chosen threads.
+BroadphaseConfig oursConfig(int inThreads) {
+  BroadphaseConfig config;
+  config.threads = inThreads;
+  return config;
+}
+
+/// True when inPairs (any order) are exactly inTruth (canonical order).
+bool samePairs(PairList inPairs, const PairList& inTruth) {
+  sap_broadphase::sortPairsCanonical(inPairs);
+  return inPairs == inTruth;
+}
+
+/// Peak memory per contender while it builds its structure for the case's first frame and
+/// answers it (pairs included), each in turn.
+void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
+                   std::vector<Contender>& ioContenders) {
+  FrameFeed feed = inCase.makeFeed();
+  const BoxSet& boxes = feed.boxes();
+  PeakMeter meter;
+  meter.start();
+  {
+    Broadphase engine(oursConfig(inThreads));
+    engine.update(boxes);
+    ioContenders[0].memory_bytes = meter.grownBytes();
+  }
+  for (std::size_t p = 0; p < ioPeers.size(); ++p) {
+    if (ioContenders[p + 1].skipped_slow) continue;
+    meter.start();
+    ioPeers[p]->begin();
+    { const PeerResult result = ioPeers[p]->step(boxes); }
+    ioContenders[p + 1].memory_bytes = meter.grownBytes();
+    ioPeers[p]->begin();  // frees the steady state
+  }
+}
+
+/// Runs one peer on one frame, checking its pairs against inTruth.
+void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, bool inTimed,
+                  Contender& ioEntry, double& ioCostPerBox) {
+  if (ioEntry.stopped_slow || ioEntry.skipped_slow) return;
+  ++ioEntry.frames_checked;
+  const PeerResult once = ioPeer.oneShot(inBoxes);
+  ioEntry.wrong_one_shot += !samePairs(once.pairs, inTruth);
+  double steadyMs = once.ms;
+  if (ioPeer.incremental()) {
+    const PeerResult kept = ioPeer.step(inBoxes);
+    ioEntry.wrong_steady += !samePairs(kept.pairs, inTruth);
+    ioEntry.last_pairs = kept.pairs.size();
+    steadyMs = kept.ms;
+  } else {
+    ioEntry.wrong_steady += !samePairs(once.pairs, inTruth);
+    ioEntry.last_pairs = once.pairs.size();
+  }
+  ioEntry.stopped_slow = once.ms + steadyMs > kSlowFrameMs;
+  ioCostPerBox =
+      std::max(ioCostPerBox, (once.ms + steadyMs) / std::max<std::size_t>(1, inBoxes.size()));
+  // A peer stopped on the build frame keeps that frame's times: the only ones it has.
+  if (inTimed || (ioEntry.stopped_slow && ioEntry.one_shot_ms.empty()))
+    ioEntry.one_shot_ms.push_back(once.ms), ioEntry.steady_ms.push_back(steadyMs);
 }
 
 /// Runs every contender over the case's frames; frame 0 only builds the steady state.
 std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns, int inThreads,
-                               std::vector<std::unique_ptr<Peer>>& ioPeers, Progress& ioProgress) {
+                               Peers& ioPeers, PeerCosts& ioCosts, Progress& ioProgress) {
+  std::vector<double>& costs = ioCosts[sceneKey(inCase)];
+  costs.resize(ioPeers.size(), 0.0);
   std::vector<Contender> contenders(1 + ioPeers.size());
-  contenders[0].name = "sap_broadphase";
-  for (std::size_t p = 0; p < ioPeers.size(); ++p) contenders[p + 1].name = ioPeers[p]->name();
+  contenders[0].name = contenders[0].family = "sap_broadphase";
+  for (std::size_t p = 0; p < ioPeers.size(); ++p) {
+    contenders[p + 1].name = ioPeers[p]->name();
+    contenders[p + 1].family = ioPeers[p]->family();
+    contenders[p + 1].skipped_slow = costs[p] * inCase.n > kSlowFrameMs;
+  }
+  measureMemory(inCase, inThreads, ioPeers, contenders);
   for (int run = 0; run < inRuns; ++run) {
     FrameFeed feed = inCase.makeFeed();
-    Broadphase steady(parallelConfig(inThreads));
+    Broadphase steady(oursConfig(inThreads));
     for (auto& peer : ioPeers) peer->begin();
+    for (Contender& entry : contenders) entry.stopped_slow = false;
     for (int f = 0; f < inFrames; ++f) {
       if (f > 0) feed.step();
       const BoxSet& boxes = feed.boxes();
       const bool timed = f > 0 || inFrames == 1;
       Stopwatch clock;
-      const std::size_t truth = steady.update(boxes).size();
+      const PairList truth = steady.update(boxes);  // the copy is untimed
       const double steadyMs = clock.ms();
       clock.restart();
-      std::size_t oneShotPairs = 0;
-      {
-        Broadphase fresh(parallelConfig(inThreads));
-        oneShotPairs = fresh.update(boxes).size();
-      }
+      Broadphase fresh(oursConfig(inThreads));
+      const PairList& freshPairs = fresh.update(boxes);
       const double oneShotMs = clock.ms();
-      for (Contender& entry : contenders) ++entry.frames_checked;
+      const bool oneShotAgrees = freshPairs == truth;
       Contender& ours = contenders[0];
-      ours.count_errors_one_shot += oneShotPairs != truth;
-      ours.last_pairs = truth;
+      ++ours.frames_checked;
+      ours.wrong_one_shot += !oneShotAgrees;
+      ours.last_pairs = truth.size();
       if (timed) ours.steady_ms.push_back(steadyMs), ours.one_shot_ms.push_back(oneShotMs);
-      for (std::size_t p = 0; p < ioPeers.size(); ++p) {
-        Contender& entry = contenders[p + 1];
-        const PeerResult once = ioPeers[p]->oneShot(boxes);
-        const PeerResult kept = ioPeers[p]->step(boxes);
-        entry.count_errors_one_shot += once.pairs != truth;
-        entry.count_errors_steady += kept.pairs != truth;
-        entry.last_pairs = kept.pairs;
-        if (timed) entry.one_shot_ms.push_back(once.ms), entry.steady_ms.push_back(kept.ms);
-      }
+      for (std::size_t p = 0; p < ioPeers.size(); ++p)
+        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[p + 1], costs[p]);
       ioProgress.step(inCase.name);
     }
   }
   return contenders;
 }
 
+/// Fastest median of each family (knob sweeps: the best setting), by family name.
+std::map<std::string, double> familyBest(const std::vector<Contender>& inContenders,
+                                         std::vector<double> Contender::*inTimes) {
+  std::map<std::string, double> best;
+  for (const Contender& entry : inContenders) {
+    if ((entry.*inTimes).empty()) continue;
+    const double ms = median(entry.*inTimes);
+    auto found = best.find(entry.family);
+    if (found == best.end() || ms < found->second) best[entry.family] = ms;
+  }
+  return best;
+}
+
 }  // namespace
 
 void runPeers(const Options& inOptions) {
   const int threads = sap_broadphase::resolveThreadCount(inOptions.threads);
-  std::vector<std::unique_ptr<Peer>> peers = makePeers(threads);
+  Peers peers = makePeers(threads);
   const std::vector<BenchCase> cases = peerCases(inOptions);
   const int frames = inOptions.framesOr(6, 3);
   const int runs = inOptions.runsOr(1);
-  Table detail("Peers: ms per frame (median of frames >= 1), pair counts checked",
-               {"case", "contender", "one_shot_ms", "steady_ms", "pairs", "count_one_shot",
-                "count_steady", "semantics"});
-  Table summary("Peers: our time / fastest peer's (target <= 0.333)",
+  Table detail(
+      "Peers: ms per frame (median of frames >= 1), every frame's pairs checked "
+      "against ours; ratio = ours / peer",
+      {"case", "contender", "one_shot_ms", "ratio_one_shot", "steady_ms", "ratio_steady", "pairs",
+       "pairs_one_shot", "pairs_steady", "bytes_per_box", "frames", "semantics"});
+  Table summary("Peers: our time / fastest peer's (any knob setting)",
                 {"case", "ours_one_shot_ms", "fastest_one_shot", "ratio_one_shot", "ours_steady_ms",
                  "fastest_steady", "ratio_steady", "threads"});
-  Panel oneShotPanel{"One-shot", "", "ms per frame", false, true, PlotStyle::kPoints};
-  Panel steadyPanel{"Steady state", "", "ms per frame", false, true, PlotStyle::kPoints};
-  std::vector<Series> oneShotSeries(1 + peers.size()), steadySeries(1 + peers.size());
+  Panel oneShotPanel{
+      "One-shot (best knob of each library)", "", "ms per frame", false, true, PlotStyle::kPoints};
+  Panel steadyPanel{"Steady state (best knob of each library)",
+                    "",
+                    "ms per frame",
+                    false,
+                    true,
+                    PlotStyle::kPoints};
+  std::map<std::string, Series> oneShotSeries, steadySeries;
   Progress progress("peers", cases.size() * frames * runs);
+  PeerCosts costs;
   for (std::size_t c = 0; c < cases.size(); ++c) {
-    const auto contenders = runCase(cases[c], frames, runs, threads, peers, progress);
+    const auto contenders = runCase(cases[c], frames, runs, threads, peers, costs, progress);
+    const double oursOnce = median(contenders[0].one_shot_ms);
+    const double oursKept = median(contenders[0].steady_ms);
     double bestOnce = std::numeric_limits<double>::infinity(), bestKept = bestOnce;
     std::string bestOnceName = "-", bestKeptName = "-";
     for (std::size_t k = 0; k < contenders.size(); ++k) {
       const Contender& entry = contenders[k];
       const double once = median(entry.one_shot_ms), kept = median(entry.steady_ms);
-      const std::string semantics = k == 0 ? "exact, closed intervals" : peers[k - 1]->semantics();
+      const bool ours = k == 0;
+      const bool ran = !entry.one_shot_ms.empty();
       detail.addRow(
-          {cases[c].name, entry.name, fmt(once), fmt(kept), fmtCount(entry.last_pairs),
-           countStatus(entry.count_errors_one_shot, entry.frames_checked),
-           k == 0 ? "reference" : countStatus(entry.count_errors_steady, entry.frames_checked),
-           semantics});
-      oneShotSeries[k].title = steadySeries[k].title = entry.name;
-      oneShotSeries[k].add(c, once);
-      steadySeries[k].add(c, kept);
-      if (k == 0) continue;
+          {cases[c].name, entry.name, ran ? fmt(once) : "-", ours ? "1" : fmtRatio(oursOnce, once),
+           ran ? fmt(kept) : "-", ours ? "1" : fmtRatio(oursKept, kept), fmtCount(entry.last_pairs),
+           pairStatus(entry.wrong_one_shot, entry.frames_checked),
+           ours ? "reference" : pairStatus(entry.wrong_steady, entry.frames_checked),
+           ran ? fmt(static_cast<double>(entry.memory_bytes) / cases[c].n) : "-",
+           entry.skipped_slow
+               ? "skipped (slow)"
+               : std::to_string(entry.one_shot_ms.size()) + (entry.stopped_slow ? " (slow)" : ""),
+           ours ? "exact, closed intervals" : peers[k - 1]->semantics()});
+      if (ours || entry.one_shot_ms.empty()) continue;
       if (once < bestOnce) bestOnce = once, bestOnceName = entry.name;
       if (kept < bestKept) bestKept = kept, bestKeptName = entry.name;
     }
-    const double oursOnce = median(contenders[0].one_shot_ms);
-    const double oursKept = median(contenders[0].steady_ms);
+    for (const auto& [family, ms] : familyBest(contenders, &Contender::one_shot_ms))
+      oneShotSeries[family].add(c, ms);
+    for (const auto& [family, ms] : familyBest(contenders, &Contender::steady_ms))
+      steadySeries[family].add(c, ms);
     summary.addRow({cases[c].name, fmt(oursOnce), bestOnceName + " " + fmt(bestOnce),
                     fmtRatio(oursOnce, bestOnce), fmt(oursKept), bestKeptName + " " + fmt(bestKept),
                     fmtRatio(oursKept, bestKept), std::to_string(threads)});
     oneShotPanel.xtics.push_back({static_cast<double>(c), cases[c].name});
     steadyPanel.xtics.push_back({static_cast<double>(c), cases[c].name});
   }
-  oneShotPanel.series = oneShotSeries;
-  steadyPanel.series = steadySeries;
+  for (auto& [family, series] : oneShotSeries) {
+    series.title = family;
+    oneShotPanel.series.push_back(series);
+  }
+  for (auto& [family, series] : steadySeries) {
+    series.title = family;
+    steadyPanel.series.push_back(series);
+  }
   publish(inOptions, detail, "peers");
   publish(inOptions, summary, "peers_summary", {Figure{"peers", {oneShotPanel, steadyPanel}}});
 }

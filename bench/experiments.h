@@ -18,6 +18,7 @@ void runPareto(const Options& inOptions);
 void runPeers(const Options& inOptions);
 void runMemory(const Options& inOptions);
 void runSkips(const Options& inOptions);
+void runCoherence(const Options& inOptions);
 
 /// One experiment: its name on the command line, a line of description, its function.
 struct Experiment {

@@ -25,10 +25,14 @@ const std::vector<Experiment>& allExperiments() {
        runFig6Plane},
       {"threads", "Speedup per phase, 1 thread vs all cores", runThreads},
       {"pareto", "Run time against error (missed/extra pairs) per engine mode", runPareto},
-      {"peers", "CGAL, Bullet, FCL and a uniform grid on the same boxes", runPeers},
+      {"peers", "CGAL (cutoffs, TBB), Bullet, FCL managers, a uniform grid on the same boxes",
+       runPeers},
       {"memory", "Peak memory of the engine per box and per pair", runMemory},
       {"skips", "What each skip saves: filters, static boxes, unchanged frames, small frames, skin",
        runSkips},
+      {"coherence",
+       "Motion speed against time: automatic skin, no skin, best fixed skin, FCL dynamic tree",
+       runCoherence},
   };
   return kExperiments;
 }

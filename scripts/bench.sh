@@ -15,8 +15,8 @@
 set -eo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 WS="${SAP_WS:-$ROOT/build/ws}"
-OPTIONAL_PACKAGES=(libcgal-dev libbullet-dev libfcl-dev gnuplot-nox)
-EXPERIMENTS=fig1_sort,fig23_phases,fig4_stacked,dispersion,fig5_ball,fig6_plane,threads,pareto,peers
+OPTIONAL_PACKAGES=(libcgal-dev libtbb-dev libbullet-dev libfcl-dev gnuplot-nox)
+EXPERIMENTS=fig1_sort,fig23_phases,fig4_stacked,dispersion,fig5_ball,fig6_plane,threads,pareto,peers,coherence
 
 quick=0
 install=1

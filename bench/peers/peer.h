@@ -7,48 +7,70 @@
 #include <vector>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_bench {
 
-/// A peer's answer for one frame: its pair count and the time of the work a user would pay
-/// for in that mode (measured by the peer around exactly that work).
+/// What a peer hands back: the exact pairs (its candidates filtered by the closed AABB test,
+/// as the narrow phase of an engine built on it would) or the raw candidates of its broad
+/// phase (what a user gets without that test: the run-time-against-error chart).
+enum class PeerOutput { kExact, kRaw };
+
+/// A peer's answer for one frame: its pairs as ids (a < b, in the peer's own order; callers
+/// sort them, untimed) and the time of the work a user would pay for in that mode (measured
+/// by the peer around exactly that work, collecting the pairs included).
 struct PeerResult {
-  std::size_t pairs = 0;
+  sap_broadphase::PairList pairs;
   double ms = 0.0;
 };
 
-/// One peer. Counts are overlapping pairs under closed-interval semantics.
+/// One peer. Pairs are overlapping pairs under closed-interval semantics (kExact) or the
+/// library's candidates (kRaw).
 class Peer {
  public:
   virtual ~Peer() = default;
-  /// Short name for tables ("cgal", "bullet_dbvt", ...).
+  /// Short name for tables ("cgal_c1000", "bullet_dbvt", ...).
   virtual std::string name() const = 0;
-  /// Builds every structure from scratch for inBoxes, counts the pairs, frees the structure.
+  /// The library the peer comes from ("cgal", "fcl", ...): knob sweeps report the best of a
+  /// family.
+  virtual std::string family() const = 0;
+  /// Builds every structure from scratch for inBoxes, collects the pairs, frees the structure.
   virtual PeerResult oneShot(const sap_broadphase::BoxSet& inBoxes) = 0;
   /// Steady state, driven like an engine: the first call after begin() builds (untimed by the
-  /// caller), later calls move the existing proxies to inBoxes and count the pairs.
+  /// caller), later calls move the existing proxies to inBoxes and collect the pairs.
   /// Peers without persistent state just run oneShot().
   virtual PeerResult step(const sap_broadphase::BoxSet& inBoxes) { return oneShot(inBoxes); }
   /// Forgets the steady state.
   virtual void begin() {}
-  /// True when step() keeps proxies across frames.
+  /// True when step() keeps proxies across frames (else step() is oneShot()).
   virtual bool incremental() const { return false; }
-  /// How the peer's count relates to the exact closed-interval count.
+  /// How the peer's pairs relate to the exact closed-interval pairs.
   virtual std::string semantics() const = 0;
 };
 
-/// Every peer compiled in: the grid always, CGAL, Bullet and FCL when found at configure time.
-std::vector<std::unique_ptr<Peer>> makePeers(int inThreads);
+using Peers = std::vector<std::unique_ptr<Peer>>;
 
-std::unique_ptr<Peer> makeGridPeer(int inThreads);
+/// Every exact peer compiled in, each knob setting its own peer: the grid always; CGAL,
+/// Bullet and FCL when found at configure time. inThreads: threads of the grid.
+Peers makePeers(int inThreads);
+/// The peers whose raw candidates differ from the exact pairs (Bullet's pair cache, FCL's
+/// managers), in raw mode, for the error chart.
+Peers makeRawPeers();
+/// FCL's dynamic AABB tree manager, exact (the coherence benchmark's peer); null without FCL.
+std::unique_ptr<Peer> makeFclDynamicTreePeer();
+
+void addGridPeer(int inThreads, Peers& ioPeers);
 #ifdef SAP_BENCH_WITH_CGAL
-std::unique_ptr<Peer> makeCgalPeer();
+/// Sequential CGAL at several cutoffs, and the TBB version on two threads when built with it.
+void addCgalPeers(Peers& ioPeers);
 #endif
 #ifdef SAP_BENCH_WITH_BULLET
-std::unique_ptr<Peer> makeBulletPeer();
+void addBulletPeers(PeerOutput inOutput, Peers& ioPeers);
 #endif
 #ifdef SAP_BENCH_WITH_FCL
-std::unique_ptr<Peer> makeFclPeer();
+/// FCL's broad-phase managers: dynamic AABB tree, its array variant, SaP, interval tree.
+void addFclPeers(PeerOutput inOutput, Peers& ioPeers);
+std::unique_ptr<Peer> makeFclPeer(PeerOutput inOutput);  ///< dynamic AABB tree
 #endif
 
 }  // namespace sap_bench

@@ -1,11 +1,16 @@
-// Bullet's btDbvtBroadphase (double-precision build), driven like an engine: proxies created
-// once, then setAabb() after each frame's motion and calculateOverlappingPairs().
+// Bullet's btDbvtBroadphase (double-precision build), driven as btCollisionWorld drives it:
+// proxies created once, setAabb() after each frame's motion, then calculateOverlappingPairs()
+// with a collision dispatcher, so that the pair cache is maintained (pairs whose fattened
+// leaves part are removed through the dispatcher) as in an engine.
 //
-// Bullet's pair cache holds the pairs whose *fattened* leaf volumes overlap (leaves grow by a
+// The pair cache holds the pairs whose *fattened* leaf volumes overlap (leaves grow by a
 // margin and a velocity prediction, and stale pairs are only purged a few percent per frame),
-// so the raw cache size over-counts. Bullet leaves the exact test to the narrow phase; we do
-// it here, with the closed AABB test on the frame's boxes, and time it with the rest.
+// so its raw size over-counts. Bullet leaves the exact test to the narrow phase; the exact
+// peer does it here, with the closed AABB test on the frame's boxes, timed with the rest; the
+// raw peer reports the cache as it is.
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
 
 #include "../bench_stats.h"
 #include "peer.h"
@@ -17,21 +22,28 @@ using sap_broadphase::BoxSet;
 
 class BulletPeer : public Peer {
  public:
+  explicit BulletPeer(PeerOutput inOutput)
+      : output_(inOutput), dispatcher_(&collision_configuration_) {}
   ~BulletPeer() override { release(steady_, steady_proxies_); }
-  std::string name() const override { return "bullet_dbvt"; }
+  std::string name() const override {
+    return output_ == PeerOutput::kRaw ? "bullet_dbvt_raw_cache" : "bullet_dbvt";
+  }
+  std::string family() const override { return "bullet"; }
   bool incremental() const override { return true; }
   std::string semantics() const override {
-    return "pair cache of fattened leaves, filtered by the exact closed AABB test";
+    return output_ == PeerOutput::kRaw
+               ? "raw pair cache of fattened leaves"
+               : "pair cache of fattened leaves, filtered by the exact closed AABB test";
   }
 
   PeerResult oneShot(const BoxSet& inBoxes) override {
     Stopwatch clock;
     std::vector<btBroadphaseProxy*> proxies;
     btDbvtBroadphase* broadphase = build(inBoxes, proxies);
-    const std::size_t pairs = countPairs(*broadphase, inBoxes);
-    const double ms = clock.ms();
+    PeerResult result = collectPairs(*broadphase, inBoxes);
+    result.ms = clock.ms();
     release(broadphase, proxies);
-    return {pairs, ms};
+    return result;
   }
 
   void begin() override { release(steady_, steady_proxies_); }
@@ -44,11 +56,12 @@ class BulletPeer : public Peer {
     } else {
       for (std::size_t i = 0; i < inBoxes.size(); ++i) {
         steady_->setAabb(steady_proxies_[i], lowCorner(inBoxes, i), highCorner(inBoxes, i),
-                         nullptr);
+                         &dispatcher_);
       }
     }
-    const std::size_t pairs = countPairs(*steady_, inBoxes);
-    return {pairs, clock.ms()};
+    PeerResult result = collectPairs(*steady_, inBoxes);
+    result.ms = clock.ms();
+    return result;
   }
 
  private:
@@ -59,29 +72,30 @@ class BulletPeer : public Peer {
     return btVector3(inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]);
   }
 
-  static btDbvtBroadphase* build(const BoxSet& inBoxes,
-                                 std::vector<btBroadphaseProxy*>& outProxies) {
+  btDbvtBroadphase* build(const BoxSet& inBoxes, std::vector<btBroadphaseProxy*>& outProxies) {
     auto* broadphase = new btDbvtBroadphase();
     outProxies.resize(inBoxes.size());
     for (std::size_t i = 0; i < inBoxes.size(); ++i) {
       // The user pointer carries the box index for the exact test.
       outProxies[i] = broadphase->createProxy(lowCorner(inBoxes, i), highCorner(inBoxes, i), 0,
-                                              reinterpret_cast<void*>(i), 1, -1, nullptr);
+                                              reinterpret_cast<void*>(i), 1, -1, &dispatcher_);
     }
     return broadphase;
   }
 
-  static std::size_t countPairs(btDbvtBroadphase& ioBroadphase, const BoxSet& inBoxes) {
-    ioBroadphase.calculateOverlappingPairs(nullptr);
-    const btBroadphasePairArray& pairs =
+  PeerResult collectPairs(btDbvtBroadphase& ioBroadphase, const BoxSet& inBoxes) {
+    ioBroadphase.calculateOverlappingPairs(&dispatcher_);
+    const btBroadphasePairArray& cache =
         ioBroadphase.getOverlappingPairCache()->getOverlappingPairArray();
-    std::size_t count = 0;
-    for (int k = 0; k < pairs.size(); ++k) {
-      const auto a = reinterpret_cast<std::size_t>(pairs[k].m_pProxy0->m_clientObject);
-      const auto b = reinterpret_cast<std::size_t>(pairs[k].m_pProxy1->m_clientObject);
-      count += sap_broadphase::boxesOverlap(inBoxes, a, b) ? 1 : 0;
+    PeerResult result;
+    result.pairs.reserve(cache.size());
+    for (int k = 0; k < cache.size(); ++k) {
+      const auto a = reinterpret_cast<std::size_t>(cache[k].m_pProxy0->m_clientObject);
+      const auto b = reinterpret_cast<std::size_t>(cache[k].m_pProxy1->m_clientObject);
+      if (output_ == PeerOutput::kExact && !sap_broadphase::boxesOverlap(inBoxes, a, b)) continue;
+      result.pairs.push_back(sap_broadphase::makeIdPair(inBoxes.ids[a], inBoxes.ids[b]));
     }
-    return count;
+    return result;
   }
 
   /// Deletes the broad phase, then the proxies it allocated (destroyProxy() one by one would
@@ -96,14 +110,17 @@ class BulletPeer : public Peer {
     ioProxies.clear();
   }
 
+  PeerOutput output_;
+  btDefaultCollisionConfiguration collision_configuration_;
+  btCollisionDispatcher dispatcher_;
   btDbvtBroadphase* steady_ = nullptr;
   std::vector<btBroadphaseProxy*> steady_proxies_;
 };
 
 }  // namespace
 
-std::unique_ptr<Peer> makeBulletPeer() {
-  return std::make_unique<BulletPeer>();
+void addBulletPeers(PeerOutput inOutput, Peers& ioPeers) {
+  ioPeers.push_back(std::make_unique<BulletPeer>(inOutput));
 }
 
 }  // namespace sap_bench

@@ -1,9 +1,14 @@
-// FCL's DynamicAABBTreeCollisionManager, driven like an engine: one collision object per box
-// (an axis-aligned fcl::Box translated to the box centre), registered once; each frame moves
-// the objects, calls update() and collide(). The callback counts pairs whose boxes overlap
-// (closed test on the frame's boxes): FCL's leaves are only refit when an object leaves them,
-// so leaf overlap alone over-counts.
+// FCL's broad-phase managers (dynamic AABB tree, its array variant, sweep and prune, interval
+// tree), driven as FCL's documentation advises for moving objects: one collision object per
+// box (an axis-aligned fcl::Box translated to the box centre), registered once; each frame
+// moves the objects (setTranslation, computeAABB), calls the manager's update() and then
+// collide(). The exact peers' callback keeps the pairs whose boxes overlap
+// (closed test on the frame's boxes), as a narrow phase would; the raw peers keep every pair
+// the manager reports.
+#include <fcl/broadphase/broadphase_SaP.h>
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree_array.h>
+#include <fcl/broadphase/broadphase_interval_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/narrowphase/collision_object.h>
 
@@ -14,17 +19,20 @@ namespace sap_bench {
 namespace {
 
 using sap_broadphase::BoxSet;
+using sap_broadphase::PairList;
 
-struct CountData {
+struct CollectData {
   const BoxSet* boxes;
-  std::size_t count;
+  bool exact;
+  PairList* pairs;
 };
 
-bool countPair(fcl::CollisionObjectd* inFirst, fcl::CollisionObjectd* inSecond, void* ioData) {
-  auto* data = static_cast<CountData*>(ioData);
+bool collectPair(fcl::CollisionObjectd* inFirst, fcl::CollisionObjectd* inSecond, void* ioData) {
+  auto* data = static_cast<CollectData*>(ioData);
   const auto a = reinterpret_cast<std::size_t>(inFirst->getUserData());
   const auto b = reinterpret_cast<std::size_t>(inSecond->getUserData());
-  data->count += sap_broadphase::boxesOverlap(*data->boxes, a, b) ? 1 : 0;
+  if (!data->exact || sap_broadphase::boxesOverlap(*data->boxes, a, b))
+    data->pairs->push_back(sap_broadphase::makeIdPair(data->boxes->ids[a], data->boxes->ids[b]));
   return false;  // keep going
 }
 
@@ -39,23 +47,73 @@ bool sameSize(const fcl::Vector3d& inA, const fcl::Vector3d& inB) {
   return ((inA - inB).cwiseAbs().array() <= 1e-9 * inA.cwiseAbs().array()).all();
 }
 
+using Objects = std::vector<std::unique_ptr<fcl::CollisionObjectd>>;
+using ObjectPointers = std::vector<fcl::CollisionObjectd*>;
+
+/// Makes one object per box; later calls move the objects and remake those whose box changed
+/// size (an fcl::Box cannot be resized). Returns true when any object was remade; outMoved
+/// tells whether any object moved.
+bool syncObjects(const BoxSet& inBoxes, Objects& ioObjects, bool& outMoved) {
+  bool remade = false;
+  outMoved = false;
+  if (ioObjects.size() != inBoxes.size()) ioObjects.clear();
+  ioObjects.resize(inBoxes.size());
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    const fcl::Vector3d side(inBoxes.hi[0][i] - inBoxes.lo[0][i],
+                             inBoxes.hi[1][i] - inBoxes.lo[1][i],
+                             inBoxes.hi[2][i] - inBoxes.lo[2][i]);
+    auto& object = ioObjects[i];
+    if (object &&
+        sameSize(static_cast<const fcl::Boxd&>(*object->collisionGeometry()).side, side)) {
+      const fcl::Vector3d position = centre(inBoxes, i);
+      if (position == object->getTranslation()) continue;
+      object->setTranslation(position);
+      object->computeAABB();
+      outMoved = true;
+      continue;
+    }
+    fcl::Transform3d pose = fcl::Transform3d::Identity();
+    pose.translation() = centre(inBoxes, i);
+    object = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl::Boxd>(side), pose);
+    object->setUserData(reinterpret_cast<void*>(i));
+    remade = true;
+  }
+  return remade;
+}
+
+ObjectPointers pointers(const Objects& inObjects) {
+  ObjectPointers result;
+  result.reserve(inObjects.size());
+  for (const auto& object : inObjects) result.push_back(object.get());
+  return result;
+}
+
+template <typename Manager>
 class FclPeer : public Peer {
  public:
-  std::string name() const override { return "fcl_dynamic_aabb"; }
+  FclPeer(std::string inName, PeerOutput inOutput) : name_(std::move(inName)), output_(inOutput) {}
+  std::string name() const override { return name_ + (output_ == PeerOutput::kRaw ? "_raw" : ""); }
+  std::string family() const override { return "fcl"; }
   bool incremental() const override { return true; }
   std::string semantics() const override {
-    return "AABB of fcl::Box at the centre (may round an ulp inward), exact test in callback";
+    return output_ == PeerOutput::kRaw
+               ? "every pair the manager reports (AABB of fcl::Box at the centre)"
+               : "AABB of fcl::Box at the centre (may round an ulp inward), exact test in "
+                 "callback";
   }
 
   PeerResult oneShot(const BoxSet& inBoxes) override {
-    syncObjects(inBoxes, one_shot_objects_);  // the user's scene, not the broad phase: untimed
+    bool moved = false;
+    syncObjects(inBoxes, one_shot_objects_, moved);  // the user's scene, not the broad phase
     Stopwatch clock;
-    fcl::DynamicAABBTreeCollisionManagerd manager;
+    Manager manager;
     manager.registerObjects(pointers(one_shot_objects_));
     manager.setup();
-    CountData data{&inBoxes, 0};
-    manager.collide(&data, countPair);
-    return {data.count, clock.ms()};
+    PeerResult result;
+    CollectData data{&inBoxes, output_ == PeerOutput::kExact, &result.pairs};
+    manager.collide(&data, collectPair);
+    result.ms = clock.ms();
+    return result;
   }
 
   void begin() override {
@@ -66,64 +124,46 @@ class FclPeer : public Peer {
 
   PeerResult step(const BoxSet& inBoxes) override {
     Stopwatch clock;
+    bool moved = false;
     // Objects that changed size are new objects: the manager is then rebuilt (timed).
-    if (syncObjects(inBoxes, steady_objects_) || !manager_) {
-      manager_ = std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
+    if (syncObjects(inBoxes, steady_objects_, moved) || !manager_) {
+      manager_ = std::make_unique<Manager>();
       manager_->registerObjects(pointers(steady_objects_));
       manager_->setup();
-    } else {
+    } else if (moved) {
+      // update() of every object, as FCL's examples do after moving objects: the managers'
+      // update(object) is a delete and reinsert, linear in n for the interval tree.
       manager_->update();
     }
-    CountData data{&inBoxes, 0};
-    manager_->collide(&data, countPair);
-    return {data.count, clock.ms()};
-  }
-
- private:
-  using Objects = std::vector<std::unique_ptr<fcl::CollisionObjectd>>;
-
-  /// Makes one object per box; later calls move the objects and remake those whose box
-  /// changed size (an fcl::Box cannot be resized). Returns true when any object was remade.
-  static bool syncObjects(const BoxSet& inBoxes, Objects& ioObjects) {
-    bool remade = false;
-    if (ioObjects.size() != inBoxes.size()) ioObjects.clear();
-    ioObjects.resize(inBoxes.size());
-    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-      const fcl::Vector3d side(inBoxes.hi[0][i] - inBoxes.lo[0][i],
-                               inBoxes.hi[1][i] - inBoxes.lo[1][i],
-                               inBoxes.hi[2][i] - inBoxes.lo[2][i]);
-      auto& object = ioObjects[i];
-      if (object &&
-          sameSize(static_cast<const fcl::Boxd&>(*object->collisionGeometry()).side, side)) {
-        object->setTranslation(centre(inBoxes, i));
-        object->computeAABB();
-        continue;
-      }
-      fcl::Transform3d pose = fcl::Transform3d::Identity();
-      pose.translation() = centre(inBoxes, i);
-      object = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl::Boxd>(side), pose);
-      object->setUserData(reinterpret_cast<void*>(i));
-      remade = true;
-    }
-    return remade;
-  }
-
-  static std::vector<fcl::CollisionObjectd*> pointers(const Objects& inObjects) {
-    std::vector<fcl::CollisionObjectd*> result;
-    result.reserve(inObjects.size());
-    for (const auto& object : inObjects) result.push_back(object.get());
+    PeerResult result;
+    CollectData data{&inBoxes, output_ == PeerOutput::kExact, &result.pairs};
+    manager_->collide(&data, collectPair);
+    result.ms = clock.ms();
     return result;
   }
 
+ private:
+  std::string name_;
+  PeerOutput output_;
   Objects one_shot_objects_;
   Objects steady_objects_;
-  std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager_;
+  std::unique_ptr<Manager> manager_;
 };
 
 }  // namespace
 
-std::unique_ptr<Peer> makeFclPeer() {
-  return std::make_unique<FclPeer>();
+std::unique_ptr<Peer> makeFclPeer(PeerOutput inOutput) {
+  return std::make_unique<FclPeer<fcl::DynamicAABBTreeCollisionManagerd>>("fcl_dynamic_aabb",
+                                                                          inOutput);
+}
+
+void addFclPeers(PeerOutput inOutput, Peers& ioPeers) {
+  ioPeers.push_back(makeFclPeer(inOutput));
+  ioPeers.push_back(std::make_unique<FclPeer<fcl::DynamicAABBTreeCollisionManager_Arrayd>>(
+      "fcl_dynamic_aabb_array", inOutput));
+  ioPeers.push_back(std::make_unique<FclPeer<fcl::SaPCollisionManagerd>>("fcl_sap", inOutput));
+  ioPeers.push_back(
+      std::make_unique<FclPeer<fcl::IntervalTreeCollisionManagerd>>("fcl_interval_tree", inOutput));
 }
 
 }  // namespace sap_bench

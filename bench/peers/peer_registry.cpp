@@ -1,21 +1,40 @@
-// The list of peers this build has.
+// The lists of peers this build has.
 #include "peer.h"
 
 namespace sap_bench {
 
-std::vector<std::unique_ptr<Peer>> makePeers(int inThreads) {
-  std::vector<std::unique_ptr<Peer>> peers;
-  peers.push_back(makeGridPeer(inThreads));
+Peers makePeers(int inThreads) {
+  Peers peers;
+  addGridPeer(inThreads, peers);
 #ifdef SAP_BENCH_WITH_CGAL
-  peers.push_back(makeCgalPeer());
+  addCgalPeers(peers);
 #endif
 #ifdef SAP_BENCH_WITH_BULLET
-  peers.push_back(makeBulletPeer());
+  addBulletPeers(PeerOutput::kExact, peers);
 #endif
 #ifdef SAP_BENCH_WITH_FCL
-  peers.push_back(makeFclPeer());
+  addFclPeers(PeerOutput::kExact, peers);
 #endif
   return peers;
+}
+
+Peers makeRawPeers() {
+  Peers peers;
+#ifdef SAP_BENCH_WITH_BULLET
+  addBulletPeers(PeerOutput::kRaw, peers);
+#endif
+#ifdef SAP_BENCH_WITH_FCL
+  addFclPeers(PeerOutput::kRaw, peers);
+#endif
+  return peers;
+}
+
+std::unique_ptr<Peer> makeFclDynamicTreePeer() {
+#ifdef SAP_BENCH_WITH_FCL
+  return makeFclPeer(PeerOutput::kExact);
+#else
+  return nullptr;
+#endif
 }
 
 }  // namespace sap_bench
