@@ -10,6 +10,9 @@ WS="${SAP_WS:-$ROOT/build/ws}"
 rm -rf "$WS/build/test_results"
 # Each rostest gets its own roscore on a loopback port chosen by rostest itself.
 export ROS_MASTER_URI=http://127.0.0.1:11411
+# Idle OpenMP threads sleep instead of spinning: a test machine is often shared, and spinning
+# workers slow every parallel region by an order of magnitude when cores are oversubscribed.
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 catkin_make -C "$WS" run_tests -j1 -DPYTHON_EXECUTABLE=/usr/bin/python3 2>&1 | tee "$ROOT/build/test.log" | grep -E '^\[( RUN|  PASSED|  FAILED|  FAILED ) *\]|^\[ *(OK|FAILED) *\]|SUMMARY|FAILURE|ERROR' || true
 set +e
 summary=$(catkin_test_results --verbose "$WS/build/test_results")

@@ -18,6 +18,7 @@
 #include "core/frame_plan.h"
 #include "core/phase_timer.h"
 #include "core/skin_list.h"
+#include "core/small_frame.h"
 #include "core/slab_grid.h"
 #include "core/static_index.h"
 #include "core/static_split.h"
@@ -105,6 +106,8 @@ const char* framePathName(FramePath inPath) {
       return "skin";
     case FramePath::kStatic:
       return "static";
+    case FramePath::kSmallFrame:
+      return "small";
   }
   return "unknown";
 }
@@ -148,6 +151,7 @@ struct Broadphase::Impl {
   FrameHistory history;
   SweepAndPrune sweep;
   SkinList kept;  // kept candidates of the last grown sweep (skin_list.h)
+  SmallFrameWorkspace small_frame;  // buffers of the small-frame path
   double kept_skin = 0.0;
   StaticSplit resting;              // boxes guessed static (index_static_boxes)
   StaticIndex scenery;              // boxes declared static (setStaticBoxes)
@@ -167,8 +171,8 @@ struct Broadphase::Impl {
                                      int inThreads);
   PlanInputs planInputs(const BoxSet& inBoxes, const BoxSet& inSwept, const FrameDelta& inDelta,
                         int inThreads);
-  void execute(const FramePlan& inPlan, const BoxSet& inBoxes, const BoxSet& inSwept);
-  void testKeptCandidates(const BoxSet& inSwept, int inThreads);
+  bool execute(const FramePlan& inPlan, const BoxSet& inBoxes, const BoxSet& inSwept);
+  bool testKeptCandidates(const BoxSet& inSwept, int inThreads);
   void sweepGrown(const BoxSet& inSwept, const FramePlan& inPlan);
   void addRestingPairs(const BoxSet& inBoxes, int inThreads);
   void addSceneryPairs(const BoxSet& inBoxes, int inThreads);
@@ -222,23 +226,19 @@ PlanInputs Broadphase::Impl::planInputs(const BoxSet& inBoxes, const BoxSet& inS
   inputs.last_pairs_valid = pairs_valid;
   inputs.kept_candidates = kept.valid();
   inputs.kept_skin = kept_skin;
-  if (inputs.kept_candidates && !reusesLastPairs(config, inDelta, pairs_valid)) {
-    PhaseTimer timer(report.ms_pairing);
-    inputs.kept_covers = kept.covers(inSwept, inThreads);
-  }
+  // Whether every box is still inside its skin is found out by the pass itself (one read of
+  // the frame): until then the candidates may cover it when nothing but bounds changed.
+  inputs.kept_covers = inputs.kept_candidates && inDelta.sameIds() && !inDelta.filters_changed;
   inputs.motion = recentMotion();
   inputs.costs = costs;
   return inputs;
 }
 
-void Broadphase::Impl::testKeptCandidates(const BoxSet& inSwept, int inThreads) {
-  double pass_ms = 0.0;
-  {
-    PhaseTimer timer(pass_ms);
-    kept.collect(inSwept, inThreads, pairs);
-  }
-  report.ms_pairing += pass_ms;
+// The kept-candidate pass: false (pairs untouched) when some box left its skin.
+bool Broadphase::Impl::testKeptCandidates(const BoxSet& inSwept, int inThreads) {
+  PhaseTimer timer(report.ms_pairing);
   report.skin_candidates = kept.candidates();
+  return kept.collect(inSwept, inThreads, pairs);
 }
 
 // Sweeps the boxes grown by the plan's skin; its pairs become the kept candidates, and the
@@ -257,7 +257,9 @@ void Broadphase::Impl::sweepGrown(const BoxSet& inSwept, const FramePlan& inPlan
   testKeptCandidates(inSwept, inPlan.threads);
 }
 
-void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
+// Runs the plan's strategy; false when the kept candidates turned out not to cover the
+// frame (then nothing was computed and the frame must be planned again).
+bool Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
                                const BoxSet& inSwept) {
   switch (inPlan.work) {
     case FrameWork::kEmpty:
@@ -271,8 +273,13 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
       break;
     }
     case FrameWork::kKeptCandidates:
-      testKeptCandidates(inSwept, inPlan.threads);
+      return testKeptCandidates(inSwept, inPlan.threads);
+    case FrameWork::kSmallFrame: {
+      PhaseTimer timer(report.ms_pairing);
+      kept.clear();
+      pairSmallFrame(inSwept, small_frame, pairs);
       break;
+    }
     case FrameWork::kSweep:
       if (inPlan.sweep_skin > 0.0) {
         sweepGrown(inSwept, inPlan);
@@ -282,6 +289,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
       }
       break;
   }
+  return true;
 }
 
 void Broadphase::Impl::addRestingPairs(const BoxSet& inBoxes, int inThreads) {
@@ -384,8 +392,13 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     }();
     impl.rememberMotion(delta);
     const BoxSet& swept = impl.setAsideRestingBoxes(boxes, delta, threads);
-    const FramePlan plan = planFrame(impl.planInputs(boxes, swept, delta, threads));
-    impl.execute(plan, boxes, swept);
+    PlanInputs inputs = impl.planInputs(boxes, swept, delta, threads);
+    FramePlan plan = planFrame(inputs);
+    if (!impl.execute(plan, boxes, swept)) {
+      inputs.kept_covers = false;  // a box left its skin: plan again, knowing it
+      plan = planFrame(inputs);
+      impl.execute(plan, boxes, swept);
+    }
     const std::size_t sweep_pairs = impl.pairs.size();
     if (plan.work != FrameWork::kReuse) {
       impl.addRestingPairs(boxes, threads);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/small_frame.h"
 #include "core/tuning.h"
 
 namespace sap_broadphase {
@@ -109,10 +110,16 @@ FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed) {
       return FramePath::kReused;
     case FrameWork::kKeptCandidates:
       return FramePath::kSkin;
+    case FrameWork::kSmallFrame:
     case FrameWork::kSweep:
       break;
   }
-  return inRestingIndexed ? FramePath::kStatic : inPlan.sweep_path;
+  if (inRestingIndexed) return FramePath::kStatic;
+  return inPlan.work == FrameWork::kSmallFrame ? FramePath::kSmallFrame : inPlan.sweep_path;
+}
+
+bool isSmallFrame(std::size_t inBoxes, int inThreads) {
+  return inBoxes <= (inThreads == 1 ? kSmallFrameMaxBoxesOneThread : kSmallFrameMaxBoxesParallel);
 }
 
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
@@ -144,6 +151,11 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     plan.work = FrameWork::kKeptCandidates;
     plan.skin = inInputs.kept_skin;
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;
+    return plan;
+  }
+  if (config.method == Method::kAuto && isSmallFrame(inInputs.swept, inInputs.threads)) {
+    plan.work = FrameWork::kSmallFrame;  // no skin: a small frame costs less than its pass
+    plan.threads = 1;
     return plan;
   }
   plan.work = FrameWork::kSweep;

@@ -18,6 +18,7 @@ enum class FrameWork : uint8_t {
   kReuse,           ///< identical to the last frame: its pairs stand
   kKeptCandidates,  ///< every box inside its skin: test the kept candidates only
   kSweep,           ///< sweep and prune (grown by a skin when sweep_skin > 0)
+  kSmallFrame,      ///< a small frame: one-axis sort and sweep in blocks (small_frame.h)
 };
 
 /// What earlier frames measured, for choosing a skin. A sweep costs a part per box (keys,
@@ -44,7 +45,7 @@ struct PlanInputs {
   int threads = 1;
   bool last_pairs_valid = false;  ///< the output still holds the last frame's pairs
   bool kept_candidates = false;   ///< a kept-candidate list exists for these boxes
-  bool kept_covers = false;       ///< every box is inside its grown box of that list
+  bool kept_covers = false;       ///< every box may be inside its grown box of that list
   double kept_skin = 0.0;         ///< the skin of that list
   double motion = 0.0;            ///< per-frame motion: recent largest displacement
   SkinCosts costs;
@@ -62,6 +63,10 @@ struct FramePlan {
 
 /// The sequential or parallel sweep for inBoxes boxes (Method::kAuto's rule).
 FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
+
+/// True when a frame of inBoxes boxes goes to the small-frame path (Method::kAuto) rather than
+/// the sweep: at or below the measured crossover (small_frame.h).
+bool isSmallFrame(std::size_t inBoxes, int inThreads);
 
 /// True when the frame's pairs are the last frame's: identical boxes, reuse on, the last
 /// pairs still held.

@@ -125,7 +125,7 @@ TEST(FrameFlow, EveryCombinationOfSkipsIsExactOverMovingFrames) {
     config.reuse_unchanged_frames = skips.reuse;
     config.index_static_boxes = skips.guessed_static;
     config.threads = skips.threads;
-    config.parallel_min_boxes = 1000;
+    config.method = Method::kParallel;  // a sweep, not the small-frame path, at this size
     Broadphase engine(config);
     std::map<FramePath, int> paths;
     for (std::size_t frame = 0; frame < frames.size(); ++frame) {
@@ -265,6 +265,7 @@ TEST(FrameFlow, PhasesAddUpOnEveryPath) {
   config = BroadphaseConfig();
   config.index_static_boxes = true;
   run(config, frames);
+  run(BroadphaseConfig(), {boxes});
   for (FramePath path :
        {FramePath::kEmpty, FramePath::kSequential, FramePath::kParallel, FramePath::kBruteForce,
         FramePath::kReused, FramePath::kSkin, FramePath::kStatic})

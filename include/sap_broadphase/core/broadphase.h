@@ -66,10 +66,11 @@ enum class FramePath : uint8_t {
   kReused,      ///< same boxes as the previous frame: its pairs returned without a sweep
   kSkin,        ///< every box inside its skin: the kept candidates tested, no sweep
   kStatic,      ///< resting boxes answered by the static index, only the rest swept
+  kSmallFrame,  ///< a small frame: one-axis sort and sweep in blocks (small_frame.h), one thread
 };
 
 /// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused", "skin",
-/// "static".
+/// "static", "small".
 const char* framePathName(FramePath inPath);
 
 /// Why the skin in force for a frame is what it is.
