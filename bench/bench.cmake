@@ -1,4 +1,4 @@
-# Benchmarks (issue 4): sap_bench (experiments, peers, plots) and sap_microbench (Google
+# Benchmarks: sap_bench (experiments, peers, plots) and sap_microbench (Google
 # Benchmark). Peers are optional: each adapter is compiled only when its library is found.
 set(SAP_BENCH_DIR ${CMAKE_CURRENT_LIST_DIR})
 

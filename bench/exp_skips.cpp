@@ -1,4 +1,4 @@
-// What each of the engine's skips saves (issue 5 §1): boxes filtered out before the sweep, a
+// What each of the engine's skips saves: boxes filtered out before the sweep, a
 // static index for resting scenery, unchanged frames, the sequential path for small frames,
 // and skin reuse at several motion speeds. Every row checks its pairs against the plain
 // engine on the same frame.

@@ -1,4 +1,4 @@
-// The experiments of issue 4, one function each, and the list sap_bench dispatches on.
+// The experiments, one function each, and the list sap_bench dispatches on.
 #pragma once
 
 #include <vector>

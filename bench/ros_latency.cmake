@@ -1,4 +1,4 @@
-# sap_ros_latency (issue 4, item 11): end-to-end latency through ROS (BoxArray -> node ->
+# sap_ros_latency: end-to-end latency through ROS (BoxArray -> node ->
 # PairArray/FrameStats), the node in another process (tcp) and loaded into its own (nodelet).
 # Included from bench/bench.cmake after the ROS layer; built only when the ROS library target
 # exists. Run it with scripts/bench_ros.sh.

@@ -1,4 +1,4 @@
-// sap_ros_latency (issue 4, item 11): end-to-end latency through ROS. Publishes uniform-scene
+// sap_ros_latency: end-to-end latency through ROS. Publishes uniform-scene
 // frames as BoxArray on `boxes`, waits for the node's PairArray on `pairs` and FrameStats on
 // `stats` (matched by header.stamp), and splits the publish -> pairs-received latency into the
 // part spent in the engine's sweep and the part spent outside it (serialisation, transport,

@@ -1,4 +1,4 @@
-// sap_bench: the paper's experiments, the accuracy/speed trade-off and the peers (issue 4).
+// sap_bench: the paper's experiments, the accuracy/speed trade-off and the peers.
 #include <cstdio>
 #include <fstream>
 #include <iostream>

@@ -1,4 +1,4 @@
-// StaticIndex (issue 5, §1.2) on the target scene: 10^6 static boxes of the uniform scene and
+// StaticIndex on the target scene: 10^6 static boxes of the uniform scene and
 // 10^3 moving ones. Build once, then the per-frame query of the moving boxes, next to what a
 // full sweep of all boxes and a sweep of the moving boxes alone cost.
 #include <benchmark/benchmark.h>

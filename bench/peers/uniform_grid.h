@@ -1,4 +1,4 @@
-// The naive baseline of issue 4: a well-tuned uniform grid. Exact on closed intervals, each
+// The naive baseline: a well-tuned uniform grid. Exact on closed intervals, each
 // pair reported once (by the cell holding the low corner of the two boxes' intersection).
 #pragma once
 

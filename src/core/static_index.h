@@ -1,4 +1,4 @@
-// An exact index of boxes that do not move: a uniform 3-D grid in CSR form (issue 5, §1.2).
+// An exact index of boxes that do not move: a uniform 3-D grid in CSR form (resting and declared static boxes).
 #pragma once
 
 #include <cstddef>
