@@ -18,8 +18,8 @@
 #include "core/frame_plan.h"
 #include "core/phase_timer.h"
 #include "core/skin_list.h"
-#include "core/small_frame.h"
 #include "core/slab_grid.h"
+#include "core/small_frame.h"
 #include "core/static_index.h"
 #include "core/static_split.h"
 #include "core/sweep_and_prune.h"
@@ -150,7 +150,7 @@ struct Broadphase::Impl {
   FrameReport report;
   FrameHistory history;
   SweepAndPrune sweep;
-  SkinList kept;  // kept candidates of the last grown sweep (skin_list.h)
+  SkinList kept;                    // kept candidates of the last grown sweep (skin_list.h)
   SmallFrameWorkspace small_frame;  // buffers of the small-frame path
   double kept_skin = 0.0;
   StaticSplit resting;              // boxes guessed static (index_static_boxes)

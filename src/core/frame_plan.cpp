@@ -153,7 +153,8 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;
     return plan;
   }
-  if (config.method == Method::kAuto && isSmallFrame(inInputs.swept, inInputs.threads)) {
+  if (config.method == Method::kAuto && !skin_fixed &&
+      isSmallFrame(inInputs.swept, inInputs.threads)) {
     plan.work = FrameWork::kSmallFrame;  // no skin: a small frame costs less than its pass
     plan.threads = 1;
     return plan;

@@ -1,4 +1,5 @@
-// An exact index of boxes that do not move: a uniform 3-D grid in CSR form (resting and declared static boxes).
+// An exact index of boxes that do not move: a uniform 3-D grid in CSR form (resting and declared
+// static boxes).
 #pragma once
 
 #include <cstddef>

@@ -92,8 +92,10 @@ void SweepAndPrune::releaseBuffers() {
   sorter_ = PartitionedSorter();
 }
 
-// Each axis's origin is the centre of the frame's finite span, kept while the frame stays
-// around it (a moved origin shifts every key, and B with them).
+// An axis's origin stays 0 (keys of the coordinates themselves) unless the frame lies far
+// from 0 compared with its own size, where keys of the coordinates would be coarse; then it is
+// the centre of the frame's finite span, kept while the frame stays around it (a moved origin
+// shifts every key, and B with them).
 void SweepAndPrune::placeKeyOrigins(const BoxSet& inBoxes, int inThreads) {
   for (int axis = 0; axis < 3; ++axis) {
     double low = HUGE_VAL, high = -HUGE_VAL;
@@ -102,11 +104,14 @@ void SweepAndPrune::placeKeyOrigins(const BoxSet& inBoxes, int inThreads) {
     if (!(low <= high)) continue;              // no finite bound: any origin serves
     const double centre = low / 2 + high / 2;  // halves first: no overflow
     const double half_span = high / 2 - low / 2;
-    const double drift = std::fabs(centre - key_origin_.origin[axis]);
+    const double origin =
+        std::fabs(centre) > tuning::kFarFromOriginInSpans * half_span ? centre : 0.0;
+    const double drift = std::fabs(origin - key_origin_.origin[axis]);
     if (origin_placed_[axis] && drift <= tuning::kOriginDriftInSpans * 2 * half_span) continue;
-    key_origin_.origin[axis] = centre;
+    if (key_origin_.origin[axis] != origin)
+      bounds_[axis].from_previous_frame = false;  // B was measured in the old keys
+    key_origin_.origin[axis] = origin;
     origin_placed_[axis] = true;
-    bounds_[axis].from_previous_frame = false;  // B was measured in the old keys
   }
 }
 

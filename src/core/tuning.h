@@ -17,7 +17,12 @@ constexpr std::size_t kMinPartitionedEndpoints = 8192;
 
 // ---- Large-world coordinates (sort keys relative to the frame) ----
 
-/// The keys are float32 of (coordinate - origin). The origin of an axis is kept from frame
+/// The keys are float32 of (coordinate - origin). The origin is 0 (the keys of the
+/// coordinates themselves) unless the frame's centre lies more than this many half-spans from
+/// 0: there keys of the coordinates would be at least that many times coarser than keys
+/// relative to the centre (UTM and ECEF coordinates, for example).
+constexpr double kFarFromOriginInSpans = 64.0;
+/// The origin of an axis is kept from frame The origin of an axis is kept from frame
 /// to frame, so that the partition bounds B stay valid (temporal coherence), until the
 /// frame's centre moved by more than this fraction of its span: then precision near the
 /// boxes would start to suffer and the origin is re-centred.

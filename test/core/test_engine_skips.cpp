@@ -39,12 +39,18 @@ TEST(UnchangedFrame, SecondIdenticalFrameIsReusedAndExact) {
   EXPECT_NE(broadphase.stats().path, FramePath::kReused);
 }
 
-TEST(UnchangedFrame, OffByDefault) {
+TEST(UnchangedFrame, OnByDefaultAndCanBeTurnedOff) {
   SceneSimulator scene(movingScene(SceneKind::kUniform, 6));
-  Broadphase broadphase(engineConfig(Method::kAuto, 2, 0, 1));
-  broadphase.update(scene.boxes());
-  broadphase.update(scene.boxes());
-  EXPECT_NE(broadphase.stats().path, FramePath::kReused);
+  Broadphase by_default(engineConfig(Method::kAuto, 2, 0, 1));
+  by_default.update(scene.boxes());
+  by_default.update(scene.boxes());
+  EXPECT_EQ(by_default.stats().path, FramePath::kReused);
+  BroadphaseConfig config = engineConfig(Method::kAuto, 2, 0, 1);
+  config.reuse_unchanged_frames = false;
+  Broadphase without_reuse(config);
+  without_reuse.update(scene.boxes());
+  without_reuse.update(scene.boxes());
+  EXPECT_NE(without_reuse.stats().path, FramePath::kReused);
 }
 
 // Every frame of every scene exact, with boxes added and jumping now and then, for skins

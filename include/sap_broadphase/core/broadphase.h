@@ -38,9 +38,9 @@ struct BroadphaseConfig {
                                            ///< (measured crossover on 2 cores: sap_bench -e skips)
   int third_axis_slabs = 0;                ///< active lists per slab of the unused axis: 0 = auto,
                                            ///< 1 = the paper's single list, k = k slabs (max 64)
-  bool reuse_unchanged_frames = false;     ///< a frame equal to the previous one (ids, bounds,
-                                           ///< groups, masks) returns the previous pairs; keeps a
-                                           ///< copy of the last frame (52 bytes a box)
+  bool reuse_unchanged_frames = true;      ///< a frame bit for bit equal to the previous one
+                                           ///< (ids, bounds, groups, masks) returns its pairs; the
+                                           ///< comparison is the frame history's, done anyway
   bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
                                     ///< and whose groups/masks forbid pairs among them in an
                                     ///< index (static_split.h); sweep only the others
