@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
@@ -477,6 +478,37 @@ TEST(PairEventsTopic, SetDifferenceOfConsecutiveFrames) {
       moving.hi[0][i] += 0.05 * (i % 7);
     }
   }
+}
+
+// ---- /diagnostics ----
+
+TEST(Diagnostics, EachNodeReportsItsCounters) {
+  ros::NodeHandle node;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> latest;  // by status name
+  ros::Subscriber subscriber = node.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& inMsg) {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& status : inMsg->status) latest[status.name] = status;
+        changed.notify_all();
+      });
+  auto value = [](const diagnostic_msgs::DiagnosticStatus& inStatus, const std::string& inKey) {
+    for (const auto& pair : inStatus.values)
+      if (pair.key == inKey) return pair.value;
+    return std::string();
+  };
+  std::unique_lock<std::mutex> lock(mutex);
+  const bool reported = changed.wait_for(lock, std::chrono::duration<double>(kWait), [&] {
+    const auto statics = latest.find("static/sap_broadphase: broadphase");
+    const auto multis = latest.find("multi/sap_broadphase: broadphase");
+    return statics != latest.end() && multis != latest.end() &&
+           value(statics->second, "frames computed") != "0" &&
+           value(multis->second, "sources timed out") != "0";
+  });
+  ASSERT_TRUE(reported) << latest.size() << " statuses seen";
+  EXPECT_EQ(value(latest["static/sap_broadphase: broadphase"], "static boxes"), "1500");
+  EXPECT_NE(value(latest["multi/sap_broadphase: broadphase"], "last error"), "");
 }
 
 }  // namespace
