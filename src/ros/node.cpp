@@ -187,7 +187,7 @@ void BroadphaseNode::workerLoop() {
       world_changed = true;
     }
     for (auto& [key, delivery] : deliveries) {
-      if (!ingest(sourceName(key), *delivery.msg, converted_)) continue;
+      if (!ingest(sourceName(key), *delivery.msg, delivery.msg->header.stamp, converted_)) continue;
       std_msgs::Header header = delivery.msg->header;
       if (tf_buffer_) header.frame_id = params_.fixed_frame;  // the boxes are there now
       sources_.store(key, converted_, header, delivery.received);
@@ -203,14 +203,15 @@ void BroadphaseNode::workerLoop() {
   }
 }
 
-bool BroadphaseNode::ingest(const std::string& inWhat, const BoxArray& inMsg, BoxSet& outBoxes) {
+bool BroadphaseNode::ingest(const std::string& inWhat, const BoxArray& inMsg,
+                            const ros::Time& inWhen, BoxSet& outBoxes) {
   if (auto reason = boxArrayToBoxSet(inMsg, outBoxes)) {
     refuse(inMsg.header, inMsg.bounds.size() / 6, inWhat + ": " + *reason);
     return false;
   }
   if (!tf_buffer_) return true;
   std::string error;
-  if (!tf_buffer_->canTransform(params_.fixed_frame, inMsg.header.frame_id, inMsg.header.stamp,
+  if (!tf_buffer_->canTransform(params_.fixed_frame, inMsg.header.frame_id, inWhen,
                                 ros::Duration(params_.transform_timeout), &error)) {
     skip(inWhat, error);
     return false;
@@ -228,7 +229,9 @@ bool BroadphaseNode::ingest(const std::string& inWhat, const BoxArray& inMsg, Bo
 
 void BroadphaseNode::ingestStatic(const BoxArray& inMsg) {
   BoxSet scenery;
-  if (!ingest(kStaticSourceName, inMsg, scenery)) return;
+  // Scenery stays put, and a latched message may be older than tf2's cache: its frame is
+  // placed with the latest transform (time 0), not the one at its stamp.
+  if (!ingest(kStaticSourceName, inMsg, ros::Time(0), scenery)) return;
   static_ids_ = scenery.ids;
   std::sort(static_ids_.begin(), static_ids_.end());
   static_ids_.shrink_to_fit();

@@ -480,6 +480,28 @@ TEST(PairEventsTopic, SetDifferenceOfConsecutiveFrames) {
   }
 }
 
+// ---- ~rate: frames at a fixed rate from what the sources hold ----
+
+TEST(FixedRate, OneDeliveryComputedAgainAtEachTick) {
+  static Probe probe("rated");
+  ASSERT_TRUE(probe.waitConnected({"boxes"}));
+  const BoxSet boxes = randomBoxes(200, 1.0, false, 401);
+  const ros::Time stamp = publishBoxes(probe, "boxes", boxes, "world");
+  int answers = 0;  // the one frame, recomputed at 20 Hz while nothing new arrives
+  const auto third = probe.waitPairs(
+      [&](const PairArray& m) {
+        if (m.header.stamp != stamp) return false;
+        EXPECT_EQ(toPairs(m), bruteForcePairs(boxes));
+        return ++answers == 3;
+      },
+      {}, true);
+  ASSERT_TRUE(third) << answers << " frames at ~rate from one delivery";
+  const auto stats = probe.waitStats([&](const FrameStats& s) {
+    return s.header.stamp == stamp && s.frames_computed >= 3 && s.frames_processed == 1;
+  });
+  EXPECT_TRUE(stats);
+}
+
 // ---- /diagnostics ----
 
 TEST(Diagnostics, EachNodeReportsItsCounters) {

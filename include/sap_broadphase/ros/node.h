@@ -81,9 +81,11 @@ class BroadphaseNode {
   /// The worker thread: waits for deliveries (or the next ~rate tick), takes them into the
   /// world, computes, publishes; between frames expires silent sources and reports diagnostics.
   void workerLoop();
-  /// Converts, validates and transforms one message into outBoxes (worker thread). False, with
-  /// the refusal or skip already counted, when the message cannot join the world.
-  bool ingest(const std::string& inWhat, const BoxArray& inMsg, BoxSet& outBoxes);
+  /// Converts, validates and transforms one message (with the transform at inWhen) into
+  /// outBoxes (worker thread). False, with the refusal or skip already counted, when the
+  /// message cannot join the world.
+  bool ingest(const std::string& inWhat, const BoxArray& inMsg, const ros::Time& inWhen,
+              BoxSet& outBoxes);
   /// Replaces the scenery of the engine (worker thread).
   void ingestStatic(const BoxArray& inMsg);
   /// Drops silent sources, counts and logs each once (worker thread).
