@@ -1,4 +1,4 @@
-# ROS layer: conversions, node, markers, scene_publisher. Owned by the ROS-node work (issue 3).
+# ROS layer: conversions, sources (merge, tf2), node, markers, scene_publisher.
 include_directories(include ${catkin_INCLUDE_DIRS})
 
 add_library(${PROJECT_NAME}_ros
@@ -6,6 +6,7 @@ add_library(${PROJECT_NAME}_ros
   src/ros/markers.cpp
   src/ros/node.cpp
   src/ros/node_params.cpp
+  src/ros/sources.cpp
 )
 target_link_libraries(${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
 add_dependencies(${PROJECT_NAME}_ros ${PROJECT_NAME}_generate_messages_cpp)

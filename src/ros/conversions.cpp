@@ -7,9 +7,11 @@ namespace sap_broadphase {
 
 namespace {
 
+// Says what the sender can change: the two lengths that disagree and the two valid choices.
 std::string lengthError(const char* inField, std::size_t inLength, std::size_t inBoxes) {
-  return std::string(inField) + " has " + std::to_string(inLength) + " entries, expected 0 or " +
-         std::to_string(inBoxes) + " (one per box)";
+  return std::string(inField) + " has " + std::to_string(inLength) + " entries but bounds holds " +
+         std::to_string(inBoxes) + " boxes (" + std::to_string(6 * inBoxes) +
+         " values): give one " + inField + " entry per box, or none";
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <set>
+#include <sstream>
 
 #include <xmlrpcpp/XmlRpcValue.h>
 
@@ -32,6 +34,41 @@ std::string readCount(const ros::NodeHandle& inPrivate, const std::string& inNam
   if (!inPrivate.getParam(inName, value)) return "";
   if (value < 0) return "~" + inName + " must not be negative";
   ioValue = static_cast<Integer>(value);
+  return "";
+}
+
+/// Reads a non-negative number of seconds or Hz; keeps ioValue when absent.
+std::string readNonNegative(const ros::NodeHandle& inPrivate, const std::string& inName,
+                            double& ioValue) {
+  double value = ioValue;
+  if (!inPrivate.getParam(inName, value)) {
+    int integer = 0;  // an integer given in YAML is not a double for the parameter server
+    if (!inPrivate.getParam(inName, integer)) return "";
+    value = integer;
+  }
+  if (!(value >= 0.0) || !std::isfinite(value))
+    return "~" + inName + " must be a finite number >= 0, not " + std::to_string(value);
+  ioValue = value;
+  return "";
+}
+
+/// Reads ~sources, the topics whose publishers make up the world.
+std::string readSources(const ros::NodeHandle& inPrivate, std::vector<std::string>& ioSources) {
+  XmlRpc::XmlRpcValue value;
+  if (!inPrivate.getParam("sources", value)) return "";
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeArray || value.size() == 0)
+    return "~sources must be a non-empty list of BoxArray topics, e.g. [boxes, robot_a/boxes]";
+  std::vector<std::string> topics;
+  std::set<std::string> seen;
+  for (int i = 0; i < value.size(); ++i) {
+    if (value[i].getType() != XmlRpc::XmlRpcValue::TypeString)
+      return "~sources[" + std::to_string(i) + "] must be a topic name (a string)";
+    const std::string topic = static_cast<std::string>(value[i]);
+    if (topic.empty() || !seen.insert(topic).second)
+      return "~sources lists '" + topic + "' twice (or an empty name)";
+    topics.push_back(topic);
+  }
+  ioSources = topics;
   return "";
 }
 
@@ -112,7 +149,49 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
   if (!(error = readCount(inPrivate, "refusal_log_period", outParams.refusal_log_period)).empty())
     return error;
   outParams.boxes_queue_size = std::max(outParams.boxes_queue_size, 1);
+
+  if (!(error = readSources(inPrivate, outParams.sources)).empty()) return error;
+  if (!(error = readNonNegative(inPrivate, "source_timeout", outParams.source_timeout)).empty())
+    return error;
+  if (!(error = readNonNegative(inPrivate, "rate", outParams.rate)).empty()) return error;
+  inPrivate.param<std::string>("fixed_frame", outParams.fixed_frame, outParams.fixed_frame);
+  if (!outParams.fixed_frame.empty() && outParams.fixed_frame.front() == '/')
+    outParams.fixed_frame.erase(0, 1);  // tf2 frame ids carry no leading slash
+  if (!(error = readNonNegative(inPrivate, "transform_timeout", outParams.transform_timeout))
+           .empty())
+    return error;
   return "";
+}
+
+std::string describeNodeParams(const NodeParams& inParams) {
+  const BroadphaseConfig& engine = inParams.engine;
+  std::ostringstream text;
+  text << "threads " << resolveThreadCount(engine.threads) << " (~threads " << engine.threads
+       << "), method " << methodName(engine.method) << ", parallel_min_boxes "
+       << engine.parallel_min_boxes << ", axes "
+       << "xyz"[engine.primary_axis] << "xyz"[engine.secondary_axis]
+       << (engine.axis_swapping ? " (swapping)" : "") << ", skin ";
+  if (!engine.skin)
+    text << "auto";
+  else if (*engine.skin == 0.0)
+    text << "off";
+  else
+    text << *engine.skin;
+  text << ", sources [";
+  for (std::size_t i = 0; i < inParams.sources.size(); ++i)
+    text << (i ? ", " : "") << inParams.sources[i];
+  text << "], source_timeout " << inParams.source_timeout << " s, ";
+  if (inParams.rate > 0.0)
+    text << "rate " << inParams.rate << " Hz";
+  else
+    text << "a frame per delivery";
+  text << ", fixed_frame ";
+  if (inParams.fixed_frame.empty())
+    text << "none (sources must share one frame_id)";
+  else
+    text << "'" << inParams.fixed_frame << "' (transform_timeout " << inParams.transform_timeout
+         << " s)";
+  return text.str();
 }
 
 }  // namespace sap_broadphase

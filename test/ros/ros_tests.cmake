@@ -19,10 +19,10 @@ add_rostest(test/ros/rviz.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}
 # rosbag record of boxes and pairs; rosbag play of the boxes gives the same pairs again.
 add_rostest(test/ros/rosbag.test DEPENDENCIES ${PROJECT_NAME}_node)
 
-# Unit tests of the ROS layer's pure functions (conversions, markers): no roscore needed.
+# Unit tests of the ROS layer's pure functions (conversions, markers, sources): no roscore.
 catkin_add_gtest(test_ros_units
   test/ros/test_conversions.cpp test/ros/test_frames.cpp test/ros/test_markers.cpp
-  test/ros/test_units_main.cpp)
+  test/ros/test_sources_units.cpp test/ros/test_units_main.cpp)
 target_include_directories(test_ros_units PRIVATE test/ros)
 target_link_libraries(test_ros_units ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_ros_units ${PROJECT_NAME}_generate_messages_cpp)
@@ -34,3 +34,10 @@ add_rostest_gtest(test_nodelet test/ros/nodelet.test
 target_include_directories(test_nodelet PRIVATE test/ros)
 target_link_libraries(test_nodelet ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_nodelet ${PROJECT_NAME}_nodelets ${PROJECT_NAME}_generate_messages_cpp)
+
+# Sources (several publishers and topics), tf2 into a fixed frame, static_boxes, pair_events.
+add_rostest_gtest(test_sources test/ros/sources.test
+  test/ros/test_sources.cpp test/ros/test_frames.cpp)
+target_include_directories(test_sources PRIVATE test/ros)
+target_link_libraries(test_sources ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
+add_dependencies(test_sources ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)

@@ -67,7 +67,9 @@ TEST(Conversions, ShapeErrorsNameTheArray) {
     array = {1u, 2u, 3u};
     const auto error = checkBoxArrayShape(msg);
     ASSERT_TRUE(error) << names[field];
-    EXPECT_EQ(*error, std::string(names[field]) + " has 3 entries, expected 0 or 2 (one per box)");
+    EXPECT_EQ(*error, std::string(names[field]) +
+                          " has 3 entries but bounds holds 2 boxes (12 values): give one " +
+                          names[field] + " entry per box, or none");
     BoxSet boxes;
     EXPECT_EQ(boxArrayToBoxSet(msg, boxes), error);
   }

@@ -1,0 +1,113 @@
+// The world of a frame: the latest frame of every source (topic x publisher), merged.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/Transform.h>
+#include <ros/time.h>
+#include <std_msgs/Header.h>
+
+#include "sap_broadphase/core/box_set.h"
+
+namespace sap_broadphase {
+
+/// One input of the world: a topic of ~sources and one publisher (caller id) on it.
+struct SourceKey {
+  std::string topic;
+  std::string publisher;
+  bool operator<(const SourceKey& inOther) const {
+    return topic != inOther.topic ? topic < inOther.topic : publisher < inOther.publisher;
+  }
+};
+
+/// "'boxes' from /robot_a": how logs and refusals name a source.
+std::string sourceName(const SourceKey& inKey);
+
+/// Name of the latched scenery in refusals.
+constexpr const char* kStaticSourceName = "'static_boxes'";
+
+/// Moves every box of ioBoxes by inTransform (rotation, then translation) and replaces it with
+/// the axis-aligned box of its 8 moved corners, each bound rounded one ulp outwards: the result
+/// contains the exactly moved box, so no overlapping pair is lost to the transform (pairs of
+/// rotated boxes are a superset of the exact ones). A bound that is not finite after the move
+/// becomes -inf / +inf.
+void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes);
+
+/// Gives capacity back once a buffer has stayed much larger than what it holds for a while:
+/// a frame of 2^21 boxes must not keep its memory for days of small frames.
+class CapacityWatch {
+ public:
+  /// Records a frame of inUsed boxes held in a buffer of inCapacity; true when the buffer should
+  /// be shrunk now (capacity above 4 x the use of each of the last kPatience frames and above
+  /// kMinCapacity boxes).
+  bool shouldShrink(std::size_t inUsed, std::size_t inCapacity);
+
+ private:
+  static constexpr std::size_t kPatience = 100;       // frames of small use before giving back
+  static constexpr std::size_t kMinCapacity = 65536;  // boxes: below this, keep (~3.4 MB)
+  std::size_t frames_small_ = 0;
+};
+
+/// What one merge left out, and why (one refusal per source left out).
+struct WorldAssembly {
+  std_msgs::Header header;            ///< newest stamp of the merged sources, their frame id
+  std::size_t sources_merged = 0;     ///< sources in the world
+  std::vector<std::string> refusals;  ///< "id 7 of 'boxes' from /b is also in 'boxes' from /a"
+};
+
+/// The latest frame of every source, kept until replaced or timed out, and their union.
+class SourceSet {
+ public:
+  /// Keeps inBoxes (swapped in, so ioBoxes gets the old buffer back for the next conversion) as
+  /// the latest frame of inKey, received at inReceived.
+  void store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::Header& inHeader,
+             const ros::Time& inReceived);
+  /// Drops the sources whose latest frame is older than inTimeout seconds at inNow (0 = never)
+  /// and returns their names.
+  std::vector<std::string> expire(const ros::Time& inNow, double inTimeout);
+  /// Number of sources held.
+  std::size_t size() const { return sources_.size(); }
+
+  /// Builds the world of a frame into outWorld and returns it, or returns the one source's own
+  /// boxes when it is alone (no copy). Sources are taken in the order they appeared (a source
+  /// lives from its first frame until it times out); a source is left out, with a refusal naming
+  /// both sides, when one of its ids is already in the world or in inStaticIds (sorted), or when
+  /// its frame_id differs from the world's (inRequiredFrame when not empty, else the first
+  /// source's).
+  const BoxSet& assemble(const std::vector<uint32_t>& inStaticIds,
+                         const std::string& inRequiredFrame, BoxSet& outWorld,
+                         WorldAssembly& outAssembly);
+
+ private:
+  struct Source {
+    BoxSet boxes;
+    std_msgs::Header header;
+    ros::Time received;
+    uint64_t joined = 0;  // order in which sources appeared: the older one keeps a shared id
+    std::vector<uint32_t> sorted_ids;  // ids of boxes, sorted; built only when compared
+    CapacityWatch watch;
+  };
+  using SourceIt = std::map<SourceKey, Source>::iterator;
+  /// The source's ids, sorted (cached until its next frame).
+  static const std::vector<uint32_t>& sortedIds(Source& ioSource);
+  /// Why inSource cannot join the sources of inMerged, or empty.
+  std::string conflict(const SourceIt& inSource, const std::vector<SourceIt>& inMerged,
+                       const std::vector<uint32_t>& inStaticIds, const std::string& inWorldFrame,
+                       const std::string& inWorldFrameOwner);
+
+  std::map<SourceKey, Source> sources_;
+  uint64_t next_join_ = 0;
+};
+
+/// Appends inAdd to ioWorld; groups and masks are completed with the defaults when only one
+/// side has them.
+void appendBoxes(const BoxSet& inAdd, BoxSet& ioWorld);
+
+/// Releases the capacity of every array of ioBoxes beyond its size.
+void shrinkBoxSet(BoxSet& ioBoxes);
+
+}  // namespace sap_broadphase

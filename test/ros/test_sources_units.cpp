@@ -1,0 +1,198 @@
+// Unit tests of the world's merge (SourceSet), the box transform and the capacity watch.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <tf2/LinearMath/Matrix3x3.h>
+#include <tf2/LinearMath/Quaternion.h>
+
+#include "sap_broadphase/core/brute_force.h"
+#include "sap_broadphase/ros/sources.h"
+#include "test_frames.h"
+
+namespace sap_broadphase {
+namespace test {
+namespace {
+
+std_msgs::Header header(const char* inFrame, uint32_t inSeconds) {
+  std_msgs::Header result;
+  result.frame_id = inFrame;
+  result.stamp = ros::Time(inSeconds, 0);
+  return result;
+}
+
+BoxSet oneBox(uint32_t inId, double inLo, double inHi) {
+  BoxSet boxes;
+  const double lo[3] = {inLo, inLo, inLo}, hi[3] = {inHi, inHi, inHi};
+  boxes.add(inId, lo, hi);
+  return boxes;
+}
+
+TEST(SourceSet, UnionOfLatestFramesNewestStampAndCrossSourcePairs) {
+  SourceSet sources;
+  BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.5, 1.5), a_again = oneBox(1, 5.0, 6.0);
+  sources.store({"boxes", "/a"}, a, header("world", 10), ros::Time(100, 0));
+  sources.store({"boxes", "/b"}, b, header("world", 12), ros::Time(100, 0));
+  BoxSet world;
+  WorldAssembly assembly;
+  EXPECT_EQ(bruteForcePairs(sources.assemble({}, "", world, assembly)), PairList({{1, 2}}));
+  EXPECT_EQ(assembly.sources_merged, 2u);
+  EXPECT_TRUE(assembly.refusals.empty());
+  EXPECT_EQ(assembly.header.stamp, ros::Time(12, 0));
+  EXPECT_EQ(assembly.header.frame_id, "world");
+  // The latest frame of /a replaces its earlier one.
+  sources.store({"boxes", "/a"}, a_again, header("world", 11), ros::Time(101, 0));
+  EXPECT_TRUE(bruteForcePairs(sources.assemble({}, "", world, assembly)).empty());
+  EXPECT_EQ(world.size(), 2u);
+}
+
+TEST(SourceSet, SharedIdLeavesTheNewerSourceOutNamingBoth) {
+  SourceSet sources;
+  BoxSet a = oneBox(7, 0.0, 1.0), b = oneBox(7, 0.0, 1.0), c = oneBox(8, 0.0, 1.0);
+  sources.store({"boxes", "/a"}, a, header("world", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/b"}, b, header("world", 1), ros::Time(1, 0));
+  sources.store({"extra", "/c"}, c, header("world", 1), ros::Time(1, 0));
+  BoxSet fresh_a = oneBox(7, 0.0, 1.0);  // /a publishes again: it still joined first
+  sources.store({"boxes", "/a"}, fresh_a, header("world", 2), ros::Time(2, 0));
+  BoxSet world;
+  WorldAssembly assembly;
+  const BoxSet& merged = sources.assemble({}, "", world, assembly);
+  ASSERT_EQ(assembly.refusals.size(), 1u);
+  EXPECT_EQ(assembly.refusals[0].rfind("id 7 of 'boxes' from /b is also in 'boxes' from /a", 0), 0u)
+      << assembly.refusals[0];
+  EXPECT_EQ(assembly.sources_merged, 2u);
+  EXPECT_EQ(bruteForcePairs(merged), PairList({{7, 8}}));
+  // The scenery's ids are refused likewise.
+  sources.assemble({3, 8, 9}, "", world, assembly);
+  ASSERT_EQ(assembly.refusals.size(), 2u);
+  EXPECT_NE(assembly.refusals[1].find("id 8 of 'extra' from /c is also in 'static_boxes'"),
+            std::string::npos)
+      << assembly.refusals[1];
+}
+
+TEST(SourceSet, OtherFrameRefusedNamingBothFrames) {
+  SourceSet sources;
+  BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.0, 1.0);
+  sources.store({"boxes", "/a"}, a, header("robot_a", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/b"}, b, header("robot_b", 1), ros::Time(1, 0));
+  BoxSet world;
+  WorldAssembly assembly;
+  const BoxSet& merged = sources.assemble({}, "", world, assembly);
+  ASSERT_EQ(assembly.refusals.size(), 1u);
+  EXPECT_NE(assembly.refusals[0].find("'robot_b'"), std::string::npos);
+  EXPECT_NE(assembly.refusals[0].find("'robot_a'"), std::string::npos);
+  EXPECT_EQ(merged.size(), 1u);
+  // With scenery in another frame, that frame is the world's.
+  sources.assemble({}, "map", world, assembly);
+  EXPECT_EQ(assembly.refusals.size(), 2u);
+  EXPECT_EQ(assembly.sources_merged, 0u);
+}
+
+TEST(SourceSet, FiltersOfOneSourceCompletedWithDefaults) {
+  SourceSet sources;
+  BoxSet plain = oneBox(1, 0.0, 1.0), filtered;
+  const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  filtered.add(2, lo, hi, 0x2u, 0x2u);  // collides only with group 0x2: not with box 1
+  filtered.add(3, lo, hi, 0x1u, 0xFFFFFFFFu);
+  sources.store({"boxes", "/plain"}, plain, header("w", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/filtered"}, filtered, header("w", 1), ros::Time(1, 0));
+  BoxSet world;
+  WorldAssembly assembly;
+  const BoxSet& merged = sources.assemble({}, "", world, assembly);
+  ASSERT_EQ(merged.groups.size(), 3u);
+  ASSERT_EQ(merged.masks.size(), 3u);
+  EXPECT_FALSE(validate(merged));
+  EXPECT_EQ(bruteForcePairs(merged), PairList({{1, 3}}));
+}
+
+TEST(SourceSet, SilentSourcesExpire) {
+  SourceSet sources;
+  BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.0, 1.0);
+  sources.store({"boxes", "/a"}, a, header("w", 1), ros::Time(10, 0));
+  sources.store({"boxes", "/b"}, b, header("w", 1), ros::Time(11, 0));
+  EXPECT_TRUE(sources.expire(ros::Time(11, 500000000), 0.0).empty()) << "0 = never";
+  EXPECT_EQ(sources.expire(ros::Time(11, 500000000), 1.0),
+            std::vector<std::string>({"'boxes' from /a"}));
+  EXPECT_EQ(sources.size(), 1u);
+}
+
+TEST(TransformBoxes, ContainsEveryMovedCornerAndIsTight) {
+  const BoxSet boxes = randomBoxes(200, 2.0, false, 7);
+  geometry_msgs::Transform transform;
+  tf2::Quaternion rotation;
+  rotation.setRPY(0.3, -0.7, 1.9);
+  transform.rotation.x = rotation.x();
+  transform.rotation.y = rotation.y();
+  transform.rotation.z = rotation.z();
+  transform.rotation.w = rotation.w();
+  transform.translation.x = 100.0;
+  transform.translation.y = -3.0;
+  transform.translation.z = 0.25;
+  BoxSet moved = boxes;
+  transformBoxes(transform, moved);
+  const tf2::Matrix3x3 matrix(rotation);
+  const tf2::Vector3 shift(100.0, -3.0, 0.25);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int corner = 0; corner < 8; ++corner) {
+      const tf2::Vector3 point(corner & 1 ? boxes.hi[0][i] : boxes.lo[0][i],
+                               corner & 2 ? boxes.hi[1][i] : boxes.lo[1][i],
+                               corner & 4 ? boxes.hi[2][i] : boxes.lo[2][i]);
+      const tf2::Vector3 out = matrix * point + shift;
+      for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_LE(moved.lo[axis][i], out[axis]) << "box " << i << " axis " << axis;
+        EXPECT_GE(moved.hi[axis][i], out[axis]) << "box " << i << " axis " << axis;
+        lo[axis] = std::min(lo[axis], out[axis]);
+        hi[axis] = std::max(hi[axis], out[axis]);
+      }
+    }
+    for (int axis = 0; axis < 3; ++axis) {  // outward rounding only: a few ulps at 100
+      EXPECT_NEAR(moved.lo[axis][i], lo[axis], 1e-12);
+      EXPECT_NEAR(moved.hi[axis][i], hi[axis], 1e-12);
+    }
+  }
+}
+
+TEST(TransformBoxes, TouchingBoxesStillTouchAndInfinityStaysInfinite) {
+  BoxSet boxes = touchingGrid(3, 0);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double lo[3] = {-inf, 0.0, 0.0}, hi[3] = {inf, 0.5, 0.5};
+  boxes.add(1000, lo, hi);
+  geometry_msgs::Transform transform;
+  tf2::Quaternion rotation;
+  rotation.setRPY(0.0, 0.0, 0.4);
+  transform.rotation.x = rotation.x();
+  transform.rotation.y = rotation.y();
+  transform.rotation.z = rotation.z();
+  transform.rotation.w = rotation.w();
+  transform.translation.x = 0.1;
+  BoxSet moved = boxes;
+  transformBoxes(transform, moved);
+  EXPECT_FALSE(validate(moved));
+  const PairList before = bruteForcePairs(boxes), after = bruteForcePairs(moved);
+  EXPECT_TRUE(std::includes(after.begin(), after.end(), before.begin(), before.end()));
+  EXPECT_EQ(moved.lo[0].back(), -inf);
+  EXPECT_EQ(moved.hi[1].back(), inf) << "x mixes into y under a yaw";
+}
+
+TEST(CapacityWatch, ShrinksOnlyAfterManySmallFramesInABigBuffer) {
+  CapacityWatch watch;
+  for (int frame = 0; frame < 1000; ++frame)
+    EXPECT_FALSE(watch.shouldShrink(100, 1000)) << "small buffers are kept";
+  for (int frame = 0; frame < 1000; ++frame)
+    EXPECT_FALSE(watch.shouldShrink(600000, 1 << 21)) << "a quarter or more in use";
+  int shrinks = 0, first = -1;
+  for (int frame = 0; frame < 250; ++frame) {
+    if (watch.shouldShrink(1000, 1 << 21)) {
+      ++shrinks;
+      if (first < 0) first = frame;
+    }
+    if (frame == 150) watch.shouldShrink(1 << 20, 1 << 21);  // one big frame restarts the wait
+  }
+  EXPECT_EQ(first, 99);
+  EXPECT_EQ(shrinks, 1) << "frames 151..249 are 99 small frames: not yet patient enough";
+}
+
+}  // namespace
+}  // namespace test
+}  // namespace sap_broadphase
