@@ -29,7 +29,7 @@ class BroadphaseNodelet : public nodelet::Nodelet {
     }
     // The boxes callback only hands the frame to the node's worker thread, so the manager's
     // shared callback queue is never held up by a frame being computed.
-    node_ = std::make_unique<BroadphaseNode>(getNodeHandle(), params);
+    node_ = std::make_unique<BroadphaseNode>(getNodeHandle(), getPrivateNodeHandle(), params);
   }
 
   std::unique_ptr<BroadphaseNode> node_;
