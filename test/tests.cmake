@@ -34,7 +34,7 @@ target_include_directories(test_engine PRIVATE test/core)
 target_link_libraries(test_engine ${PROJECT_NAME}_core_internal)
 
 # Skin reuse's kept candidates (SkinList) against the oracle over moving frames.
-catkin_add_gtest(test_skin_list
+sap_add_gtest(test_skin_list
   test/core/test_skin_list.cpp test/core/test_support.cpp test/core/test_main.cpp)
 target_include_directories(test_skin_list PRIVATE test/core)
 target_link_libraries(test_skin_list ${PROJECT_NAME}_core_internal)
@@ -60,7 +60,7 @@ endif()
 
 # The per-frame flow: the plan on its own, then every path and combination of skips,
 # declared scenery, the automatic skin and large-world coordinates against the oracle.
-catkin_add_gtest(test_frame_flow
+sap_add_gtest(test_frame_flow
   test/core/test_frame_plan.cpp
   test/core/test_frame_flow.cpp
   test/core/test_support.cpp
