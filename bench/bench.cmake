@@ -96,7 +96,7 @@ else()
   message(STATUS "sap_microbench: Google Benchmark not found, skipped")
 endif()
 
-# ---- End to end through ROS (item 11); only with the ROS layer (catkin's roscpp) ----
+# ---- End to end through ROS; only with the ROS layer (catkin build) ----
 if(TARGET ${PROJECT_NAME}_ros)
   include(${SAP_BENCH_DIR}/ros_latency.cmake)
 endif()
@@ -104,6 +104,6 @@ endif()
 # The benchmark tools are installed beside the package's other executables.
 foreach(sap_bench_tool sap_bench sap_microbench)
   if(TARGET ${sap_bench_tool})
-    install(TARGETS ${sap_bench_tool} RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+    install(TARGETS ${sap_bench_tool} RUNTIME DESTINATION ${SAP_BIN_DESTINATION})
   endif()
 endforeach()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The benchmarks of issue 4. Installs the optional peers (CGAL, Bullet, FCL) and gnuplot when
-# missing, builds the workspace, runs every sap_bench experiment into
+# The benchmarks (docs/BENCHMARKS.md). Installs the optional peers (CGAL, Bullet, FCL) and
+# gnuplot when missing, builds the workspace, runs every sap_bench experiment into
 # bench/results/<machine>/ (CSV, gnuplot scripts, PNG, log) and the Google Benchmark
 # microbenchmarks into the same folder.
 #

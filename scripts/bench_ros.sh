@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End to end through ROS (issue 4, item 11): a roscore on a free loopback port, the node, and
+# End to end through ROS: a roscore on a free loopback port, the node, and
 # sap_ros_latency publishing uniform-scene BoxArray frames and timing publish -> PairArray,
 # split into the engine's sweep and everything outside it (see docs/BENCHMARKS.md). Two
 # transports on the same frames, case by case: tcp (the node started here, another process)

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The test command: set-up if missing, build everything, run every test (GoogleTest for the
-# core and CLI, rostest for the node). Exits non-zero when any test fails.
+# core and CLI, rostest for the node), then build and test the engine once more without ROS
+# (scripts/test_no_ros.sh), so that plain-CMake build cannot rot. Exits non-zero when any
+# test fails.
 set -eo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$ROOT/scripts/setup.sh"
@@ -19,23 +21,25 @@ summary=$(catkin_test_results --verbose "$WS/build/test_results")
 status=$?
 set -e
 echo "$summary" | tail -n 40
-# Count test cases from the JUnit files for a plain closing line.
-read -r total failed skipped < <(python3 - "$WS/build/test_results" <<'PY'
-import sys, pathlib, xml.etree.ElementTree as ET
-total = failed = skipped = 0
-for path in pathlib.Path(sys.argv[1]).rglob("*.xml"):
-    try:
-        root = ET.parse(path).getroot()
-    except ET.ParseError:
-        failed += 1; total += 1; continue
-    for case in root.iter("testcase"):
-        total += 1
-        if case.find("failure") is not None or case.find("error") is not None: failed += 1
-        elif case.find("skipped") is not None: skipped += 1
-print(total, failed, skipped)
-PY
-)
-passed=$((total - failed - skipped))
+read -r total failed skipped < <(python3 "$ROOT/scripts/junit_summary.py" "$WS/build/test_results")
 if [ "$total" -eq 0 ]; then echo "no test ran"; exit 1; fi
-echo "tests: $passed passed, $failed failed, $skipped skipped"
-exit $status
+echo "tests (catkin): $((total - failed - skipped)) passed, $failed failed, $skipped skipped"
+
+# The same engine, CLI tools, benchmarks and ROS-free tests with plain CMake, no catkin.
+set +e
+"$ROOT/scripts/test_no_ros.sh" "$ROOT/build/no_ros" > "$ROOT/build/test_no_ros.log" 2>&1
+no_ros_status=$?
+set -e
+grep -E '^ *[0-9]+/[0-9]+ Test|tests passed|tests without ROS|test_no_ros:' \
+  "$ROOT/build/test_no_ros.log" || true
+read -r no_ros_total no_ros_failed no_ros_skipped < <(python3 "$ROOT/scripts/junit_summary.py" \
+  "$ROOT/build/no_ros/test_results")
+if [ "$no_ros_status" -ne 0 ] && [ "$no_ros_failed" -eq 0 ]; then
+  echo "scripts/test_no_ros.sh failed outside the tests, see build/test_no_ros.log"
+  no_ros_failed=1
+fi
+total=$((total + no_ros_total))
+failed=$((failed + no_ros_failed))
+skipped=$((skipped + no_ros_skipped))
+echo "tests: $((total - failed - skipped)) passed, $failed failed, $skipped skipped"
+[ "$status" -eq 0 ] && [ "$no_ros_status" -eq 0 ]

@@ -1,10 +1,11 @@
-# GoogleTest suites of the core and the CLI (catkin_add_gtest; run by scripts/test.sh).
-# No test asserts on timing; the whole suite stays under about 3 minutes in Release on 2 cores.
-# catkin_add_gtest links gtest but no main (test_main.cpp) and ignores TIMEOUT.
+# GoogleTest suites of the core and the CLI, registered with sap_add_gtest
+# (cmake/sap_tests.cmake), so they run under catkin (scripts/test.sh) and under plain CMake
+# without ROS (scripts/test_no_ros.sh) alike. No test asserts on timing; the whole suite stays
+# under about 3 minutes in Release on 2 cores.
 
 # Unit tests of the engine's parts: text format, validation, SuccTree, sort keys, radix sorts,
 # candidate generation.
-catkin_add_gtest(test_core
+sap_add_gtest(test_core
   test/core/test_text_io.cpp
   test/core/test_box_set.cpp
   test/core/test_succ_tree.cpp
@@ -18,7 +19,7 @@ target_link_libraries(test_core ${PROJECT_NAME}_core_internal)
 
 # The whole engine against the brute-force oracle: random boxes, edge cases, scenes, frame
 # sequences, determinism across thread counts and axes, axis swapping.
-catkin_add_gtest(test_engine
+sap_add_gtest(test_engine
   test/core/test_engine_random.cpp
   test/core/test_engine_edge_cases.cpp
   test/core/test_engine_scenes.cpp
@@ -33,13 +34,13 @@ target_include_directories(test_engine PRIVATE test/core)
 target_link_libraries(test_engine ${PROJECT_NAME}_core_internal)
 
 # Skin reuse's kept candidates (SkinList) against the oracle over moving frames.
-catkin_add_gtest(test_skin_list
+sap_add_gtest(test_skin_list
   test/core/test_skin_list.cpp test/core/test_support.cpp test/core/test_main.cpp)
 target_include_directories(test_skin_list PRIVATE test/core)
 target_link_libraries(test_skin_list ${PROJECT_NAME}_core_internal)
 
 # The CLI contract, exercised through the real executables.
-catkin_add_gtest(test_cli test/core/test_cli.cpp test/core/test_main.cpp)
+sap_add_gtest(test_cli test/core/test_cli.cpp test/core/test_main.cpp)
 target_link_libraries(test_cli ${PROJECT_NAME}_core_internal)
 add_dependencies(test_cli sap_pairs sap_scene)
 target_compile_definitions(test_cli PRIVATE
@@ -52,14 +53,14 @@ endif()
 
 include(test/core/static_index_tests.cmake)
 
-# The ROS node's tests live with the node (owned by that work).
-if(EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/test/ros/ros_tests.cmake")
+# The ROS node's tests live with the node; they need the ROS layer (catkin build only).
+if(TARGET ${PROJECT_NAME}_ros AND EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/test/ros/ros_tests.cmake")
   include(test/ros/ros_tests.cmake)
 endif()
 
 # The per-frame flow: the plan on its own, then every path and combination of skips,
 # declared scenery, the automatic skin and large-world coordinates against the oracle.
-catkin_add_gtest(test_frame_flow
+sap_add_gtest(test_frame_flow
   test/core/test_frame_plan.cpp
   test/core/test_frame_flow.cpp
   test/core/test_support.cpp

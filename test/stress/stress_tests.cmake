@@ -1,8 +1,8 @@
-# The numerical stress suite (issue 5 §2) and the replay of the fuzzers' corpora and crash
-# regressions (§3), against the brute-force oracle. Included by test/tests.cmake under
-# CATKIN_ENABLE_TESTING. Release run time: about 40 s on 2 cores; no test asserts on timing.
+# The numerical stress suite and the replay of the fuzzers' corpora and crash regressions,
+# against the brute-force oracle (docs/ROBUSTNESS.md). Included by test/tests.cmake when tests
+# are built. Release run time: about 40 s on 2 cores; no test asserts on timing.
 
-catkin_add_gtest(test_stress
+sap_add_gtest(test_stress
   test/stress/test_stress_magnitudes.cpp
   test/stress/test_stress_infinity.cpp
   test/stress/test_stress_ulp.cpp
@@ -17,7 +17,7 @@ target_link_libraries(test_stress ${PROJECT_NAME}_core_internal)
 
 # The fuzzers' seed corpora and crash regressions (fuzz/corpus, fuzz/regressions), replayed
 # through the checks the libFuzzer targets run (scripts/fuzz.sh builds the targets themselves).
-catkin_add_gtest(test_fuzz_replay
+sap_add_gtest(test_fuzz_replay
   test/stress/test_fuzz_replay.cpp
   test/stress/fuzz_replay.cpp
   fuzz/fuzz_checks.cpp
@@ -28,17 +28,20 @@ target_link_libraries(test_fuzz_replay ${PROJECT_NAME}_core_internal)
 target_compile_definitions(test_fuzz_replay PRIVATE
   SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
 
-# The same for the BoxArray target, which needs the ROS messages and conversions.
-catkin_add_gtest(test_fuzz_replay_ros
-  test/stress/test_fuzz_replay_ros.cpp
-  test/stress/fuzz_replay.cpp
-  fuzz/box_array_checks.cpp
-  fuzz/fuzz_checks.cpp
-  test/stress/stress_main.cpp
-)
-target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
-target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal
-  ${catkin_LIBRARIES})
-add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp)
-target_compile_definitions(test_fuzz_replay_ros PRIVATE
-  SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
+# The same for the BoxArray target, which needs the ROS messages and conversions (catkin
+# build only).
+if(TARGET ${PROJECT_NAME}_ros)
+  sap_add_gtest(test_fuzz_replay_ros
+    test/stress/test_fuzz_replay_ros.cpp
+    test/stress/fuzz_replay.cpp
+    fuzz/box_array_checks.cpp
+    fuzz/fuzz_checks.cpp
+    test/stress/stress_main.cpp
+  )
+  target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
+  target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal
+    ${catkin_LIBRARIES})
+  add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp)
+  target_compile_definitions(test_fuzz_replay_ros PRIVATE
+    SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
+endif()

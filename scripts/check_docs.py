@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""Checks that the README and docs/ say nothing that does not hold.
+
+* Every relative link and image (`[text](path#anchor)`, `[name]: path`) resolves to a file of
+  the repository, and an anchor to a heading of the Markdown file it points to (GitHub's
+  heading slugs).
+* Every command of a fenced `sh` block or an indented block that calls a script of
+  `scripts/` names one that exists; `rosrun`/`rostest`/`roslaunch sap_broadphase X` name an
+  executable the CMake files build, a test or a launch file that exists.
+* The quick commands, those made only of the ROS-free tools `sap_scene` and `sap_pairs`
+  (synopses such as `sap_pairs [--threads N] ...` excepted), are run with --bin's tools
+  first on PATH and must exit 0. Without --bin they are only listed.
+* The README's C++ example is examples/find_package/main.cpp verbatim (that file is built
+  and run against the installed package by scripts/test_no_ros.sh).
+
+Usage: scripts/check_docs.py [--bin DIR]   exits 1 and lists the problems when any.
+"""
+import argparse
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+DOCUMENTS = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
+QUICK_TOOLS = {"sap_scene", "sap_pairs"}
+LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
+REFERENCE = re.compile(r"^\[[^\]]+\]:\s*(\S+)", re.M)
+FENCE = re.compile(r"^```(\w*)\n(.*?)^```", re.M | re.S)
+
+
+def slug(heading):
+    """GitHub's anchor of a heading: lower case, punctuation dropped, spaces to hyphens."""
+    text = re.sub(r"[^\w\- ]", "", heading.strip().lower())
+    return text.replace(" ", "-")
+
+
+def anchors(path):
+    text = FENCE.sub("", path.read_text(encoding="utf-8"))
+    return {slug(m.group(1)) for m in re.finditer(r"^#+\s+(.*)$", text, re.M)}
+
+
+def link_problems(doc):
+    text = doc.read_text(encoding="utf-8")
+    targets = LINK.findall(FENCE.sub("", text)) + REFERENCE.findall(text)
+    for target in targets:
+        if re.match(r"^[a-z]+:", target):
+            continue  # http(s), mailto: not checked offline
+        path_part, _, anchor = target.partition("#")
+        path = (doc.parent / path_part).resolve() if path_part else doc
+        if not path.exists():
+            yield f"{doc.relative_to(ROOT)}: link to missing {target}"
+        elif anchor and path.suffix == ".md" and anchor not in anchors(path):
+            yield f"{doc.relative_to(ROOT)}: no heading for #{anchor} in {path.relative_to(ROOT)}"
+
+
+def command_lines(doc):
+    """Lines of fenced sh blocks and of indented blocks, without comments."""
+    text = doc.read_text(encoding="utf-8")
+    blocks = [body for info, body in FENCE.findall(text) if info in ("sh", "bash")]
+    unfenced = FENCE.sub("", text)
+    blocks += [m.group(0) for m in re.finditer(r"(?:^(?: {4}|\t).*\n)+", unfenced, re.M)]
+    for block in blocks:
+        for line in block.splitlines():
+            line = re.sub(r"(^|\s)#.*$", "", line).strip()
+            if line:
+                yield line
+
+
+def built_executables():
+    """Names of the executables the CMake files build (OUTPUT_NAME where one is set)."""
+    names = set()
+    for cmake in list(ROOT.glob("**/*.cmake")) + [ROOT / "CMakeLists.txt"]:
+        if "build" in cmake.relative_to(ROOT).parts:
+            continue
+        text = cmake.read_text(encoding="utf-8")
+        names |= {re.sub(r"\$\{PROJECT_NAME\}", "sap_broadphase", n)
+                  for n in re.findall(r"add_executable\((\S+)", text)}
+        names |= set(re.findall(r"OUTPUT_NAME\s+(\S+)", text))
+        names |= set(re.findall(r"(?:catkin_add_gtest|sap_add_gtest|add_rostest_gtest)\((\S+)", text))
+    return names
+
+
+def reference_problems(doc, line, executables):
+    for word in re.findall(r"(?:^|[\s;&|(])((?:\./)?scripts/[\w./-]+)", line):
+        if not (ROOT / word).is_file():
+            yield f"{doc.relative_to(ROOT)}: `{line}` calls missing {word}"
+    for tool, name in re.findall(r"\b(rosrun|rostest|roslaunch) sap_broadphase (\S+)", line):
+        found = {
+            "rosrun": lambda: name in executables,
+            "rostest": lambda: any(ROOT.glob(f"test/**/{name}")),
+            "roslaunch": lambda: (ROOT / "launch" / name).is_file(),
+        }[tool]()
+        if not found:
+            yield f"{doc.relative_to(ROOT)}: `{line}`: no {name} for {tool}"
+
+
+def is_quick(line):
+    words = re.findall(r"(?:^|\|)\s*(\S+)", line)
+    return bool(words) and all(w in QUICK_TOOLS for w in words) and " [" not in line
+
+
+def run_quick(doc, line, bin_dir):
+    env = dict(os.environ, PATH=f"{bin_dir}{os.pathsep}{os.environ['PATH']}")
+    env.setdefault("OMP_WAIT_POLICY", "passive")
+    result = subprocess.run(["bash", "-o", "pipefail", "-c", line], cwd=ROOT, env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=300)
+    if result.returncode != 0:
+        yield (f"{doc.relative_to(ROOT)}: `{line}` exited {result.returncode}: "
+               f"{result.stderr.decode(errors='replace').strip()[-300:]}")
+
+
+def example_problems():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    example = (ROOT / "examples/find_package/main.cpp").read_text(encoding="utf-8")
+    for info, body in FENCE.findall(readme):
+        if info == "cpp" and body.strip() not in example:
+            yield "README.md: the C++ example differs from examples/find_package/main.cpp"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--bin", help="folder holding sap_scene and sap_pairs")
+    args = parser.parse_args()
+    executables = built_executables()
+    problems, ran = [], 0
+    for doc in DOCUMENTS:
+        problems += link_problems(doc)
+        for line in command_lines(doc):
+            problems += reference_problems(doc, line, executables)
+            if is_quick(line):
+                if args.bin:
+                    problems += run_quick(doc, line, args.bin)
+                    ran += 1
+                else:
+                    print(f"not run (no --bin): {line}")
+    problems += example_problems()
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    print(f"check_docs: {len(DOCUMENTS)} documents, {ran} quick commands run, "
+          f"{len(problems)} problems")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
