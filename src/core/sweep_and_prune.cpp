@@ -92,22 +92,48 @@ void SweepAndPrune::releaseBuffers() {
   sorter_ = PartitionedSorter();
 }
 
-// An axis's origin stays 0 (keys of the coordinates themselves) unless the frame lies far
-// from 0 compared with its own size, where keys of the coordinates would be coarse; then it is
-// the centre of the frame's finite span, kept while the frame stays around it (a moved origin
-// shifts every key, and B with them).
+namespace {
+
+// The origin of one axis for a frame whose finite bounds span [inLow, inHigh]: 0 (keys of the
+// coordinates themselves) unless the frame lies far from 0 compared with its own size, where
+// keys of the coordinates would be coarse; then the centre.
+double axisOrigin(double inLow, double inHigh) {
+  if (!(inLow <= inHigh)) return 0.0;            // no finite bound: any origin serves
+  const double centre = inLow / 2 + inHigh / 2;  // halves first: no overflow
+  const double half_span = inHigh / 2 - inLow / 2;
+  return std::fabs(centre) > tuning::kFarFromOriginInSpans * half_span ? centre : 0.0;
+}
+
+void finiteSpanOfAxis(const BoxSet& inBoxes, int inAxis, int inThreads, double& outLow,
+                      double& outHigh) {
+  outLow = HUGE_VAL;
+  outHigh = -HUGE_VAL;
+  finiteSpan(inBoxes.lo[inAxis], inThreads, outLow, outHigh);
+  finiteSpan(inBoxes.hi[inAxis], inThreads, outLow, outHigh);
+}
+
+}  // namespace
+
+KeyOrigin keyOriginOf(const BoxSet& inBoxes, int inThreads) {
+  KeyOrigin origin;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low, high;
+    finiteSpanOfAxis(inBoxes, axis, inThreads, low, high);
+    origin.origin[axis] = axisOrigin(low, high);
+  }
+  return origin;
+}
+
+// A placed origin is kept while the frame stays around it (a moved origin shifts every key,
+// and B with them).
 void SweepAndPrune::placeKeyOrigins(const BoxSet& inBoxes, int inThreads) {
   for (int axis = 0; axis < 3; ++axis) {
-    double low = HUGE_VAL, high = -HUGE_VAL;
-    finiteSpan(inBoxes.lo[axis], inThreads, low, high);
-    finiteSpan(inBoxes.hi[axis], inThreads, low, high);
-    if (!(low <= high)) continue;              // no finite bound: any origin serves
-    const double centre = low / 2 + high / 2;  // halves first: no overflow
-    const double half_span = high / 2 - low / 2;
-    const double origin =
-        std::fabs(centre) > tuning::kFarFromOriginInSpans * half_span ? centre : 0.0;
+    double low, high;
+    finiteSpanOfAxis(inBoxes, axis, inThreads, low, high);
+    const double origin = axisOrigin(low, high);
+    const double span = low <= high ? high / 2 - low / 2 : 0.0;  // half the span
     const double drift = std::fabs(origin - key_origin_.origin[axis]);
-    if (origin_placed_[axis] && drift <= tuning::kOriginDriftInSpans * 2 * half_span) continue;
+    if (origin_placed_[axis] && drift <= tuning::kOriginDriftInSpans * 2 * span) continue;
     if (key_origin_.origin[axis] != origin)
       bounds_[axis].from_previous_frame = false;  // B was measured in the old keys
     key_origin_.origin[axis] = origin;

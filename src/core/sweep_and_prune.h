@@ -29,6 +29,11 @@ struct KeyOrigin {
   uint32_t high(int inAxis, double inValue) const;
 };
 
+/// The key origin a sweep of inBoxes starts from: per axis 0, or the centre of the finite
+/// bounds when the frame lies far from 0 (tuning::kFarFromOriginInSpans). Later frames keep
+/// an origin while the frame stays near it.
+KeyOrigin keyOriginOf(const BoxSet& inBoxes, int inThreads);
+
 class SweepAndPrune {
  public:
   explicit SweepAndPrune(const BroadphaseConfig& inConfig);
