@@ -36,7 +36,7 @@ std::vector<double> ulpTable(double inBase, int inBelow, int inAbove) {
 }  // namespace
 
 BoxSet magnitudeScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   // Clusters: one decade and sign each; boxes of a cluster live in a cube about 20 of their
@@ -75,7 +75,7 @@ BoxSet magnitudeScene(std::size_t inCount, uint64_t inSeed) {
 }
 
 BoxSet subnormalScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   const double unit = std::numeric_limits<double>::denorm_min();
   const double smallest_normal = std::numeric_limits<double>::min();
   BoxSet boxes;
@@ -100,7 +100,7 @@ BoxSet subnormalScene(std::size_t inCount, uint64_t inSeed) {
 }
 
 BoxSet signedZeroScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   for (std::size_t i = 0; i < inCount; ++i) {
@@ -118,7 +118,7 @@ BoxSet signedZeroScene(std::size_t inCount, uint64_t inSeed) {
 }
 
 BoxSet infiniteSlabScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   // The special boxes first: each line is min x y z, max x y z.
@@ -162,7 +162,7 @@ BoxSet infiniteSlabScene(std::size_t inCount, uint64_t inSeed) {
 
 BoxSet ulpLatticeScene(double inBase, std::size_t inCount, int inCells, int inMaxEdge,
                        uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   const std::vector<double> table = ulpTable(inBase, inCells, inCells + inMaxEdge);
   BoxSet boxes;
   boxes.reserve(inCount);
@@ -180,7 +180,7 @@ BoxSet ulpLatticeScene(double inBase, std::size_t inCount, int inCells, int inMa
 }
 
 BoxSet specialValueScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   const double anchors[] = {kInf,
                             1e300,
                             std::numeric_limits<double>::max(),
@@ -218,7 +218,7 @@ BoxSet specialValueScene(std::size_t inCount, uint64_t inSeed) {
 }
 
 BoxSet uniformScene(std::size_t inCount, double inWorld, double inMaxEdge, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   for (std::size_t i = 0; i < inCount; ++i) {
@@ -234,7 +234,7 @@ BoxSet uniformScene(std::size_t inCount, double inWorld, double inMaxEdge, uint6
 }
 
 BoxSet latticeScene(std::size_t inCount, int inCells, int inMaxEdge, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   for (std::size_t i = 0; i < inCount; ++i) {
@@ -259,7 +259,7 @@ BoxSet translated(const BoxSet& inBoxes, const double inOffset[3]) {
 }
 
 void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   ioBoxes.groups.resize(ioBoxes.size());
   ioBoxes.masks.resize(ioBoxes.size());
   for (std::size_t i = 0; i < ioBoxes.size(); ++i) {

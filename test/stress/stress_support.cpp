@@ -118,13 +118,6 @@ BoxSet reversedOrder(const BoxSet& inBoxes) {
 
 }  // namespace
 
-uint64_t StressRandom::bits() {
-  uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
 double ulpStep(double inValue, int inSteps) {
   const double target = inSteps < 0 ? -std::numeric_limits<double>::infinity()
                                     : std::numeric_limits<double>::infinity();

@@ -30,7 +30,7 @@ TEST(StressDegenerate, ZeroExtentPoints) {
 
 TEST(StressDegenerate, ZeroExtentOnSomeAxes) {
   BoxSet boxes = latticeScene(4000, 20, 3, 72);
-  StressRandom random(73);
+  SplitMix64 random(73);
   for (std::size_t i = 0; i < boxes.size(); ++i)
     for (int axis = 0; axis < 3; ++axis)
       if (random.chance(0.4)) boxes.hi[axis][i] = boxes.lo[axis][i];

@@ -45,7 +45,7 @@ TEST(StressInfinity, RandomSlabsInfiniteOnSeveralAxes) {
 
 TEST(StressInfinity, OnlyInfiniteBoxes) {
   // No finite coordinate at all: slab and partition set-up have no span to work with.
-  StressRandom random(53);
+  SplitMix64 random(53);
   BoxSet boxes;
   for (uint32_t i = 0; i < 600; ++i) {
     double low[3];
@@ -63,7 +63,7 @@ TEST(StressInfinity, OnlyInfiniteBoxes) {
 TEST(StressInfinity, SlabsWithInfiniteThirdAxis) {
   // The third (slab) axis holds both huge finite spans and infinities.
   BoxSet boxes = uniformScene(4500, 100.0, 2.0, 54);
-  StressRandom random(55);
+  SplitMix64 random(55);
   for (std::size_t i = 0; i < boxes.size(); i += 7) {
     for (int axis = 0; axis < 3; ++axis) {
       if (random.chance(0.3)) boxes.lo[axis][i] = -kInf;
