@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <set>
@@ -18,31 +20,6 @@ namespace sap_broadphase::fuzz {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Reads bytes front to back; past the end it yields zeros.
-class ByteReader {
- public:
-  ByteReader(const uint8_t* inData, std::size_t inSize) : data_(inData), size_(inSize) {}
-  bool empty() const { return used_ >= size_; }
-  uint8_t byte() { return used_ < size_ ? data_[used_++] : 0; }
-  uint32_t u32() {
-    uint32_t value = 0;
-    for (int k = 0; k < 4; ++k) value = (value << 8) | byte();
-    return value;
-  }
-  double f64() {
-    uint64_t bits = 0;
-    for (int k = 0; k < 8; ++k) bits = (bits << 8) | byte();
-    double value;
-    std::memcpy(&value, &bits, sizeof value);
-    return value;
-  }
-
- private:
-  const uint8_t* data_;
-  std::size_t size_;
-  std::size_t used_ = 0;
-};
 
 // Values where float32 keys and float64 comparisons are most likely to disagree.
 const double kSpecials[] = {0.0,
@@ -74,31 +51,6 @@ constexpr std::size_t kSpecialCount = sizeof(kSpecials) / sizeof(kSpecials[0]);
 double stepUlps(double inValue, int inSteps) {
   for (int k = 0; k < std::abs(inSteps); ++k) inValue = std::nextafter(inValue, inSteps * kInf);
   return inValue;
-}
-
-// One coordinate: a small half-integer, a special value, a special value moved a few ulps,
-// or raw bits (NaN included).
-double decodeCoordinate(ByteReader& ioReader) {
-  const uint8_t selector = ioReader.byte();
-  if (selector < 64) return (static_cast<int>(selector) - 32) * 0.5;
-  if (selector < 128) return kSpecials[(selector - 64) % kSpecialCount];
-  if (selector < 192) {
-    const uint8_t detail = ioReader.byte();
-    return stepUlps(kSpecials[detail % kSpecialCount], static_cast<int>(selector % 7) - 3);
-  }
-  return ioReader.f64();
-}
-
-std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual) {
-  std::ostringstream text;
-  text << inWhat << ": expected " << inExpected.size() << " pairs, got " << inActual.size();
-  for (std::size_t k = 0; k < std::max(inExpected.size(), inActual.size()) && k < 4; ++k) {
-    text << " [" << k << "] ";
-    if (k < inExpected.size()) text << inExpected[k].a << "," << inExpected[k].b;
-    text << " vs ";
-    if (k < inActual.size()) text << inActual[k].a << "," << inActual[k].b;
-  }
-  return text.str();
 }
 
 bool keysOverlap(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
@@ -179,6 +131,49 @@ bool sameBits(double inA, double inB) {
 }
 
 }  // namespace
+
+int reportProblem(const char* inTarget, const std::string& inProblem) {
+  if (inProblem.empty()) return 0;
+  std::fprintf(stderr, "%s: %s\n", inTarget, inProblem.c_str());
+  std::abort();
+}
+
+uint32_t ByteReader::u32() {
+  uint32_t value = 0;
+  for (int k = 0; k < 4; ++k) value = (value << 8) | byte();
+  return value;
+}
+
+double ByteReader::f64() {
+  uint64_t bits = 0;
+  for (int k = 0; k < 8; ++k) bits = (bits << 8) | byte();
+  double value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+double decodeCoordinate(ByteReader& ioReader) {
+  const uint8_t selector = ioReader.byte();
+  if (selector < 64) return (static_cast<int>(selector) - 32) * 0.5;
+  if (selector < 128) return kSpecials[(selector - 64) % kSpecialCount];
+  if (selector < 192) {
+    const uint8_t detail = ioReader.byte();
+    return stepUlps(kSpecials[detail % kSpecialCount], static_cast<int>(selector % 7) - 3);
+  }
+  return ioReader.f64();
+}
+
+std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual) {
+  std::ostringstream text;
+  text << inWhat << ": expected " << inExpected.size() << " pairs, got " << inActual.size();
+  for (std::size_t k = 0; k < std::max(inExpected.size(), inActual.size()) && k < 4; ++k) {
+    text << " [" << k << "] ";
+    if (k < inExpected.size()) text << inExpected[k].a << "," << inExpected[k].b;
+    text << " vs ";
+    if (k < inActual.size()) text << inActual[k].a << "," << inActual[k].b;
+  }
+  return text.str();
+}
 
 BoxSet decodeBoxSet(const uint8_t* inData, std::size_t inSize, uint32_t& outVariant) {
   ByteReader reader(inData, inSize);
