@@ -217,38 +217,6 @@ BoxSet specialValueScene(std::size_t inCount, uint64_t inSeed) {
   return boxes;
 }
 
-BoxSet uniformScene(std::size_t inCount, double inWorld, double inMaxEdge, uint64_t inSeed) {
-  SplitMix64 random(inSeed);
-  BoxSet boxes;
-  boxes.reserve(inCount);
-  for (std::size_t i = 0; i < inCount; ++i) {
-    double low[3];
-    double high[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = random.between(0.0, inWorld);
-      high[axis] = low[axis] + random.between(0.0, inMaxEdge);
-    }
-    appendBox(boxes, low, high);
-  }
-  return boxes;
-}
-
-BoxSet latticeScene(std::size_t inCount, int inCells, int inMaxEdge, uint64_t inSeed) {
-  SplitMix64 random(inSeed);
-  BoxSet boxes;
-  boxes.reserve(inCount);
-  for (std::size_t i = 0; i < inCount; ++i) {
-    double low[3];
-    double high[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = static_cast<double>(random.below(inCells));
-      high[axis] = low[axis] + static_cast<double>(random.below(inMaxEdge + 1));
-    }
-    appendBox(boxes, low, high);
-  }
-  return boxes;
-}
-
 BoxSet translated(const BoxSet& inBoxes, const double inOffset[3]) {
   BoxSet moved = inBoxes;
   for (int axis = 0; axis < 3; ++axis) {

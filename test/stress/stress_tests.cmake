@@ -15,7 +15,7 @@ sap_add_gtest(test_stress
   test/stress/stress_sequences.cpp
   test/stress/stress_support.cpp
   test/core/test_support.cpp
-  test/stress/stress_main.cpp
+  test/core/test_main.cpp
 )
 target_include_directories(test_stress PRIVATE test/stress test/core)
 target_link_libraries(test_stress ${PROJECT_NAME}_core_internal)
@@ -28,7 +28,7 @@ sap_add_gtest(test_fuzz_replay
   fuzz/fuzz_checks.cpp
   fuzz/sequence_checks.cpp
   test/stress/stress_sequences.cpp
-  test/stress/stress_main.cpp
+  test/core/test_main.cpp
 )
 target_include_directories(test_fuzz_replay PRIVATE test/stress fuzz)
 target_link_libraries(test_fuzz_replay ${PROJECT_NAME}_core_internal)
@@ -43,7 +43,7 @@ if(TARGET ${PROJECT_NAME}_ros)
     test/stress/fuzz_replay.cpp
     fuzz/box_array_checks.cpp
     fuzz/fuzz_checks.cpp
-    test/stress/stress_main.cpp
+    test/core/test_main.cpp
   )
   target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
   target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal

@@ -7,9 +7,12 @@
 #include "sap_broadphase/core/brute_force.h"
 #include "stress_scenes.h"
 #include "stress_support.h"
+#include "test_support.h"
 
 namespace sap_broadphase::stress {
 namespace {
+
+using test_support::randomBoxes;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -29,7 +32,7 @@ TEST(StressInfinity, GroundPlaneAndHalfSpaces) {
 }
 
 TEST(StressInfinity, EverythingBoxMeetsAll) {
-  BoxSet boxes = uniformScene(2000, 100.0, 1.0, 51);
+  BoxSet boxes = randomBoxes(2000, 100.0, 1.0, 51);
   addBox(boxes, 5000, -kInf, -kInf, -kInf, kInf, kInf, kInf);
   const PairList oracle = bruteForcePairs(boxes);
   std::size_t with_everything = 0;
@@ -62,7 +65,7 @@ TEST(StressInfinity, OnlyInfiniteBoxes) {
 
 TEST(StressInfinity, SlabsWithInfiniteThirdAxis) {
   // The third (slab) axis holds both huge finite spans and infinities.
-  BoxSet boxes = uniformScene(4500, 100.0, 2.0, 54);
+  BoxSet boxes = randomBoxes(4500, 100.0, 2.0, 54);
   SplitMix64 random(55);
   for (std::size_t i = 0; i < boxes.size(); i += 7) {
     for (int axis = 0; axis < 3; ++axis) {
