@@ -15,6 +15,7 @@
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/text_io.h"
+#include "stress_sequences.h"
 
 namespace sap_broadphase::fuzz {
 namespace {
@@ -81,18 +82,6 @@ std::string checkSuperset(const BoxSet& inBoxes, const PairList& inOracle,
              ") does not even overlap in key space";
   }
   return "";
-}
-
-BoxSet reversedOrder(const BoxSet& inBoxes) {
-  BoxSet reversed = inBoxes;
-  std::reverse(reversed.ids.begin(), reversed.ids.end());
-  for (int axis = 0; axis < 3; ++axis) {
-    std::reverse(reversed.lo[axis].begin(), reversed.lo[axis].end());
-    std::reverse(reversed.hi[axis].begin(), reversed.hi[axis].end());
-  }
-  std::reverse(reversed.groups.begin(), reversed.groups.end());
-  std::reverse(reversed.masks.begin(), reversed.masks.end());
-  return reversed;
 }
 
 // What validate() should say, by the simplest possible means: a refusal and, for coordinate
@@ -236,8 +225,9 @@ std::string checkEngine(const BoxSet& inBoxes, uint32_t inVariant) {
   config.secondary_axis = kAxisPairs[(inVariant / 36) % 6][1];
   config.parallel_min_boxes = 1 + inVariant % 7;  // kAuto goes parallel on tiny frames too
   Broadphase engine(config);
-  if (engine.update(reversedOrder(inBoxes)) != oracle)
-    return pairsDiffer("engine, reversed frame", oracle, engine.update(reversedOrder(inBoxes)));
+  if (engine.update(stress::reversedOrder(inBoxes)) != oracle)
+    return pairsDiffer("engine, reversed frame", oracle,
+                       engine.update(stress::reversedOrder(inBoxes)));
   if (engine.update(inBoxes) != oracle)
     return pairsDiffer("engine, second frame", oracle, engine.update(inBoxes));
   if (engine.update(inBoxes) != oracle)

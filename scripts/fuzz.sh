@@ -75,13 +75,13 @@ for src in "$ROOT"/src/core/*.cpp; do core_objs+=("$OUT/obj/$(basename "$src" .c
 link() {  # target extra-objects... extra-libs
   local target=$1; shift
   $CXX $FLAGS -fsanitize=fuzzer -o "$OUT/fuzz_$target" "$OUT/obj/fuzz_$target.o" \
-    "$OUT/obj/fuzz_checks.o" "${core_objs[@]}" "$@"
+    "$OUT/obj/fuzz_checks.o" "$OUT/obj/stress_sequences.o" "${core_objs[@]}" "$@"
 }
 link text
 link boxset
 link box_array "$OUT/obj/box_array_checks.o" "$OUT/obj/conversions.o" \
   -lroscpp_serialization -lrostime -lcpp_common
-link sequence "$OUT/obj/sequence_checks.o" "$OUT/obj/stress_sequences.o"
+link sequence "$OUT/obj/sequence_checks.o"
 
 # Runs: ASan must not abort on allocations it cannot serve (roscpp-style bad_alloc is
 # handled by the targets); OpenMP threads wait passively on this small machine.

@@ -189,6 +189,18 @@ BoxSet sceneryBoxes(std::size_t inCount, uint64_t inSeed) {
   return SkipWorld(inCount, 1.0, false, inSeed, kFirstSceneryId).boxes();
 }
 
+BoxSet reversedOrder(const BoxSet& inBoxes) {
+  BoxSet reversed = inBoxes;
+  std::reverse(reversed.ids.begin(), reversed.ids.end());
+  for (int axis = 0; axis < 3; ++axis) {
+    std::reverse(reversed.lo[axis].begin(), reversed.lo[axis].end());
+    std::reverse(reversed.hi[axis].begin(), reversed.hi[axis].end());
+  }
+  std::reverse(reversed.groups.begin(), reversed.groups.end());
+  std::reverse(reversed.masks.begin(), reversed.masks.end());
+  return reversed;
+}
+
 BoxSet concatenated(const BoxSet& inFirst, const BoxSet& inSecond) {
   BoxSet both;
   both.reserve(inFirst.size() + inSecond.size());

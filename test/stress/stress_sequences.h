@@ -82,6 +82,9 @@ class SkipWorld {
   SplitMix64 random_;
 };
 
+/// The same boxes (ids, bounds, filters) in reverse order.
+BoxSet reversedOrder(const BoxSet& inBoxes);
+
 /// Ids of declared scenery start here; SkipWorld ids stay below it.
 constexpr uint32_t kFirstSceneryId = 1u << 24;
 

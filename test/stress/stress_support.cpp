@@ -8,6 +8,7 @@
 
 #include "core/sort_keys.h"
 #include "sap_broadphase/core/brute_force.h"
+#include "stress_sequences.h"
 
 namespace sap_broadphase::stress {
 namespace {
@@ -102,19 +103,6 @@ struct BoxKeys {
   std::vector<uint32_t> low[3];
   std::vector<uint32_t> high[3];
 };
-
-// The same boxes (ids, filters) in reverse order.
-BoxSet reversedOrder(const BoxSet& inBoxes) {
-  BoxSet reversed = inBoxes;
-  std::reverse(reversed.ids.begin(), reversed.ids.end());
-  for (int axis = 0; axis < 3; ++axis) {
-    std::reverse(reversed.lo[axis].begin(), reversed.lo[axis].end());
-    std::reverse(reversed.hi[axis].begin(), reversed.hi[axis].end());
-  }
-  std::reverse(reversed.groups.begin(), reversed.groups.end());
-  std::reverse(reversed.masks.begin(), reversed.masks.end());
-  return reversed;
-}
 
 }  // namespace
 

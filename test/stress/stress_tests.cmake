@@ -43,6 +43,7 @@ if(TARGET ${PROJECT_NAME}_ros)
     test/stress/fuzz_replay.cpp
     fuzz/box_array_checks.cpp
     fuzz/fuzz_checks.cpp
+    test/stress/stress_sequences.cpp
     test/core/test_main.cpp
   )
   target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
