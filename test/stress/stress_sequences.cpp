@@ -201,6 +201,29 @@ BoxSet reversedOrder(const BoxSet& inBoxes) {
   return reversed;
 }
 
+KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes) {
+  KeyOrigin origin;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = HUGE_VAL, high = -HUGE_VAL;
+    for (const std::vector<double>* values : {&inBoxes.lo[axis], &inBoxes.hi[axis]})
+      for (double value : *values)
+        if (std::isfinite(value)) {
+          low = std::min(low, value);
+          high = std::max(high, value);
+        }
+    if (low <= high) origin.origin[axis] = low / 2 + high / 2;
+  }
+  return origin;
+}
+
+bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (inOrigin.low(axis, inBoxes.lo[axis][a]) > inOrigin.high(axis, inBoxes.hi[axis][b]) ||
+        inOrigin.low(axis, inBoxes.lo[axis][b]) > inOrigin.high(axis, inBoxes.hi[axis][a]))
+      return false;
+  return true;
+}
+
 BoxSet concatenated(const BoxSet& inFirst, const BoxSet& inSecond) {
   BoxSet both;
   both.reserve(inFirst.size() + inSecond.size());

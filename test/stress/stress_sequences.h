@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/random.h"
+#include "core/sweep_and_prune.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
 
@@ -84,6 +85,13 @@ class SkipWorld {
 
 /// The same boxes (ids, bounds, filters) in reverse order.
 BoxSet reversedOrder(const BoxSet& inBoxes);
+
+/// The key space a fresh engine puts a frame's keys in: each axis measured from the centre of
+/// the frame's finite bounds, as SweepAndPrune places its KeyOrigin on a first frame. The
+/// keys-only mode (exact_final_test = false) may add a pair only where these keys overlap.
+KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes);
+/// True when boxes a and b of inBoxes overlap in inOrigin's keys on all three axes.
+bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b);
 
 /// Ids of declared scenery start here; SkipWorld ids stay below it.
 constexpr uint32_t kFirstSceneryId = 1u << 24;

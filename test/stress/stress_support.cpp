@@ -6,7 +6,6 @@
 #include <sstream>
 #include <utility>
 
-#include "core/sort_keys.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "stress_sequences.h"
 
@@ -83,15 +82,16 @@ class IdIndex {
   std::vector<std::pair<uint32_t, std::size_t>> sorted_;
 };
 
-// The outward-rounded keys of every box, computed once.
+// The outward-rounded keys of every box in a fresh engine's key space, computed once.
 struct BoxKeys {
   explicit BoxKeys(const BoxSet& inBoxes) {
+    const KeyOrigin origin = firstFrameKeyOrigin(inBoxes);
     for (int axis = 0; axis < 3; ++axis) {
       low[axis].resize(inBoxes.size());
       high[axis].resize(inBoxes.size());
       for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-        low[axis][i] = lowKey(inBoxes.lo[axis][i]);
-        high[axis][i] = highKey(inBoxes.hi[axis][i]);
+        low[axis][i] = origin.low(axis, inBoxes.lo[axis][i]);
+        high[axis][i] = origin.high(axis, inBoxes.hi[axis][i]);
       }
     }
   }

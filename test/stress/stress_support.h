@@ -35,7 +35,8 @@ std::string describeConfig(const BroadphaseConfig& inConfig);
 /// Equal pair lists, or a message with sizes and the first differences (missing and extra).
 ::testing::AssertionResult samePairList(const PairList& inExpected, const PairList& inActual);
 /// inActual holds every pair of inExpected (it may hold more); both in canonical order, and
-/// every extra pair must overlap in outward-rounded key space and pass the filters.
+/// every extra pair must overlap in a fresh engine's outward-rounded key space
+/// (firstFrameKeyOrigin) and pass the filters.
 ::testing::AssertionResult supersetWithKeyOverlap(const BoxSet& inBoxes, const PairList& inExpected,
                                                   const PairList& inActual);
 
