@@ -205,12 +205,14 @@ KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes) {
   KeyOrigin origin;
   for (int axis = 0; axis < 3; ++axis) {
     double low = HUGE_VAL, high = -HUGE_VAL;
-    for (const std::vector<double>* values : {&inBoxes.lo[axis], &inBoxes.hi[axis]})
-      for (double value : *values)
+    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+      if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;  // dropped before the sweep
+      for (double value : {inBoxes.lo[axis][i], inBoxes.hi[axis][i]})
         if (std::isfinite(value)) {
           low = std::min(low, value);
           high = std::max(high, value);
         }
+    }
     if (low <= high) origin.origin[axis] = low / 2 + high / 2;
   }
   return origin;

@@ -87,7 +87,8 @@ class SkipWorld {
 BoxSet reversedOrder(const BoxSet& inBoxes);
 
 /// The key space a fresh engine puts a frame's keys in: each axis measured from the centre of
-/// the frame's finite bounds, as SweepAndPrune places its KeyOrigin on a first frame. The
+/// the finite bounds of the boxes it sweeps (group and mask not 0), as SweepAndPrune places
+/// its KeyOrigin on a first frame. The
 /// keys-only mode (exact_final_test = false) may add a pair only where these keys overlap.
 KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes);
 /// True when boxes a and b of inBoxes overlap in inOrigin's keys on all three axes.
