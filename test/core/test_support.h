@@ -60,7 +60,7 @@ class PathCounts {
   std::string summary() const;
 
  private:
-  std::vector<int> counts_ = std::vector<int>(static_cast<std::size_t>(FramePath::kStatic) + 1);
+  std::vector<int> counts_ = std::vector<int>(256);  // every value a uint8_t FramePath can take
 };
 /// Thread counts every parallel check runs with (2 cores here: 3, 4 and 7 oversubscribe).
 const std::vector<int>& testThreadCounts();
