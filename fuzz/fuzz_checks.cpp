@@ -69,7 +69,10 @@ std::string checkSuperset(const BoxSet& inBoxes, const PairList& inOracle,
     const auto b = std::find(inBoxes.ids.begin(), inBoxes.ids.end(), pair.b) - inBoxes.ids.begin();
     if (a == static_cast<long>(inBoxes.size()) || b == static_cast<long>(inBoxes.size()))
       return "keys-only pair names an unknown id";
-    if (!stress::keysOverlap(origin, inBoxes, a, b) || !filtersAllow(inBoxes, a, b))
+    // Keys from the origin 0 or from the frame's centre (used for frames far from 0).
+    const bool keys_overlap = stress::keysOverlap(KeyOrigin(), inBoxes, a, b) ||
+                              stress::keysOverlap(origin, inBoxes, a, b);
+    if (!keys_overlap || !filtersAllow(inBoxes, a, b))
       return "keys-only extra pair (" + std::to_string(pair.a) + "," + std::to_string(pair.b) +
              ") does not even overlap in key space";
   }
