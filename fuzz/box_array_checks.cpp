@@ -122,4 +122,10 @@ std::string checkBoxArrayFromBoxSetBytes(const uint8_t* inData, std::size_t inSi
   return checkConverted(msg);
 }
 
+std::string checkBoxArrayInput(const uint8_t* inData, std::size_t inSize) {
+  if (inSize == 0) return "";
+  return (inData[0] & 1) ? checkBoxArrayFromBoxSetBytes(inData + 1, inSize - 1)
+                         : checkBoxArrayBytes(inData + 1, inSize - 1);
+}
+
 }  // namespace sap_broadphase::fuzz

@@ -19,4 +19,8 @@ std::string checkBoxArrayBytes(const uint8_t* inData, std::size_t inSize);
 /// validate() refuses and keep every value bit for bit.
 std::string checkBoxArrayFromBoxSetBytes(const uint8_t* inData, std::size_t inSize);
 
+/// What the BoxArray fuzzer runs: the first byte picks the kind of input (odd: built from a
+/// decoded box set, even: serialized bytes), the rest is that input.
+std::string checkBoxArrayInput(const uint8_t* inData, std::size_t inSize);
+
 }  // namespace sap_broadphase::fuzz

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <set>
@@ -9,40 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "core/sort_keys.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/text_io.h"
+#include "stress_sequences.h"
 
 namespace sap_broadphase::fuzz {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Reads bytes front to back; past the end it yields zeros.
-class ByteReader {
- public:
-  ByteReader(const uint8_t* inData, std::size_t inSize) : data_(inData), size_(inSize) {}
-  bool empty() const { return used_ >= size_; }
-  uint8_t byte() { return used_ < size_ ? data_[used_++] : 0; }
-  uint32_t u32() {
-    uint32_t value = 0;
-    for (int k = 0; k < 4; ++k) value = (value << 8) | byte();
-    return value;
-  }
-  double f64() {
-    uint64_t bits = 0;
-    for (int k = 0; k < 8; ++k) bits = (bits << 8) | byte();
-    double value;
-    std::memcpy(&value, &bits, sizeof value);
-    return value;
-  }
-
- private:
-  const uint8_t* data_;
-  std::size_t size_;
-  std::size_t used_ = 0;
-};
 
 // Values where float32 keys and float64 comparisons are most likely to disagree.
 const double kSpecials[] = {0.0,
@@ -76,39 +53,6 @@ double stepUlps(double inValue, int inSteps) {
   return inValue;
 }
 
-// One coordinate: a small half-integer, a special value, a special value moved a few ulps,
-// or raw bits (NaN included).
-double decodeCoordinate(ByteReader& ioReader) {
-  const uint8_t selector = ioReader.byte();
-  if (selector < 64) return (static_cast<int>(selector) - 32) * 0.5;
-  if (selector < 128) return kSpecials[(selector - 64) % kSpecialCount];
-  if (selector < 192) {
-    const uint8_t detail = ioReader.byte();
-    return stepUlps(kSpecials[detail % kSpecialCount], static_cast<int>(selector % 7) - 3);
-  }
-  return ioReader.f64();
-}
-
-std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual) {
-  std::ostringstream text;
-  text << inWhat << ": expected " << inExpected.size() << " pairs, got " << inActual.size();
-  for (std::size_t k = 0; k < std::max(inExpected.size(), inActual.size()) && k < 4; ++k) {
-    text << " [" << k << "] ";
-    if (k < inExpected.size()) text << inExpected[k].a << "," << inExpected[k].b;
-    text << " vs ";
-    if (k < inActual.size()) text << inActual[k].a << "," << inActual[k].b;
-  }
-  return text.str();
-}
-
-bool keysOverlap(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
-  for (int axis = 0; axis < 3; ++axis)
-    if (lowKey(inBoxes.lo[axis][a]) > highKey(inBoxes.hi[axis][b]) ||
-        lowKey(inBoxes.lo[axis][b]) > highKey(inBoxes.hi[axis][a]))
-      return false;
-  return true;
-}
-
 // Keys-only output: canonical, contains the oracle, extras overlap in key space (small n).
 std::string checkSuperset(const BoxSet& inBoxes, const PairList& inOracle,
                           const PairList& inKeysOnly) {
@@ -118,29 +62,21 @@ std::string checkSuperset(const BoxSet& inBoxes, const PairList& inOracle,
   }
   if (!std::includes(inKeysOnly.begin(), inKeysOnly.end(), inOracle.begin(), inOracle.end()))
     return pairsDiffer("keys-only mode missed a pair", inOracle, inKeysOnly);
+  const KeyOrigin origin = stress::firstFrameKeyOrigin(inBoxes);
   for (const IdPair& pair : inKeysOnly) {
     if (std::binary_search(inOracle.begin(), inOracle.end(), pair)) continue;
     const auto a = std::find(inBoxes.ids.begin(), inBoxes.ids.end(), pair.a) - inBoxes.ids.begin();
     const auto b = std::find(inBoxes.ids.begin(), inBoxes.ids.end(), pair.b) - inBoxes.ids.begin();
     if (a == static_cast<long>(inBoxes.size()) || b == static_cast<long>(inBoxes.size()))
       return "keys-only pair names an unknown id";
-    if (!keysOverlap(inBoxes, a, b) || !filtersAllow(inBoxes, a, b))
+    // Keys from the origin 0 or from the frame's centre (used for frames far from 0).
+    const bool keys_overlap = stress::keysOverlap(KeyOrigin(), inBoxes, a, b) ||
+                              stress::keysOverlap(origin, inBoxes, a, b);
+    if (!keys_overlap || !filtersAllow(inBoxes, a, b))
       return "keys-only extra pair (" + std::to_string(pair.a) + "," + std::to_string(pair.b) +
              ") does not even overlap in key space";
   }
   return "";
-}
-
-BoxSet reversedOrder(const BoxSet& inBoxes) {
-  BoxSet reversed = inBoxes;
-  std::reverse(reversed.ids.begin(), reversed.ids.end());
-  for (int axis = 0; axis < 3; ++axis) {
-    std::reverse(reversed.lo[axis].begin(), reversed.lo[axis].end());
-    std::reverse(reversed.hi[axis].begin(), reversed.hi[axis].end());
-  }
-  std::reverse(reversed.groups.begin(), reversed.groups.end());
-  std::reverse(reversed.masks.begin(), reversed.masks.end());
-  return reversed;
 }
 
 // What validate() should say, by the simplest possible means: a refusal and, for coordinate
@@ -179,6 +115,49 @@ bool sameBits(double inA, double inB) {
 }
 
 }  // namespace
+
+int reportProblem(const char* inTarget, const std::string& inProblem) {
+  if (inProblem.empty()) return 0;
+  std::fprintf(stderr, "%s: %s\n", inTarget, inProblem.c_str());
+  std::abort();
+}
+
+uint32_t ByteReader::u32() {
+  uint32_t value = 0;
+  for (int k = 0; k < 4; ++k) value = (value << 8) | byte();
+  return value;
+}
+
+double ByteReader::f64() {
+  uint64_t bits = 0;
+  for (int k = 0; k < 8; ++k) bits = (bits << 8) | byte();
+  double value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+double decodeCoordinate(ByteReader& ioReader) {
+  const uint8_t selector = ioReader.byte();
+  if (selector < 64) return (static_cast<int>(selector) - 32) * 0.5;
+  if (selector < 128) return kSpecials[(selector - 64) % kSpecialCount];
+  if (selector < 192) {
+    const uint8_t detail = ioReader.byte();
+    return stepUlps(kSpecials[detail % kSpecialCount], static_cast<int>(selector % 7) - 3);
+  }
+  return ioReader.f64();
+}
+
+std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual) {
+  std::ostringstream text;
+  text << inWhat << ": expected " << inExpected.size() << " pairs, got " << inActual.size();
+  for (std::size_t k = 0; k < std::max(inExpected.size(), inActual.size()) && k < 4; ++k) {
+    text << " [" << k << "] ";
+    if (k < inExpected.size()) text << inExpected[k].a << "," << inExpected[k].b;
+    text << " vs ";
+    if (k < inActual.size()) text << inActual[k].a << "," << inActual[k].b;
+  }
+  return text.str();
+}
 
 BoxSet decodeBoxSet(const uint8_t* inData, std::size_t inSize, uint32_t& outVariant) {
   ByteReader reader(inData, inSize);
@@ -241,8 +220,9 @@ std::string checkEngine(const BoxSet& inBoxes, uint32_t inVariant) {
   config.secondary_axis = kAxisPairs[(inVariant / 36) % 6][1];
   config.parallel_min_boxes = 1 + inVariant % 7;  // kAuto goes parallel on tiny frames too
   Broadphase engine(config);
-  if (engine.update(reversedOrder(inBoxes)) != oracle)
-    return pairsDiffer("engine, reversed frame", oracle, engine.update(reversedOrder(inBoxes)));
+  if (engine.update(stress::reversedOrder(inBoxes)) != oracle)
+    return pairsDiffer("engine, reversed frame", oracle,
+                       engine.update(stress::reversedOrder(inBoxes)));
   if (engine.update(inBoxes) != oracle)
     return pairsDiffer("engine, second frame", oracle, engine.update(inBoxes));
   if (engine.update(inBoxes) != oracle)

@@ -8,8 +8,14 @@
 #include <string>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase::fuzz {
+
+/// What every libFuzzer target does with its check's answer: nothing when it is empty, else
+/// print it after inTarget's name and abort, the crash libFuzzer records with its input.
+/// Returns 0, the value LLVMFuzzerTestOneInput must return.
+int reportProblem(const char* inTarget, const std::string& inProblem);
 
 /// Most boxes a fuzz input is run through the engine with (the oracle is O(n^2)).
 constexpr std::size_t kMaxEngineBoxes = 256;
@@ -31,5 +37,27 @@ std::string checkEngine(const BoxSet& inBoxes, uint32_t inVariant);
 /// Decodes inData into boxes the way checkBoxSetBytes does (exposed for the ROS target).
 /// outVariant receives the configuration selector.
 BoxSet decodeBoxSet(const uint8_t* inData, std::size_t inSize, uint32_t& outVariant);
+
+/// Reads bytes front to back; past the end it yields zeros.
+class ByteReader {
+ public:
+  ByteReader(const uint8_t* inData, std::size_t inSize) : data_(inData), size_(inSize) {}
+  bool empty() const { return used_ >= size_; }
+  uint8_t byte() { return used_ < size_ ? data_[used_++] : 0; }
+  uint32_t u32();
+  double f64();
+
+ private:
+  const uint8_t* data_;
+  std::size_t size_;
+  std::size_t used_ = 0;
+};
+
+/// One coordinate: a small half-integer, a special value (NaN and the infinities among them),
+/// a special value moved a few ulps, or raw bits.
+double decodeCoordinate(ByteReader& ioReader);
+
+/// "what: expected 3 pairs, got 4 [0] 1,2 vs 1,2 ..." for a failed comparison.
+std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual);
 
 }  // namespace sap_broadphase::fuzz

@@ -5,12 +5,14 @@
 #   scripts/fuzz.sh                       # 20000 runs per target
 #   scripts/fuzz.sh --runs 100000
 #   scripts/fuzz.sh --seconds 120         # per target
-#   scripts/fuzz.sh --target text         # one target: text, boxset or box_array
+#   scripts/fuzz.sh --target text         # one target: text, boxset, box_array or sequence
 #   scripts/fuzz.sh --save                # merge new coverage into fuzz/corpus/ afterwards
 #
 # Targets: fuzz_text (readBoxText, round trip, engine vs oracle), fuzz_boxset (validate() on
 # raw box sets, engine vs oracle), fuzz_box_array (BoxArray deserialization and the ROS
-# conversions, engine vs oracle). The ROS message headers are generated here with gencpp, so
+# conversions, engine vs oracle), fuzz_sequence (the input picks a configuration, with every
+# skip switchable, and the edits between frames; one engine, every frame vs the oracle,
+# fuzz/sequence_checks.h). The ROS message headers are generated here with gencpp, so
 # no catkin workspace is needed. Crashes land in build/fuzz/crashes/; copy each one into
 # fuzz/regressions/<target>/ so that test_fuzz_replay (test/stress) replays it for ever.
 # Exits non-zero when a target finds a crash.
@@ -19,7 +21,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT="$ROOT/build/fuzz"
 RUNS=20000
 SECONDS_PER_TARGET=""
-TARGETS=(text boxset box_array)
+TARGETS=(text boxset box_array sequence)
 SAVE=0
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -27,7 +29,7 @@ while [ $# -gt 0 ]; do
     --seconds) SECONDS_PER_TARGET="$2"; shift 2 ;;
     --target) TARGETS=("$2"); shift 2 ;;
     --save) SAVE=1; shift ;;
-    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
     *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -36,7 +38,7 @@ CXX=${CXX_FUZZ:-clang++}
 command -v "$CXX" >/dev/null || { echo "fuzz.sh: $CXX not found (apt-get install clang libclang-rt-dev libomp-dev)" >&2; exit 2; }
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 FLAGS="-std=c++17 -O1 -g -fno-omit-frame-pointer -fopenmp -Wall -Wextra $SAN"
-INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/fuzz -I$OUT/gen"
+INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/fuzz -I$ROOT/test/stress -I$OUT/gen"
 mkdir -p "$OUT/obj" "$OUT/gen/sap_broadphase" "$OUT/crashes"
 
 # ROS message headers straight from the .msg files (Debian's gencpp).
@@ -50,7 +52,8 @@ done
 
 # Objects: instrumented for coverage (fuzzer-no-link) and the sanitizers; rebuilt when older
 # than their source or any header.
-newest_header=$(find "$ROOT/include" "$ROOT/fuzz" -name '*.h' -printf '%T@\n' | sort -n | tail -1)
+newest_header=$(find "$ROOT/include" "$ROOT/src" "$ROOT/fuzz" "$ROOT/test/stress" -name '*.h' \
+  -printf '%T@\n' | sort -n | tail -1)
 compile() {  # source object
   local src=$1 obj=$2
   if [ ! -f "$obj" ] || [ "$src" -nt "$obj" ] || \
@@ -62,7 +65,8 @@ compile() {  # source object
 export -f compile
 export CXX FLAGS INCLUDES ROOT newest_header
 sources=("$ROOT"/src/core/*.cpp "$ROOT/src/ros/conversions.cpp" "$ROOT/fuzz/fuzz_checks.cpp" \
-         "$ROOT/fuzz/box_array_checks.cpp" "$ROOT"/fuzz/fuzz_*.cpp)
+         "$ROOT/fuzz/box_array_checks.cpp" "$ROOT/fuzz/sequence_checks.cpp" \
+         "$ROOT/test/stress/stress_sequences.cpp" "$ROOT"/fuzz/fuzz_*.cpp)
 for src in "${sources[@]}"; do echo "$src $OUT/obj/$(basename "$src" .cpp).o"; done | \
   xargs -P2 -n2 bash -c 'compile "$0" "$1"'
 
@@ -71,12 +75,13 @@ for src in "$ROOT"/src/core/*.cpp; do core_objs+=("$OUT/obj/$(basename "$src" .c
 link() {  # target extra-objects... extra-libs
   local target=$1; shift
   $CXX $FLAGS -fsanitize=fuzzer -o "$OUT/fuzz_$target" "$OUT/obj/fuzz_$target.o" \
-    "$OUT/obj/fuzz_checks.o" "${core_objs[@]}" "$@"
+    "$OUT/obj/fuzz_checks.o" "$OUT/obj/stress_sequences.o" "${core_objs[@]}" "$@"
 }
 link text
 link boxset
 link box_array "$OUT/obj/box_array_checks.o" "$OUT/obj/conversions.o" \
   -lroscpp_serialization -lrostime -lcpp_common
+link sequence "$OUT/obj/sequence_checks.o"
 
 # Runs: ASan must not abort on allocations it cannot serve (roscpp-style bad_alloc is
 # handled by the targets); OpenMP threads wait passively on this small machine.

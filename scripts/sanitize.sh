@@ -7,7 +7,8 @@
 #   build/ws_tsan  clang++ -fsanitize=thread with LLVM's libomp and its Archer tool, so that
 #                  OpenMP barriers are visible to TSan: the node's threading rostest
 #                  (test/ros/node.test: worker thread, service thread, burst) and the engine
-#                  at several thread counts (test_stress, sequence and infinity suites)
+#                  at several thread counts (test_stress: sequence, infinity, filter and skip
+#                  suites)
 #
 #   scripts/sanitize.sh            # both
 #   scripts/sanitize.sh asan       # or: tsan
@@ -101,7 +102,7 @@ tsan() {
   export TSAN_OPTIONS="suppressions=$SUPP/tsan.supp:ignore_noninstrumented_modules=1:halt_on_error=0:second_deadlock_stack=1:history_size=4"
   export OMP_WAIT_POLICY=passive
   run_gtest tsan_test_stress "$ws/devel/lib/sap_broadphase/test_stress" \
-    --gtest_filter='StressSequence.*:StressInfinity.*:StressDegenerate.GroupsAndMasks'
+    --gtest_filter='StressSequence.*:StressInfinity.*:StressDegenerate.GroupsAndMasks:StressSkips.*'
   # The node's rostest: every node process writes its TSan reports to tsan_report.<pid>.
   (
     set +u

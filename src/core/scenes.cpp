@@ -4,38 +4,22 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/random.h"
+
 namespace sap_broadphase {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// splitmix64: tiny, fast, and identical on every platform (unlike std:: distributions).
-class SceneRandom {
- public:
-  explicit SceneRandom(uint64_t inSeed) : state_(inSeed) {}
-  uint64_t nextBits() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  /// Uniform in [0, 1).
-  double unit() { return static_cast<double>(nextBits() >> 11) * 0x1.0p-53; }
-  /// Uniform in [inLow, inHigh).
-  double between(double inLow, double inHigh) { return inLow + (inHigh - inLow) * unit(); }
-  /// A uniformly distributed unit vector.
-  void direction(double outVector[3]) {
-    const double z = between(-1.0, 1.0);
-    const double angle = between(0.0, 2.0 * kPi);
-    const double radius = std::sqrt(std::max(0.0, 1.0 - z * z));
-    outVector[0] = radius * std::cos(angle);
-    outVector[1] = radius * std::sin(angle);
-    outVector[2] = z;
-  }
-
- private:
-  uint64_t state_;
-};
+// A uniformly distributed unit vector.
+void randomDirection(SplitMix64& ioRandom, double outVector[3]) {
+  const double z = ioRandom.between(-1.0, 1.0);
+  const double angle = ioRandom.between(0.0, 2.0 * kPi);
+  const double radius = std::sqrt(std::max(0.0, 1.0 - z * z));
+  outVector[0] = radius * std::cos(angle);
+  outVector[1] = radius * std::sin(angle);
+  outVector[2] = z;
+}
 
 // Ball cluster timing, as fractions of the run: contract until kPackedAt, hold, then spread.
 constexpr double kPackedAt = 0.2;
@@ -66,7 +50,7 @@ SceneSimulator::SceneSimulator(const SceneConfig& inConfig) : config_(inConfig) 
   if (config_.kind == SceneKind::kUniform && !(config_.density > 0.0))
     throw std::invalid_argument("density must be > 0");
   if (config_.frames < 2) throw std::invalid_argument("frames must be >= 2");
-  SceneRandom random(config_.seed);
+  SplitMix64 random(config_.seed);
   std::size_t n = config_.n;
   std::size_t side = 0;
   if (config_.kind == SceneKind::kPlaneCluster) {
@@ -86,7 +70,7 @@ SceneSimulator::SceneSimulator(const SceneConfig& inConfig) : config_(inConfig) 
       world_half_ = 0.5 * std::cbrt(static_cast<double>(n) / config_.density);
       for (std::size_t i = 0; i < n; ++i) {
         double direction[3];
-        random.direction(direction);
+        randomDirection(random, direction);
         const double speed = config_.speed * random.between(0.5, 1.5);
         for (int axis = 0; axis < 3; ++axis) {
           const double half = 0.5 * random.between(0.5, 1.5);
@@ -103,7 +87,7 @@ SceneSimulator::SceneSimulator(const SceneConfig& inConfig) : config_(inConfig) 
       world_half_ = kStartRadiusFactor * packed_radius;
       for (std::size_t i = 0; i < n; ++i) {
         double direction[3];
-        random.direction(direction);
+        randomDirection(random, direction);
         const double radius = world_half_ * std::cbrt(random.unit());
         // velocity_ holds each box's final spread factor (how far out it ends), in [1, 2).
         const double spread = random.between(1.0, 2.0);

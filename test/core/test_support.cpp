@@ -122,17 +122,70 @@ std::vector<std::pair<int, int>> allAxisPairs() {
   return ::testing::AssertionFailure() << message.str();
 }
 
-uint64_t hashPairs(const PairList& inPairs) {
-  uint64_t hash = 1469598103934665603ull;
+namespace {
+
+constexpr uint64_t kFnvOffsetBasis = 1469598103934665603ull;
+
+// FNV-1a over the four bytes of inValue, least significant first.
+void hashWord(uint64_t& ioHash, uint32_t inValue) {
+  for (int byte = 0; byte < 4; ++byte) {
+    ioHash ^= (inValue >> (8 * byte)) & 0xFFu;
+    ioHash *= 1099511628211ull;
+  }
+}
+
+void hashPairsInto(uint64_t& ioHash, const PairList& inPairs) {
   for (const IdPair& pair : inPairs) {
-    for (uint32_t value : {pair.a, pair.b}) {
-      for (int byte = 0; byte < 4; ++byte) {
-        hash ^= (value >> (8 * byte)) & 0xFFu;
-        hash *= 1099511628211ull;
-      }
-    }
+    hashWord(ioHash, pair.a);
+    hashWord(ioHash, pair.b);
+  }
+}
+
+std::string pairText(const IdPair& inPair) {
+  return "(" + std::to_string(inPair.a) + ", " + std::to_string(inPair.b) + ")";
+}
+
+}  // namespace
+
+uint64_t hashPairs(const PairList& inPairs) {
+  uint64_t hash = kFnvOffsetBasis;
+  hashPairsInto(hash, inPairs);
+  return hash;
+}
+
+uint64_t hashPairSequence(const std::vector<PairList>& inFrames) {
+  uint64_t hash = kFnvOffsetBasis;
+  for (const PairList& pairs : inFrames) {
+    hashWord(hash, static_cast<uint32_t>(pairs.size()));
+    hashPairsInto(hash, pairs);
   }
   return hash;
+}
+
+std::string firstDifference(const PairList& inExpected, const PairList& inActual) {
+  const std::size_t common = std::min(inExpected.size(), inActual.size());
+  const auto differs =
+      std::mismatch(inExpected.begin(), inExpected.begin() + common, inActual.begin());
+  const std::size_t k = static_cast<std::size_t>(differs.first - inExpected.begin());
+  if (k < common)
+    return "pair " + std::to_string(k) + ": expected " + pairText(inExpected[k]) + ", got " +
+           pairText(inActual[k]);
+  if (inExpected.size() > common)
+    return "pair " + std::to_string(k) + ": expected " + pairText(inExpected[k]) + ", got none";
+  if (inActual.size() > common)
+    return "pair " + std::to_string(k) + ": expected none, got " + pairText(inActual[k]);
+  return "";
+}
+
+std::string PathCounts::summary() const {
+  std::string text;
+  for (std::size_t path = 0; path < counts_.size(); ++path) {
+    if (counts_[path] == 0) continue;
+    if (!text.empty()) text += ", ";
+    text += std::string(framePathName(static_cast<FramePath>(path))) + " " +
+            std::to_string(counts_[path]);
+  }
+  return text.empty() ? "no frames" : text;
 }
 
 const std::vector<int>& testThreadCounts() {
@@ -169,12 +222,10 @@ void expectAllConfigsMatch(const BoxSet& inBoxes, const std::string& inLabel) {
 }
 
 std::string describe(const BroadphaseConfig& inConfig) {
-  static const char* const kMethods[] = {"auto", "parallel", "sequential", "brute"};
   std::ostringstream text;
-  text << "method " << kMethods[static_cast<int>(inConfig.method)] << ", threads "
-       << inConfig.threads << ", axes " << inConfig.primary_axis << "/" << inConfig.secondary_axis
-       << ", slabs " << inConfig.third_axis_slabs
-       << (inConfig.axis_swapping ? "" : ", no swapping");
+  text << "method " << methodName(inConfig.method) << ", threads " << inConfig.threads << ", axes "
+       << inConfig.primary_axis << "/" << inConfig.secondary_axis << ", slabs "
+       << inConfig.third_axis_slabs << (inConfig.axis_swapping ? "" : ", no swapping");
   return text.str();
 }
 

@@ -9,32 +9,15 @@
 #include <utility>
 #include <vector>
 
+#include "core/random.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase::test_support {
 
-/// A small, fast, platform-independent generator (splitmix64).
-class TestRandom {
- public:
-  explicit TestRandom(uint64_t inSeed) : state_(inSeed) {}
-  uint64_t bits() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  /// Uniform in [0, 1).
-  double unit() { return static_cast<double>(bits() >> 11) * 0x1.0p-53; }
-  /// Uniform in [inLow, inHigh).
-  double between(double inLow, double inHigh) { return inLow + (inHigh - inLow) * unit(); }
-  /// Uniform integer in [0, inBound).
-  uint64_t below(uint64_t inBound) { return inBound == 0 ? 0 : bits() % inBound; }
-
- private:
-  uint64_t state_;
-};
+/// The project's one generator (splitmix64): the same boxes from a seed on every platform.
+using TestRandom = SplitMix64;
 
 /// inCount boxes, corners uniform in [0, inWorld)^3, edges uniform in [0, inMaxEdge) per axis.
 BoxSet randomBoxes(std::size_t inCount, double inWorld, double inMaxEdge, uint64_t inSeed);
@@ -58,6 +41,27 @@ std::vector<std::pair<int, int>> allAxisPairs();
 ::testing::AssertionResult samePairs(const PairList& inExpected, const PairList& inActual);
 /// FNV-1a hash of the pair list (order-sensitive).
 uint64_t hashPairs(const PairList& inPairs);
+/// FNV-1a hash of a sequence of frames' pair lists: every frame's pair count, then its pairs,
+/// so that moving a pair from one frame to the next changes the hash.
+uint64_t hashPairSequence(const std::vector<PairList>& inFrames);
+/// Where inActual first departs from inExpected: "pair 17: expected (3, 9), got (3, 11)", or
+/// the first pair one list has beyond the other's end; empty when the lists are equal.
+std::string firstDifference(const PairList& inExpected, const PairList& inActual);
+
+/// How many frames took each path (FrameReport::path), so that a sequence test can assert
+/// that the path it means to exercise really ran instead of passing by never taking it.
+class PathCounts {
+ public:
+  /// Counts inReport's path.
+  void add(const FrameReport& inReport) { ++counts_[static_cast<std::size_t>(inReport.path)]; }
+  /// Frames that took inPath.
+  int operator[](FramePath inPath) const { return counts_[static_cast<std::size_t>(inPath)]; }
+  /// "sequential 3, skin 12": the paths taken, by framePathName, for failure messages.
+  std::string summary() const;
+
+ private:
+  std::vector<int> counts_ = std::vector<int>(256);  // every value a uint8_t FramePath can take
+};
 /// Thread counts every parallel check runs with (2 cores here: 3, 4 and 7 oversubscribe).
 const std::vector<int>& testThreadCounts();
 /// Runs a fresh Broadphase for every method, thread count and ordered axis pair on inBoxes and

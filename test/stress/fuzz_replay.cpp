@@ -1,5 +1,7 @@
 #include "fuzz_replay.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +31,15 @@ std::vector<uint8_t> readBytes(const std::string& inPath) {
   std::ifstream file(inPath, std::ios::binary);
   return std::vector<uint8_t>(std::istreambuf_iterator<char>(file),
                               std::istreambuf_iterator<char>());
+}
+
+void expectCorpusClean(const std::string& inTarget, FuzzCheck inCheck) {
+  const std::vector<std::string> inputs = fuzzInputs(inTarget);
+  ASSERT_FALSE(inputs.empty()) << "no " << inTarget << " seed corpus under " << SAP_FUZZ_DIR;
+  for (const std::string& path : inputs) {
+    const std::vector<uint8_t> bytes = readBytes(path);
+    EXPECT_EQ("", inCheck(bytes.data(), bytes.size())) << path;
+  }
 }
 
 }  // namespace sap_broadphase::stress

@@ -30,7 +30,11 @@
 #include "sap_broadphase/ComputePairs.h"
 #include "sap_broadphase/PairArray.h"
 
-// Only the generated messages: the checker shares no code with the engine it checks.
+// Only the generated messages and the project's header-only random generator (by a path
+// relative to this file, so soak.sh needs no engine include path): the checker shares no code
+// with the engine it checks.
+#include "../../src/core/random.h"
+
 namespace sap_broadphase {
 namespace {
 
@@ -47,21 +51,15 @@ IdPair makeIdPair(uint32_t inX, uint32_t inY) {
 /// inCount boxes with edges in [0.5, 1.5), uniform in a cube sized for 5 % density (the
 /// uniform scene's default), ids empty (0..n-1) as scene_publisher sends them.
 BoxArray uniformFrame(std::size_t inCount, uint64_t inSeed) {
-  uint64_t state = inSeed;
-  auto unit = [&state]() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-  };
+  SplitMix64 random(inSeed);
   const double side = std::cbrt(static_cast<double>(inCount) / 0.05);
   BoxArray msg;
   msg.bounds.resize(6 * inCount);
   for (std::size_t i = 0; i < inCount; ++i) {
     for (int axis = 0; axis < 3; ++axis) {
-      const double low = unit() * side;
+      const double low = random.unit() * side;
       msg.bounds[6 * i + axis] = low;
-      msg.bounds[6 * i + 3 + axis] = low + 0.5 + unit();
+      msg.bounds[6 * i + 3 + axis] = low + 0.5 + random.unit();
     }
   }
   return msg;

@@ -36,7 +36,7 @@ std::vector<double> ulpTable(double inBase, int inBelow, int inAbove) {
 }  // namespace
 
 BoxSet magnitudeScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   // Clusters: one decade and sign each; boxes of a cluster live in a cube about 20 of their
@@ -75,7 +75,7 @@ BoxSet magnitudeScene(std::size_t inCount, uint64_t inSeed) {
 }
 
 BoxSet subnormalScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   const double unit = std::numeric_limits<double>::denorm_min();
   const double smallest_normal = std::numeric_limits<double>::min();
   BoxSet boxes;
@@ -100,7 +100,7 @@ BoxSet subnormalScene(std::size_t inCount, uint64_t inSeed) {
 }
 
 BoxSet signedZeroScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   for (std::size_t i = 0; i < inCount; ++i) {
@@ -118,7 +118,7 @@ BoxSet signedZeroScene(std::size_t inCount, uint64_t inSeed) {
 }
 
 BoxSet infiniteSlabScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   BoxSet boxes;
   boxes.reserve(inCount);
   // The special boxes first: each line is min x y z, max x y z.
@@ -162,7 +162,7 @@ BoxSet infiniteSlabScene(std::size_t inCount, uint64_t inSeed) {
 
 BoxSet ulpLatticeScene(double inBase, std::size_t inCount, int inCells, int inMaxEdge,
                        uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   const std::vector<double> table = ulpTable(inBase, inCells, inCells + inMaxEdge);
   BoxSet boxes;
   boxes.reserve(inCount);
@@ -180,7 +180,7 @@ BoxSet ulpLatticeScene(double inBase, std::size_t inCount, int inCells, int inMa
 }
 
 BoxSet specialValueScene(std::size_t inCount, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   const double anchors[] = {kInf,
                             1e300,
                             std::numeric_limits<double>::max(),
@@ -217,38 +217,6 @@ BoxSet specialValueScene(std::size_t inCount, uint64_t inSeed) {
   return boxes;
 }
 
-BoxSet uniformScene(std::size_t inCount, double inWorld, double inMaxEdge, uint64_t inSeed) {
-  StressRandom random(inSeed);
-  BoxSet boxes;
-  boxes.reserve(inCount);
-  for (std::size_t i = 0; i < inCount; ++i) {
-    double low[3];
-    double high[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = random.between(0.0, inWorld);
-      high[axis] = low[axis] + random.between(0.0, inMaxEdge);
-    }
-    appendBox(boxes, low, high);
-  }
-  return boxes;
-}
-
-BoxSet latticeScene(std::size_t inCount, int inCells, int inMaxEdge, uint64_t inSeed) {
-  StressRandom random(inSeed);
-  BoxSet boxes;
-  boxes.reserve(inCount);
-  for (std::size_t i = 0; i < inCount; ++i) {
-    double low[3];
-    double high[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = static_cast<double>(random.below(inCells));
-      high[axis] = low[axis] + static_cast<double>(random.below(inMaxEdge + 1));
-    }
-    appendBox(boxes, low, high);
-  }
-  return boxes;
-}
-
 BoxSet translated(const BoxSet& inBoxes, const double inOffset[3]) {
   BoxSet moved = inBoxes;
   for (int axis = 0; axis < 3; ++axis) {
@@ -259,7 +227,7 @@ BoxSet translated(const BoxSet& inBoxes, const double inOffset[3]) {
 }
 
 void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
-  StressRandom random(inSeed);
+  SplitMix64 random(inSeed);
   ioBoxes.groups.resize(ioBoxes.size());
   ioBoxes.masks.resize(ioBoxes.size());
   for (std::size_t i = 0; i < ioBoxes.size(); ++i) {

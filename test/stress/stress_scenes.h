@@ -37,12 +37,6 @@ BoxSet ulpLatticeScene(double inBase, std::size_t inCount, int inCells, int inMa
 /// subnormals, +-0, their ulp neighbours), each interval a short run of the sorted pool.
 BoxSet specialValueScene(std::size_t inCount, uint64_t inSeed);
 
-/// inCount boxes, corners uniform in [0, inWorld)^3, edges uniform in [0, inMaxEdge).
-BoxSet uniformScene(std::size_t inCount, double inWorld, double inMaxEdge, uint64_t inSeed);
-
-/// Integer lattice: corners in [0, inCells), edges 0..inMaxEdge (touching and zero extents).
-BoxSet latticeScene(std::size_t inCount, int inCells, int inMaxEdge, uint64_t inSeed);
-
 /// inBoxes with inOffset added to every coordinate of axis a (rounded as doubles round).
 BoxSet translated(const BoxSet& inBoxes, const double inOffset[3]);
 

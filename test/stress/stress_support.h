@@ -1,5 +1,5 @@
 // Shared helpers of the numerical stress suite: engine configurations, the oracle comparison
-// (exact mode equal, keys-only mode a superset), ulp steps and a small generator.
+// (exact mode equal, keys-only mode a superset) and ulp steps.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -9,29 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "core/random.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase::stress {
-
-/// splitmix64: small, fast and the same on every platform.
-class StressRandom {
- public:
-  explicit StressRandom(uint64_t inSeed) : state_(inSeed) {}
-  uint64_t bits();
-  /// Uniform in [0, 1).
-  double unit() { return static_cast<double>(bits() >> 11) * 0x1.0p-53; }
-  /// Uniform in [inLow, inHigh).
-  double between(double inLow, double inHigh) { return inLow + (inHigh - inLow) * unit(); }
-  /// Uniform integer in [0, inBound) (0 when inBound is 0).
-  uint64_t below(uint64_t inBound) { return inBound == 0 ? 0 : bits() % inBound; }
-  /// True with probability inChance.
-  bool chance(double inChance) { return unit() < inChance; }
-
- private:
-  uint64_t state_;
-};
 
 /// inValue moved by inSteps representable doubles (negative: downwards); saturates at +-inf.
 double ulpStep(double inValue, int inSteps);
@@ -52,7 +35,8 @@ std::string describeConfig(const BroadphaseConfig& inConfig);
 /// Equal pair lists, or a message with sizes and the first differences (missing and extra).
 ::testing::AssertionResult samePairList(const PairList& inExpected, const PairList& inActual);
 /// inActual holds every pair of inExpected (it may hold more); both in canonical order, and
-/// every extra pair must overlap in outward-rounded key space and pass the filters.
+/// every extra pair must overlap in a fresh engine's outward-rounded key space
+/// (firstFrameKeyOrigin) and pass the filters.
 ::testing::AssertionResult supersetWithKeyOverlap(const BoxSet& inBoxes, const PairList& inExpected,
                                                   const PairList& inActual);
 

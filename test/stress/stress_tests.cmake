@@ -1,6 +1,8 @@
-# The numerical stress suite and the replay of the fuzzers' corpora and crash regressions,
-# against the brute-force oracle (docs/ROBUSTNESS.md). Included by test/tests.cmake when tests
-# are built. Release run time: about 40 s on 2 cores; no test asserts on timing.
+# The stress suite: hostile numbers (magnitudes, infinities, ulps, degenerate boxes) and
+# multi-frame sequences through every path where the engine skips work, against the
+# brute-force oracle; then the replay of the fuzzers' corpora and crash regressions
+# (docs/ROBUSTNESS.md). Included by test/tests.cmake when tests are built. No test asserts on
+# timing.
 
 sap_add_gtest(test_stress
   test/stress/test_stress_magnitudes.cpp
@@ -8,11 +10,14 @@ sap_add_gtest(test_stress
   test/stress/test_stress_ulp.cpp
   test/stress/test_stress_degenerate.cpp
   test/stress/test_stress_sequence.cpp
+  test/stress/test_stress_skips.cpp
   test/stress/stress_scenes.cpp
+  test/stress/stress_sequences.cpp
   test/stress/stress_support.cpp
-  test/stress/stress_main.cpp
+  test/core/test_support.cpp
+  test/core/test_main.cpp
 )
-target_include_directories(test_stress PRIVATE test/stress)
+target_include_directories(test_stress PRIVATE test/stress test/core)
 target_link_libraries(test_stress ${PROJECT_NAME}_core_internal)
 
 # The fuzzers' seed corpora and crash regressions (fuzz/corpus, fuzz/regressions), replayed
@@ -21,7 +26,9 @@ sap_add_gtest(test_fuzz_replay
   test/stress/test_fuzz_replay.cpp
   test/stress/fuzz_replay.cpp
   fuzz/fuzz_checks.cpp
-  test/stress/stress_main.cpp
+  fuzz/sequence_checks.cpp
+  test/stress/stress_sequences.cpp
+  test/core/test_main.cpp
 )
 target_include_directories(test_fuzz_replay PRIVATE test/stress fuzz)
 target_link_libraries(test_fuzz_replay ${PROJECT_NAME}_core_internal)
@@ -36,7 +43,8 @@ if(TARGET ${PROJECT_NAME}_ros)
     test/stress/fuzz_replay.cpp
     fuzz/box_array_checks.cpp
     fuzz/fuzz_checks.cpp
-    test/stress/stress_main.cpp
+    test/stress/stress_sequences.cpp
+    test/core/test_main.cpp
   )
   target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
   target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal

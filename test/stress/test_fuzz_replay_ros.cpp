@@ -8,16 +8,7 @@ namespace sap_broadphase::stress {
 namespace {
 
 TEST(FuzzReplay, BoxArrayCorpusAndRegressions) {
-  const auto inputs = fuzzInputs("box_array");
-  ASSERT_FALSE(inputs.empty()) << "no seed corpus under " << SAP_FUZZ_DIR;
-  for (const std::string& path : inputs) {
-    const std::vector<uint8_t> bytes = readBytes(path);
-    if (bytes.empty()) continue;
-    const std::string problem =
-        (bytes[0] & 1) ? fuzz::checkBoxArrayFromBoxSetBytes(bytes.data() + 1, bytes.size() - 1)
-                       : fuzz::checkBoxArrayBytes(bytes.data() + 1, bytes.size() - 1);
-    EXPECT_EQ("", problem) << path;
-  }
+  expectCorpusClean("box_array", fuzz::checkBoxArrayInput);
 }
 
 }  // namespace

@@ -8,9 +8,13 @@
 #include "sap_broadphase/core/brute_force.h"
 #include "stress_scenes.h"
 #include "stress_support.h"
+#include "test_support.h"
 
 namespace sap_broadphase::stress {
 namespace {
+
+using test_support::latticeBoxes;
+using test_support::randomBoxes;
 
 constexpr uint32_t kTopId = std::numeric_limits<uint32_t>::max();
 
@@ -25,12 +29,12 @@ TEST(StressDegenerate, EmptyAndSingleBox) {
 
 TEST(StressDegenerate, ZeroExtentPoints) {
   // Points on a small integer lattice: many coincide exactly and must pair.
-  expectStressMatch(latticeScene(5000, 12, 0, 71), "5000 points on a 12^3 lattice");
+  expectStressMatch(latticeBoxes(5000, 12, 0, 71), "5000 points on a 12^3 lattice");
 }
 
 TEST(StressDegenerate, ZeroExtentOnSomeAxes) {
-  BoxSet boxes = latticeScene(4000, 20, 3, 72);
-  StressRandom random(73);
+  BoxSet boxes = latticeBoxes(4000, 20, 3, 72);
+  SplitMix64 random(73);
   for (std::size_t i = 0; i < boxes.size(); ++i)
     for (int axis = 0; axis < 3; ++axis)
       if (random.chance(0.4)) boxes.hi[axis][i] = boxes.lo[axis][i];
@@ -53,7 +57,7 @@ TEST(StressDegenerate, AllIdenticalPoints) {
 
 TEST(StressDegenerate, AllOnOnePlane) {
   for (int axis = 0; axis < 3; ++axis) {
-    BoxSet boxes = uniformScene(5000, 100.0, 2.5, 74 + axis);
+    BoxSet boxes = randomBoxes(5000, 100.0, 2.5, 74 + axis);
     for (std::size_t i = 0; i < boxes.size(); ++i) {
       boxes.lo[axis][i] = 0.0;
       boxes.hi[axis][i] = 0.0;
@@ -63,7 +67,7 @@ TEST(StressDegenerate, AllOnOnePlane) {
 }
 
 TEST(StressDegenerate, AllOnOneLine) {
-  BoxSet boxes = uniformScene(4000, 1000.0, 1.0, 77);
+  BoxSet boxes = randomBoxes(4000, 1000.0, 1.0, 77);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     boxes.lo[1][i] = boxes.hi[1][i] = 3.0;
     boxes.lo[2][i] = boxes.hi[2][i] = -0.0;
@@ -72,7 +76,7 @@ TEST(StressDegenerate, AllOnOneLine) {
 }
 
 TEST(StressDegenerate, IdsNearTopOfUint32) {
-  BoxSet boxes = latticeScene(5000, 25, 2, 78);
+  BoxSet boxes = latticeBoxes(5000, 25, 2, 78);
   for (std::size_t i = 0; i < boxes.size(); ++i)
     boxes.ids[i] = kTopId - static_cast<uint32_t>((i * 7919) % boxes.size());
   expectStressMatch(boxes, "ids 2^32-5000..2^32-1, shuffled");
@@ -82,11 +86,11 @@ TEST(StressDegenerate, IdsNearTopOfUint32) {
 }
 
 TEST(StressDegenerate, GroupsAndMasks) {
-  BoxSet boxes = latticeScene(5000, 20, 2, 79);
+  BoxSet boxes = latticeBoxes(5000, 20, 2, 79);
   addRandomFilters(boxes, 80);
   expectStressMatch(boxes, "lattice with random groups/masks (some zero)");
   // Group 0 or mask 0 everywhere: nothing can pair.
-  BoxSet silent = latticeScene(2000, 5, 2, 81);
+  BoxSet silent = latticeBoxes(2000, 5, 2, 81);
   silent.groups.assign(silent.size(), 0u);
   silent.masks.assign(silent.size(), 0xFFFFFFFFu);
   expectStressMatch(silent, PairList{}, "all groups zero");

@@ -7,9 +7,12 @@
 #include "sap_broadphase/core/brute_force.h"
 #include "stress_scenes.h"
 #include "stress_support.h"
+#include "test_support.h"
 
 namespace sap_broadphase::stress {
 namespace {
+
+using test_support::randomBoxes;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -29,7 +32,7 @@ TEST(StressInfinity, GroundPlaneAndHalfSpaces) {
 }
 
 TEST(StressInfinity, EverythingBoxMeetsAll) {
-  BoxSet boxes = uniformScene(2000, 100.0, 1.0, 51);
+  BoxSet boxes = randomBoxes(2000, 100.0, 1.0, 51);
   addBox(boxes, 5000, -kInf, -kInf, -kInf, kInf, kInf, kInf);
   const PairList oracle = bruteForcePairs(boxes);
   std::size_t with_everything = 0;
@@ -45,7 +48,7 @@ TEST(StressInfinity, RandomSlabsInfiniteOnSeveralAxes) {
 
 TEST(StressInfinity, OnlyInfiniteBoxes) {
   // No finite coordinate at all: slab and partition set-up have no span to work with.
-  StressRandom random(53);
+  SplitMix64 random(53);
   BoxSet boxes;
   for (uint32_t i = 0; i < 600; ++i) {
     double low[3];
@@ -62,8 +65,8 @@ TEST(StressInfinity, OnlyInfiniteBoxes) {
 
 TEST(StressInfinity, SlabsWithInfiniteThirdAxis) {
   // The third (slab) axis holds both huge finite spans and infinities.
-  BoxSet boxes = uniformScene(4500, 100.0, 2.0, 54);
-  StressRandom random(55);
+  BoxSet boxes = randomBoxes(4500, 100.0, 2.0, 54);
+  SplitMix64 random(55);
   for (std::size_t i = 0; i < boxes.size(); i += 7) {
     for (int axis = 0; axis < 3; ++axis) {
       if (random.chance(0.3)) boxes.lo[axis][i] = -kInf;

@@ -8,9 +8,13 @@
 #include "sap_broadphase/core/brute_force.h"
 #include "stress_scenes.h"
 #include "stress_support.h"
+#include "test_support.h"
 
 namespace sap_broadphase::stress {
 namespace {
+
+using test_support::latticeBoxes;
+using test_support::randomBoxes;
 
 TEST(StressMagnitudes, DecadesFrom1em300To1e300InOneScene) {
   const BoxSet boxes = magnitudeScene(5000, 11);
@@ -64,7 +68,7 @@ TEST(StressMagnitudes, SignedZeroLattice) {
 // The same random scene moved by large offsets: rounding changes the pairs, so the oracle
 // is computed on the translated values.
 TEST(StressMagnitudes, TranslatedByLargeOffsets) {
-  const BoxSet base = uniformScene(4000, 100.0, 3.0, 41);
+  const BoxSet base = randomBoxes(4000, 100.0, 3.0, 41);
   const double offsets[][3] = {
       {1e6, -1e6, 1e6},     {0x1p24, 0x1p24, -0x1p24}, {0x1p40 + 0.5, -0x1p40, 3.0},
       {1e15, 1e15, 1e15},   {0x1p53, -0x1p53, 0x1p52}, {1e200, -1e200, 1e-200},
@@ -81,7 +85,7 @@ TEST(StressMagnitudes, TranslatedByLargeOffsets) {
 // Near 1e300 two boxes of the translated scene can collapse onto the same doubles: then
 // they touch and must pair, exactly as the oracle says.
 TEST(StressMagnitudes, TranslatedLatticeCollapses) {
-  const BoxSet base = latticeScene(1200, 40, 2, 42);
+  const BoxSet base = latticeBoxes(1200, 40, 2, 42);
   const double offset[3] = {1e20, 1e20, 1e20};  // 1 is far below one ulp of 1e20
   const BoxSet moved = translated(base, offset);
   const PairList oracle = bruteForcePairs(moved);

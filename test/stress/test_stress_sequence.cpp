@@ -10,13 +10,16 @@
 #include "sap_broadphase/core/brute_force.h"
 #include "stress_scenes.h"
 #include "stress_support.h"
+#include "test_support.h"
 
 namespace sap_broadphase::stress {
 namespace {
 
+using test_support::randomBoxes;
+
 std::vector<std::pair<std::string, BoxSet>> frameSequence() {
   std::vector<std::pair<std::string, BoxSet>> frames;
-  frames.emplace_back("uniform", uniformScene(5000, 100.0, 3.0, 91));
+  frames.emplace_back("uniform", randomBoxes(5000, 100.0, 3.0, 91));
   frames.emplace_back("empty", BoxSet());
   frames.emplace_back("ulp lattice 1e300", ulpLatticeScene(1e300, 5000, 12, 2, 92));
   frames.emplace_back("subnormals", subnormalScene(5000, 93));
@@ -26,7 +29,7 @@ std::vector<std::pair<std::string, BoxSet>> frameSequence() {
   frames.emplace_back("infinite slabs", infiniteSlabScene(5000, 94));
   frames.emplace_back("magnitudes", magnitudeScene(5000, 95));
   frames.emplace_back("special values", specialValueScene(5000, 96));
-  frames.emplace_back("uniform again", uniformScene(5000, 100.0, 3.0, 91));
+  frames.emplace_back("uniform again", randomBoxes(5000, 100.0, 3.0, 91));
   return frames;
 }
 
@@ -45,7 +48,7 @@ TEST(StressSequence, OneEngineSeesEveryScene) {
 
 // A scene drifting far away frame by frame: partition bounds are always one frame stale.
 TEST(StressSequence, DriftTowardsLargeCoordinates) {
-  const BoxSet base = uniformScene(4500, 50.0, 2.0, 97);
+  const BoxSet base = randomBoxes(4500, 50.0, 2.0, 97);
   BroadphaseConfig config;
   config.method = Method::kParallel;
   config.threads = 3;

@@ -91,7 +91,7 @@ TEST(StressUlp, UlpLatticeAtDoubleMax) {
 // Integer coordinates just above 2^24: doubles hold them exactly, float32 keys round pairs of
 // them together. A one-unit gap must not pair; the keys must not lose the touching pairs.
 TEST(StressUlp, IntegersAbove2Pow24) {
-  StressRandom random(68);
+  SplitMix64 random(68);
   BoxSet boxes;
   for (uint32_t i = 0; i < 4000; ++i) {
     double low[3];
