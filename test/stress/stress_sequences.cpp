@@ -202,20 +202,14 @@ BoxSet reversedOrder(const BoxSet& inBoxes) {
 }
 
 KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes) {
-  KeyOrigin origin;
-  for (int axis = 0; axis < 3; ++axis) {
-    double low = HUGE_VAL, high = -HUGE_VAL;
-    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-      if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;  // dropped before the sweep
-      for (double value : {inBoxes.lo[axis][i], inBoxes.hi[axis][i]})
-        if (std::isfinite(value)) {
-          low = std::min(low, value);
-          high = std::max(high, value);
-        }
-    }
-    if (low <= high) origin.origin[axis] = low / 2 + high / 2;
+  BoxSet swept;  // the boxes the engine sweeps: group and mask 0 are dropped first
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;
+    const double low[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
+    const double high[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    swept.add(inBoxes.ids[i], low, high);
   }
-  return origin;
+  return keyOriginOf(swept, 1);
 }
 
 bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b) {
