@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/axis_spread.h"
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/phase_timer.h"
@@ -120,20 +121,11 @@ namespace {
 
 // Mean finite box extent and the span of the finite bounds on each axis (the skin cost
 // model's picture of the frame).
-void measureExtents(const BoxSet& inBoxes, SkinCosts& ioCosts) {
+void measureExtents(const BoxSet& inBoxes, int inThreads, SkinCosts& ioCosts) {
   for (int axis = 0; axis < 3; ++axis) {
-    double sum = 0.0, low = HUGE_VAL, high = -HUGE_VAL;
-    std::size_t finite = 0;
-    for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-      const double box_low = inBoxes.lo[axis][i], box_high = inBoxes.hi[axis][i];
-      if (!std::isfinite(box_low) || !std::isfinite(box_high)) continue;
-      sum += box_high - box_low;
-      low = std::min(low, box_low);
-      high = std::max(high, box_high);
-      ++finite;
-    }
-    ioCosts.mean_extent[axis] = finite ? sum / static_cast<double>(finite) : 0.0;
-    ioCosts.span[axis] = finite ? high - low : 0.0;
+    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
+    ioCosts.mean_extent[axis] = spread.meanExtent();
+    ioCosts.span[axis] = spread.span();
   }
 }
 
@@ -325,7 +317,7 @@ void Broadphase::Impl::learnCosts(const FramePlan& inPlan, const BoxSet& inSwept
     costs.reference_boxes = inSwept.size();
     costs.reference_candidates = candidates;
     costs.reference_skin = inPlan.sweep_skin;
-    measureExtents(inSwept, costs);
+    measureExtents(inSwept, inPlan.threads, costs);
   }
   if (inPlan.work == FrameWork::kKeptCandidates && kept.candidates() > 0) {
     // The whole pass is charged to its candidates and boxes in the proportion of the

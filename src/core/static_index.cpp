@@ -1,5 +1,7 @@
 #include "core/static_index.h"
 
+#include "core/axis_spread.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -9,64 +11,23 @@
 #include "core/radix_sort.h"
 #include "sap_broadphase/core/broadphase.h"  // resolveThreadCount
 
+#include "core/tuning.h"
+
 namespace sap_broadphase {
+
 namespace {
 
 // Bits of one axis's cell index in Slot::low_cells; three axes fit in 63 bits.
 constexpr int kCellBits = 21;
 constexpr uint32_t kMaxCellsOnAxis = uint32_t{1} << kCellBits;
-// Cell edge in mean box extents. At one extent a box covers about 2^3 cells and a cell holds
-// about density * 8 boxes; the cap below usually decides instead.
-constexpr double kCellInExtents = 1.0;
-// Most cells per indexed box: bounds the offsets array (8 bytes a cell) and empty-cell visits.
-constexpr double kCellsPerBox = 1.0;
-// A box covering more cells than this goes to the large list: listing it in every cell would
-// cost more memory and cell visits than testing it against each query.
-constexpr uint64_t kMaxCellsPerBox = 64;
-// Fewest queries worth a thread of their own in queryAll.
-constexpr std::size_t kMinQueriesPerThread = 64;
-// Queries handed out together (static schedule: the same split on every run).
-constexpr int kQueryChunk = 16;
 
-// Finite spread of the indexed boxes on one axis.
-struct AxisSpread {
-  double lowest = std::numeric_limits<double>::infinity();
-  double highest = -std::numeric_limits<double>::infinity();
-  double extent_sum = 0.0;
-  std::size_t finite_boxes = 0;
-};
-
-AxisSpread measureAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes, int inAxis,
-                       int inThreads) {
-  const double* low = inBoxes.lo[inAxis].data();
-  const double* high = inBoxes.hi[inAxis].data();
-  double lowest = std::numeric_limits<double>::infinity();
-  double highest = -std::numeric_limits<double>::infinity();
-  double extent_sum = 0.0;
-  std::size_t finite_boxes = 0;
-  const std::size_t count = inIndexes.size();
-#pragma omp parallel for num_threads(inThreads) reduction(min : lowest) reduction(max : highest) \
-    reduction(+ : extent_sum, finite_boxes)
-  for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t i = inIndexes[k];
-    if (std::isfinite(low[i])) lowest = std::min(lowest, low[i]);
-    if (std::isfinite(high[i])) highest = std::max(highest, high[i]);
-    const double extent = high[i] - low[i];  // inf for infinite or overflowing intervals
-    if (std::isfinite(extent)) {
-      extent_sum += extent;
-      ++finite_boxes;
-    }
-  }
-  return AxisSpread{lowest, highest, extent_sum, finite_boxes};
-}
-
-// Cells wanted on one axis before the total cap: span / (kCellInExtents * mean extent).
+// Cells wanted on one axis before the total cap: span / (tuning::kCellInExtents * mean extent).
 uint32_t wantedCells(const AxisSpread& inSpread) {
   const double span = inSpread.highest - inSpread.lowest;
   if (inSpread.finite_boxes == 0 || !(span > 0.0) || !std::isfinite(span)) return 1;
   const double mean_extent = inSpread.extent_sum / static_cast<double>(inSpread.finite_boxes);
   if (!(mean_extent > 0.0)) return kMaxCellsOnAxis;  // points: the total cap decides
-  const double wanted = span / (kCellInExtents * mean_extent);
+  const double wanted = span / (tuning::kCellInExtents * mean_extent);
   if (!(wanted > 1.0)) return 1;
   if (wanted >= kMaxCellsOnAxis) return kMaxCellsOnAxis;
   return static_cast<uint32_t>(std::ceil(wanted));
@@ -93,7 +54,7 @@ template <typename Slot, typename QueryBox>
 bool overlapsAndAllowed(const Slot& inSlot, const QueryBox& inBox) {
   for (int axis = 0; axis < 3; ++axis)
     if (inSlot.lo[axis] > inBox.hi[axis] || inBox.lo[axis] > inSlot.hi[axis]) return false;
-  return (inSlot.group & inBox.mask) != 0 && (inBox.group & inSlot.mask) != 0;
+  return groupsMayPair(inSlot.group, inSlot.mask, inBox.group, inBox.mask);
 }
 
 }  // namespace
@@ -111,11 +72,11 @@ void StaticIndex::chooseGrid(const BoxSet& inBoxes, const std::vector<uint32_t>&
                              int inThreads) {
   AxisSpread spreads[3];
   for (int axis = 0; axis < 3; ++axis) {
-    spreads[axis] = measureAxis(inBoxes, inIndexes, axis, inThreads);
+    spreads[axis] = measureAxisSpread(inBoxes, axis, inThreads, &inIndexes);
     dims_[axis] = wantedCells(spreads[axis]);
   }
   // Halving the finest axis keeps cells as close to cubes (in extents) as the cap allows.
-  const double cap = std::max(1.0, kCellsPerBox * static_cast<double>(inIndexes.size()));
+  const double cap = std::max(1.0, tuning::kCellsPerBox * static_cast<double>(inIndexes.size()));
   while (static_cast<double>(cellsOf(dims_)) > cap) {
     uint32_t& finest = *std::max_element(dims_, dims_ + 3);
     finest = (finest + 1) / 2;
@@ -147,7 +108,7 @@ void StaticIndex::placeBoxes(const BoxSet& inBoxes, const std::vector<uint32_t>&
       low[axis] = cellOf(axis, inBoxes.lo[axis][i]);
       covered *= cellOf(axis, inBoxes.hi[axis][i]) - low[axis] + 1;
     }
-    home[k] = covered > kMaxCellsPerBox
+    home[k] = covered > tuning::kMaxCellsPerBox
                   ? kLarge
                   : (uint64_t{low[2]} * dims_[1] + low[1]) * dims_[0] + low[0];
   }
@@ -311,8 +272,9 @@ void StaticIndex::scanSlots(const QueryBox& inBox, std::size_t inBegin, std::siz
 void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                            int inThreads, PairList& outPairs) const {
   const std::size_t count = inQueryIndexes.size();
-  const int threads = static_cast<int>(std::min<std::size_t>(
-      resolveThreadCount(inThreads), std::max<std::size_t>(1, count / kMinQueriesPerThread)));
+  const int threads = static_cast<int>(
+      std::min<std::size_t>(resolveThreadCount(inThreads),
+                            std::max<std::size_t>(1, count / tuning::kMinQueriesPerThread)));
   if (threads == 1) {
     for (uint32_t i : inQueryIndexes) query(inQueries, i, outPairs);
     return;
@@ -321,7 +283,7 @@ void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>&
 #pragma omp parallel num_threads(threads)
   {
     PairList& mine = parts[omp_get_thread_num()];
-#pragma omp for schedule(static, kQueryChunk)
+#pragma omp for schedule(static, tuning::kQueryChunk)
     for (std::size_t k = 0; k < count; ++k) query(inQueries, inQueryIndexes[k], mine);
   }
   std::size_t total = outPairs.size();

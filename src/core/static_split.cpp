@@ -3,13 +3,9 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/tuning.h"
+
 namespace sap_broadphase {
-namespace {
-
-// Most distinct group/mask classes looked at among the unchanged boxes.
-constexpr std::size_t kMaxFilterClasses = 64;
-
-}  // namespace
 
 void StaticSplit::clear() {
   active_ = false;
@@ -62,7 +58,7 @@ bool StaticSplit::chooseClasses(const BoxSet& inBoxes, const std::vector<uint8_t
       while (last < classes.size() && (classes[last].group != group || classes[last].mask != mask))
         ++last;
       if (last == classes.size()) {
-        if (classes.size() == kMaxFilterClasses) return false;
+        if (classes.size() == tuning::kMaxFilterClasses) return false;
         classes.push_back({group, mask, 0});
       }
     }

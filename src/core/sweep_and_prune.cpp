@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/axis_policy.h"
+#include "core/axis_spread.h"
 #include "core/buffers.h"
 #include "core/phase_timer.h"
 #include "core/sort_keys.h"
@@ -24,24 +25,6 @@ double differenceError(double inValue, double inOrigin, double& outDifference) {
 
 bool isFloat(double inValue) {
   return static_cast<double>(static_cast<float>(inValue)) == inValue;
-}
-
-// Smallest and largest finite value of inValues, or nothing finite (then low > high).
-void finiteSpan(const std::vector<double>& inValues, int inThreads, double& ioLow, double& ioHigh) {
-  double low = ioLow, high = ioHigh;
-  const std::size_t n = inValues.size();
-  const double* values = inValues.data();
-#pragma omp parallel for num_threads(inThreads) schedule(static) reduction(min    \
-                                                                           : low) \
-    reduction(max                                                                 \
-              : high)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(values[i])) continue;
-    low = std::min(low, values[i]);
-    high = std::max(high, values[i]);
-  }
-  ioLow = low;
-  ioHigh = high;
 }
 
 }  // namespace
@@ -104,22 +87,13 @@ double axisOrigin(double inLow, double inHigh) {
   return std::fabs(centre) > tuning::kFarFromOriginInSpans * half_span ? centre : 0.0;
 }
 
-void finiteSpanOfAxis(const BoxSet& inBoxes, int inAxis, int inThreads, double& outLow,
-                      double& outHigh) {
-  outLow = HUGE_VAL;
-  outHigh = -HUGE_VAL;
-  finiteSpan(inBoxes.lo[inAxis], inThreads, outLow, outHigh);
-  finiteSpan(inBoxes.hi[inAxis], inThreads, outLow, outHigh);
-}
-
 }  // namespace
 
 KeyOrigin keyOriginOf(const BoxSet& inBoxes, int inThreads) {
   KeyOrigin origin;
   for (int axis = 0; axis < 3; ++axis) {
-    double low, high;
-    finiteSpanOfAxis(inBoxes, axis, inThreads, low, high);
-    origin.origin[axis] = axisOrigin(low, high);
+    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
+    origin.origin[axis] = axisOrigin(spread.lowest, spread.highest);
   }
   return origin;
 }
@@ -128,10 +102,9 @@ KeyOrigin keyOriginOf(const BoxSet& inBoxes, int inThreads) {
 // and B with them).
 void SweepAndPrune::placeKeyOrigins(const BoxSet& inBoxes, int inThreads) {
   for (int axis = 0; axis < 3; ++axis) {
-    double low, high;
-    finiteSpanOfAxis(inBoxes, axis, inThreads, low, high);
-    const double origin = axisOrigin(low, high);
-    const double span = low <= high ? high / 2 - low / 2 : 0.0;  // half the span
+    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
+    const double origin = axisOrigin(spread.lowest, spread.highest);
+    const double span = spread.hasSpan() ? spread.highest / 2 - spread.lowest / 2 : 0.0;  // half
     const double drift = std::fabs(origin - key_origin_.origin[axis]);
     if (origin_placed_[axis] && drift <= tuning::kOriginDriftInSpans * 2 * span) continue;
     if (key_origin_.origin[axis] != origin)

@@ -47,7 +47,7 @@ inline bool keysCertainlyOverlap(const RankedKeys& inA, const RankedKeys& inB) {
 }
 
 inline bool filtersAllow(const RankedFilter& inA, const RankedFilter& inB) {
-  return (inA.group & inB.mask) != 0 && (inB.group & inA.mask) != 0;
+  return groupsMayPair(inA.group, inA.mask, inB.group, inB.mask);
 }
 
 // Where a sweep reads its endpoints: the whole secondary stream (Algorithm 1) or one

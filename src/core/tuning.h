@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace sap_broadphase::tuning {
 
@@ -15,6 +16,32 @@ constexpr int kSortPartitions = 16;
 /// Below this many endpoints one partition is cheaper than bucketing into m of them.
 constexpr std::size_t kMinPartitionedEndpoints = 8192;
 
+// ---- Third-axis slab active lists (slab_grid.h) ----
+
+/// Below this many boxes one active list is as fast as any split.
+constexpr std::size_t kMinBoxesForSlabs = 2048;
+/// Slab width in mean box extents: wider slabs mean more candidates per query, narrower ones
+/// mean boxes sit in more trees.
+constexpr double kSlabWidthInExtents = 2.0;
+
+// ---- Static index: resting boxes and declared scenery (static_index.h, static_split.h) ----
+
+/// Cell edge in mean box extents. At one extent a box covers about 2^3 cells and a cell holds
+/// about density * 8 boxes; the cap below usually decides instead.
+constexpr double kCellInExtents = 1.0;
+/// Most cells per indexed box: bounds the offsets array (8 bytes a cell) and empty-cell visits.
+constexpr double kCellsPerBox = 1.0;
+/// A box covering more cells than this goes to the large list: listing it in every cell would
+/// cost more memory and cell visits than testing it against each query.
+constexpr uint64_t kMaxCellsPerBox = 64;
+/// Fewest queries worth a thread of their own in queryAll.
+constexpr std::size_t kMinQueriesPerThread = 64;
+/// Queries handed out together (static schedule: the same split on every run).
+constexpr int kQueryChunk = 16;
+
+/// Most distinct group/mask classes looked at among the unchanged boxes.
+constexpr std::size_t kMaxFilterClasses = 64;
+
 // ---- Large-world coordinates (sort keys relative to the frame) ----
 
 /// The keys are float32 of (coordinate - origin). The origin is 0 (the keys of the
@@ -22,10 +49,9 @@ constexpr std::size_t kMinPartitionedEndpoints = 8192;
 /// 0: there keys of the coordinates would be at least that many times coarser than keys
 /// relative to the centre (UTM and ECEF coordinates, for example).
 constexpr double kFarFromOriginInSpans = 64.0;
-/// The origin of an axis is kept from frame The origin of an axis is kept from frame
-/// to frame, so that the partition bounds B stay valid (temporal coherence), until the
-/// frame's centre moved by more than this fraction of its span: then precision near the
-/// boxes would start to suffer and the origin is re-centred.
+/// The origin of an axis is kept from frame to frame, so that the partition bounds B stay valid
+/// (temporal coherence), until the frame's centre moved by more than this fraction of its span:
+/// then precision near the boxes would start to suffer and the origin is re-centred.
 constexpr double kOriginDriftInSpans = 0.125;
 
 // ---- Frame history and the plan ----

@@ -1,4 +1,4 @@
-# rostests of the node (issue 3); included by test/tests.cmake under CATKIN_ENABLE_TESTING.
+# rostests of the node; included by test/tests.cmake under CATKIN_ENABLE_TESTING.
 # Each test launches its own roscore on a loopback port chosen by rostest; every <test> has a
 # time-limit and no test asserts on wall-clock speed.
 find_package(rostest REQUIRED)
