@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstring>
 #include <vector>
 
 namespace sap_broadphase {
@@ -17,6 +18,13 @@ void resizeDiscarding(std::vector<T>& ioBuffer, std::size_t inSize) {
     ioBuffer.reserve(inSize + inSize / 8);
   }
   ioBuffer.resize(inSize);
+}
+
+/// True when the two vectors hold the same elements, byte for byte (so -0.0 differs from 0.0).
+template <typename T>
+bool sameElements(const std::vector<T>& inA, const std::vector<T>& inB) {
+  return inA.size() == inB.size() &&
+         (inA.empty() || std::memcmp(inA.data(), inB.data(), inA.size() * sizeof(T)) == 0);
 }
 
 }  // namespace sap_broadphase

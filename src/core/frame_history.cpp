@@ -1,4 +1,5 @@
 #include "core/frame_history.h"
+#include "core/buffers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,12 +7,6 @@
 
 namespace sap_broadphase {
 namespace {
-
-template <typename T>
-bool sameElements(const std::vector<T>& inA, const std::vector<T>& inB) {
-  return inA.size() == inB.size() &&
-         (inA.empty() || std::memcmp(inA.data(), inB.data(), inA.size() * sizeof(T)) == 0);
-}
 
 bool sameBits(double inA, double inB) {
   return std::memcmp(&inA, &inB, sizeof inA) == 0;

@@ -18,12 +18,6 @@
 namespace sap_broadphase {
 namespace {
 
-template <typename T>
-bool sameElements(const std::vector<T>& inA, const std::vector<T>& inB) {
-  return inA.size() == inB.size() &&
-         (inA.empty() || std::memcmp(inA.data(), inB.data(), inA.size() * sizeof(T)) == 0);
-}
-
 /// Box i of inBoxes as a record (lane 3 zero).
 BoundsRecord recordOf(const BoxSet& inBoxes, std::size_t i) {
   return {{inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i], 0.0},
