@@ -93,5 +93,29 @@ TEST(StressMagnitudes, TranslatedLatticeCollapses) {
   expectStressMatch(moved, oracle, "lattice translated by 1e20");
 }
 
+// Robots in UTM or Earth-centred coordinates: 5 cm boxes in a 10 m site, millions of metres
+// from the origin. Exact for every configuration, and the keys, taken relative to the frame,
+// do not collapse: the primary sort's dispersion D stays that of the same site at the origin.
+TEST(StressMagnitudes, SmallBoxesAtEarthScaleCoordinates) {
+  const BoxSet site = randomBoxes(5000, 10.0, 0.05, 43);  // 10^4 endpoints: 16 partitions
+  const double offsets[][3] = {
+      {4.2e6, 1.1e6, 4.7e6}, {-2.7e6, -4.3e6, 3.9e6}, {500000.5, 5.4e6, 120.0}, {1e9, -1e9, 1e9}};
+  BroadphaseConfig config;
+  config.method = Method::kParallel;
+  config.threads = 2;
+  Broadphase at_origin(config);
+  at_origin.update(site);
+  for (const auto& offset : offsets) {
+    const BoxSet moved = translated(site, offset);
+    const std::string label = "site at (" + std::to_string(offset[0]) + ", " +
+                              std::to_string(offset[1]) + ", " + std::to_string(offset[2]) + ")";
+    expectStressMatch(moved, label);
+    Broadphase far_away(config);
+    far_away.update(moved);
+    EXPECT_LT(far_away.stats().dispersion_primary, at_origin.stats().dispersion_primary + 0.05)
+        << label;
+  }
+}
+
 }  // namespace
 }  // namespace sap_broadphase::stress
