@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -299,7 +300,7 @@ void Broadphase::Impl::addSceneryPairs(const BoxSet& inBoxes, int inThreads) {
   report.static_boxes += scenery.size();
   if (inBoxes.size() == 0) return;
   every_box.resize(inBoxes.size());
-  for (std::size_t i = 0; i < every_box.size(); ++i) every_box[i] = static_cast<uint32_t>(i);
+  std::iota(every_box.begin(), every_box.end(), 0u);
   const std::size_t before = pairs.size();
   scenery.queryAll(inBoxes, every_box, inThreads, pairs);
   if (pairs.size() != before) sortPairsCanonical(pairs, pair_scratch);
@@ -442,7 +443,7 @@ void Broadphase::reset() {
 
 void Broadphase::setStaticBoxes(const BoxSet& inStaticBoxes) {
   std::vector<uint32_t> every_box(inStaticBoxes.size());
-  for (std::size_t i = 0; i < every_box.size(); ++i) every_box[i] = static_cast<uint32_t>(i);
+  std::iota(every_box.begin(), every_box.end(), 0u);
   impl_->scenery.build(inStaticBoxes, every_box, resolveThreadCount(impl_->config.threads));
   impl_->pairs_valid = false;  // the last pairs were computed against other scenery
 }

@@ -93,12 +93,4 @@ void FrameHistory::shrinkToFit() {
   unchanged_.shrink_to_fit();
 }
 
-std::size_t FrameHistory::memoryBytes() const {
-  std::size_t bytes = last_.ids.capacity() * sizeof(uint32_t) + unchanged_.capacity();
-  for (int axis = 0; axis < 3; ++axis)
-    bytes += (last_.lo[axis].capacity() + last_.hi[axis].capacity()) * sizeof(double);
-  bytes += (last_.groups.capacity() + last_.masks.capacity()) * sizeof(uint32_t);
-  return bytes;
-}
-
 }  // namespace sap_broadphase

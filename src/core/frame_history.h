@@ -46,8 +46,6 @@ class FrameHistory {
   void forget();
   /// Gives back the capacity the copy does not use (after a burst of larger frames).
   void shrinkToFit();
-  /// Bytes held.
-  std::size_t memoryBytes() const;
 
  private:
   void compareBoxByBox(const BoxSet& inBoxes, int inThreads);
