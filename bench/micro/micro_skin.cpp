@@ -84,7 +84,7 @@ const SkinScene& skinScene(const benchmark::State& inState) {
   simulator.step();
   slot->next = simulator.boxes();
   SkinList list;
-  list.inflate(slot->swept, skin, slot->inflated);
+  slot->inflated = list.inflate(slot->swept, skin);
   BroadphaseConfig sweep;
   sweep.skin = 0.0;
   Broadphase engine(sweep);
@@ -106,8 +106,7 @@ void BM_SkinPass(benchmark::State& state) {
   const SkinScene& scene = skinScene(state);
   const int threads = static_cast<int>(state.range(2));
   SkinList list;
-  BoxSet inflated;
-  list.inflate(scene.swept, skinArg(state), inflated);
+  list.inflate(scene.swept, skinArg(state));
   list.adopt(scene.swept, scene.kept);
   PairList pairs;
   for (auto _ : state) {
@@ -135,9 +134,8 @@ void BM_SkinPassBaseline(benchmark::State& state) {
 void BM_SkinAdopt(benchmark::State& state) {
   const SkinScene& scene = skinScene(state);
   SkinList list;
-  BoxSet inflated;
   for (auto _ : state) {
-    list.inflate(scene.swept, skinArg(state), inflated);
+    benchmark::DoNotOptimize(list.inflate(scene.swept, skinArg(state)).size());
     list.adopt(scene.swept, scene.kept);
   }
   reportPerCandidate(state, scene);

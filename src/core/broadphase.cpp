@@ -150,11 +150,18 @@ struct Broadphase::Impl {
   StaticIndex scenery;              // boxes declared static (setStaticBoxes)
   std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
   BoxSet collidable;                // the frame without boxes that can pair with nothing
-  BoxSet grown;                     // the swept boxes grown by the skin
   PairList pairs;
   PairSortScratch pair_scratch;
   bool pairs_valid = false;  // pairs hold the last frame's whole answer
   SkinCosts costs;
+  // This frame's share of the kept-candidate work, for learnCosts: growing the boxes, keeping
+  // the grown sweep's candidates, every pass tried, and the last pass (the one that answered).
+  struct KeptWorkTimes {
+    double ms_grow = 0.0;
+    double ms_keep = 0.0;
+    double ms_passes = 0.0;
+    double ms_last_pass = 0.0;
+  } kept_times;
   double recent_motion[tuning::kMotionWindow] = {};
   int motion_slot = 0;
   int small_frames = 0;
@@ -170,6 +177,7 @@ struct Broadphase::Impl {
   void addRestingPairs(const BoxSet& inBoxes, int inThreads);
   void addSceneryPairs(const BoxSet& inBoxes, int inThreads);
   void learnCosts(const FramePlan& inPlan, const BoxSet& inSwept, std::size_t inSweepPairs);
+  void learnPassCosts(double inMilliseconds, double inBoxes);
   void rememberMotion(const FrameDelta& inDelta);
   double recentMotion() const;
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
@@ -229,21 +237,28 @@ PlanInputs Broadphase::Impl::planInputs(const BoxSet& inBoxes, const BoxSet& inS
 
 // The kept-candidate pass: false (pairs untouched) when some box left its skin.
 bool Broadphase::Impl::testKeptCandidates(const BoxSet& inSwept, int inThreads) {
-  PhaseTimer timer(report.ms_pairing);
   report.skin_candidates = kept.candidates();
-  return kept.collect(inSwept, inThreads, pairs);
+  const Clock::time_point start = Clock::now();
+  const bool covered = kept.collect(inSwept, inThreads, pairs);
+  kept_times.ms_last_pass = millisecondsSince(start);
+  kept_times.ms_passes += kept_times.ms_last_pass;
+  report.ms_pairing += kept_times.ms_last_pass;
+  return covered;
 }
 
 // Sweeps the boxes grown by the plan's skin; its pairs become the kept candidates, and the
 // exact pairs are those of them that overlap now.
 void Broadphase::Impl::sweepGrown(const BoxSet& inSwept, const FramePlan& inPlan) {
+  const BoxSet* grown = nullptr;
   {
     PhaseTimer timer(report.ms_keys);
-    kept.inflate(inSwept, inPlan.sweep_skin, grown);
+    PhaseTimer grow_timer(kept_times.ms_grow);
+    grown = &kept.inflate(inSwept, inPlan.sweep_skin, inPlan.threads);
   }
-  sweep.run(grown, inPlan.sweep_path, inPlan.threads, report, pairs);
+  sweep.run(*grown, inPlan.sweep_path, inPlan.threads, report, pairs);
   {
     PhaseTimer timer(report.ms_pairing);
+    PhaseTimer keep_timer(kept_times.ms_keep);
     kept.adopt(inSwept, pairs);
   }
   kept_skin = inPlan.sweep_skin;
@@ -306,30 +321,45 @@ void Broadphase::Impl::addSceneryPairs(const BoxSet& inBoxes, int inThreads) {
   if (pairs.size() != before) sortPairsCanonical(pairs, pair_scratch);
 }
 
-// What this frame's work cost, for the automatic skin's next choice.
+// What this frame's work cost, for the automatic skin's next choice. A grown sweep's frame
+// holds four kinds of work: growing the boxes, the sweep itself, keeping its candidates and
+// the pass that answers the frame; each is learnt as its own cost (SkinCosts).
 void Broadphase::Impl::learnCosts(const FramePlan& inPlan, const BoxSet& inSwept,
                                   std::size_t inSweepPairs) {
   const double boxes = static_cast<double>(inSwept.size());
   if (inPlan.work == FrameWork::kSweep && inSwept.size() >= tuning::kMinSkinBoxes) {
-    const double candidates =
-        static_cast<double>(inPlan.sweep_skin > 0.0 ? kept.candidates() : inSweepPairs);
-    costs.sweep_ns_per_box = (report.ms_keys + report.ms_sort + report.ms_candidates) * 1e6 / boxes;
-    costs.pairing_ns_per_item = (report.ms_pairing + report.ms_output) * 1e6 / (boxes + candidates);
+    const bool grown_sweep = inPlan.sweep_skin > 0.0;
+    const double candidates = static_cast<double>(grown_sweep ? kept.candidates() : inSweepPairs);
+    const double ms_sweep_per_box =
+        report.ms_keys + report.ms_sort + report.ms_candidates - kept_times.ms_grow;
+    const double ms_sweep_per_item =
+        report.ms_pairing + report.ms_output - kept_times.ms_keep - kept_times.ms_passes;
+    costs.sweep_ns_per_box = std::max(0.0, ms_sweep_per_box) * 1e6 / boxes;
+    costs.pairing_ns_per_item = std::max(0.0, ms_sweep_per_item) * 1e6 / (boxes + candidates);
     costs.reference_boxes = inSwept.size();
     costs.reference_candidates = candidates;
     costs.reference_skin = inPlan.sweep_skin;
     measureExtents(inSwept, inPlan.threads, costs);
+    if (grown_sweep) {
+      costs.grow_ns_per_box = smoothed(costs.grow_ns_per_box, kept_times.ms_grow * 1e6 / boxes);
+      costs.keep_ns_per_candidate = smoothed(costs.keep_ns_per_candidate,
+                                             kept_times.ms_keep * 1e6 / std::max(1.0, candidates));
+    }
   }
-  if (inPlan.work == FrameWork::kKeptCandidates && kept.candidates() > 0) {
-    // The whole pass is charged to its candidates and boxes in the proportion of the
-    // initial estimates; what matters to the model is the pass's total at this size.
-    const double estimate = tuning::kInitialNsPerBox * boxes +
-                            tuning::kInitialNsPerCandidate * static_cast<double>(kept.candidates());
-    const double scale = report.ms_pairing * 1e6 / estimate;
-    costs.pass_ns_per_box = smoothed(costs.pass_ns_per_box, tuning::kInitialNsPerBox * scale);
-    costs.pass_ns_per_candidate =
-        smoothed(costs.pass_ns_per_candidate, tuning::kInitialNsPerCandidate * scale);
-  }
+  const bool answered_by_pass = inPlan.work == FrameWork::kKeptCandidates ||
+                                (inPlan.work == FrameWork::kSweep && inPlan.sweep_skin > 0.0);
+  if (answered_by_pass && kept.candidates() > 0) learnPassCosts(kept_times.ms_last_pass, boxes);
+}
+
+// The whole pass is charged to its candidates and boxes in the proportion of the initial
+// estimates; what matters to the model is the pass's total at this size.
+void Broadphase::Impl::learnPassCosts(double inMilliseconds, double inBoxes) {
+  const double estimate = tuning::kInitialNsPerBox * inBoxes +
+                          tuning::kInitialNsPerCandidate * static_cast<double>(kept.candidates());
+  const double scale = inMilliseconds * 1e6 / estimate;
+  costs.pass_ns_per_box = smoothed(costs.pass_ns_per_box, tuning::kInitialNsPerBox * scale);
+  costs.pass_ns_per_candidate =
+      smoothed(costs.pass_ns_per_candidate, tuning::kInitialNsPerCandidate * scale);
 }
 
 void Broadphase::Impl::rememberMotion(const FrameDelta& inDelta) {
@@ -354,7 +384,7 @@ void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
   small_frames = 0;
   sweep.releaseBuffers();
   history.shrinkToFit();
-  grown = BoxSet();
+  kept = SkinList();  // the next grown sweep keeps candidates of the frame's size again
   collidable = BoxSet();
   pairs.shrink_to_fit();
   pair_scratch = PairSortScratch();
@@ -374,6 +404,7 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
   const FrameReport last_report = impl.report;
   FrameReport& report = impl.report;
   report = FrameReport();
+  impl.kept_times = Impl::KeptWorkTimes();
   {
     PhaseTimer total(report.ms_total);
     report.boxes = inBoxes.size();

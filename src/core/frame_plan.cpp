@@ -42,11 +42,14 @@ double sweepNs(const SkinCosts& inCosts, double inBoxes, double inSkin, double& 
          inCosts.pairing_ns_per_item * (inBoxes + outCandidates);
 }
 
-// Expected nanoseconds a frame of a cycle at skin inSkin: one sweep of the grown boxes, then
-// kept-candidate passes until a box has moved half the skin (the sweep frame passes too).
+// Expected nanoseconds a frame of a cycle at skin inSkin: one sweep of the grown boxes that
+// keeps its candidates, then kept-candidate passes until a box has moved half the skin (the
+// sweep frame passes too).
 double cycleNsPerFrame(const SkinCosts& inCosts, double inBoxes, double inSkin, double inMotion) {
   double candidates = 0.0;
-  const double sweep_ns = sweepNs(inCosts, inBoxes, inSkin, candidates);
+  const double sweep_ns = sweepNs(inCosts, inBoxes, inSkin, candidates) +
+                          inCosts.grow_ns_per_box * inBoxes +
+                          inCosts.keep_ns_per_candidate * candidates;
   const double pass_ns =
       inCosts.pass_ns_per_box * inBoxes + inCosts.pass_ns_per_candidate * candidates;
   const double frames = 1.0 + std::floor(inSkin / (2.0 * inMotion));
@@ -80,6 +83,10 @@ double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts
   if (costs.pass_ns_per_box <= 0.0) {
     costs.pass_ns_per_box = tuning::kInitialNsPerBox;
     costs.pass_ns_per_candidate = tuning::kInitialNsPerCandidate;
+  }
+  if (costs.grow_ns_per_box <= 0.0) {
+    costs.grow_ns_per_box = tuning::kInitialGrowNsPerBox;
+    costs.keep_ns_per_candidate = tuning::kInitialKeepNsPerCandidate;
   }
   const double boxes = static_cast<double>(inBoxes);
   double plain_candidates = 0.0;

@@ -22,13 +22,20 @@ enum class FrameWork : uint8_t {
 };
 
 /// What earlier frames measured, for choosing a skin. A sweep costs a part per box (keys,
-/// sorts, candidate ranges) and a part per box and candidate (pairing, output); a
-/// kept-candidate pass a part per box (containment) and one per candidate (the exact test).
+/// sorts, candidate ranges) and a part per box and candidate (pairing, output); a grown
+/// sweep adds the growing and the keeping of its candidates; a kept-candidate pass costs a
+/// part per box (containment) and one per candidate (the exact test). Each part is learnt
+/// only from the work it describes, so that a grown sweep's extra work is charged to the skin
+/// and never to the plain sweep it is compared with.
 struct SkinCosts {
   double sweep_ns_per_box = 0.0;     ///< 0: no sweep measured yet
   double pairing_ns_per_item = 0.0;  ///< per box + candidate of that sweep
   double pass_ns_per_box = 0.0;      ///< 0: no pass measured yet
   double pass_ns_per_candidate = 0.0;
+  /// What a grown sweep costs beyond the same sweep of plain boxes: growing the boxes (per
+  /// box) and keeping its pairs as candidates (per candidate). 0: no grown sweep measured yet.
+  double grow_ns_per_box = 0.0;
+  double keep_ns_per_candidate = 0.0;
   std::size_t reference_boxes = 0;          ///< boxes of the last sweep
   double reference_candidates = 0.0;        ///< pairs it found (of its grown boxes)
   double reference_skin = 0.0;              ///< its skin

@@ -136,24 +136,29 @@ bool SkinList::covers(const BoxSet& inBoxes, int inThreads) const {
   return inside;
 }
 
-void SkinList::inflate(const BoxSet& inBoxes, double inSkin, BoxSet& outInflated) {
+const BoxSet& SkinList::inflate(const BoxSet& inBoxes, double inSkin, int inThreads) {
   const double margin = inSkin / 2;
   const double infinity = std::numeric_limits<double>::infinity();
-  const std::size_t n = inBoxes.size();
-  outInflated.ids = inBoxes.ids;
-  outInflated.groups = inBoxes.groups;
-  outInflated.masks = inBoxes.masks;
+  const auto n = static_cast<std::ptrdiff_t>(inBoxes.size());
+  reference_.ids = inBoxes.ids;
+  reference_.groups = inBoxes.groups;
+  reference_.masks = inBoxes.masks;
   for (int axis = 0; axis < 3; ++axis) {
-    outInflated.lo[axis].resize(n);
-    outInflated.hi[axis].resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
+    resizeDiscarding(reference_.lo[axis], inBoxes.size());
+    resizeDiscarding(reference_.hi[axis], inBoxes.size());
+    const double* low = inBoxes.lo[axis].data();
+    const double* high = inBoxes.hi[axis].data();
+    double* grown_low = reference_.lo[axis].data();
+    double* grown_high = reference_.hi[axis].data();
+#pragma omp parallel for num_threads(inThreads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
       // One step further out than the rounded sum: the inflated box contains the exact one.
-      outInflated.lo[axis][i] = std::nextafter(inBoxes.lo[axis][i] - margin, -infinity);
-      outInflated.hi[axis][i] = std::nextafter(inBoxes.hi[axis][i] + margin, infinity);
+      grown_low[i] = std::nextafter(low[i] - margin, -infinity);
+      grown_high[i] = std::nextafter(high[i] + margin, infinity);
     }
   }
-  reference_ = outInflated;
   valid_ = false;  // until adopt() receives this sweep's candidates
+  return reference_;
 }
 
 void SkinList::adopt(const BoxSet& inBoxes, const PairList& inCandidates) {
@@ -162,29 +167,35 @@ void SkinList::adopt(const BoxSet& inBoxes, const PairList& inCandidates) {
     throw std::length_error("skin reuse keeps fewer than 2^32 candidate pairs");
   canonical_pairs_ = inCandidates;
   const IndexOfId index_of(inBoxes.ids);
-  std::vector<uint32_t> candidate_indexes(2 * count);  // both boxes of candidate k at 2k, 2k+1
+  std::vector<uint32_t>& candidate_indexes = scratch_.candidate_indexes;
+  resizeDiscarding(candidate_indexes, 2 * count);
   for (std::size_t k = 0; k < count; ++k) {
     candidate_indexes[2 * k] = index_of(inCandidates[k].a);
     candidate_indexes[2 * k + 1] = index_of(inCandidates[k].b);
   }
-  keepSpatialOrder(candidate_indexes);
-  keepSpatialCandidates(candidate_indexes);
+  keepSpatialOrder();
+  keepSpatialCandidates();
   valid_ = true;
 }
 
 // The boxes that have candidates, sorted by their inflated lower bound's sort key along the
 // widest axis: partners overlap along that axis too, so they sit a few thousand positions
 // apart at most.
-void SkinList::keepSpatialOrder(const std::vector<uint32_t>& inCandidateIndexes) {
+void SkinList::keepSpatialOrder() {
   const std::size_t n = reference_.size();
-  std::vector<uint8_t> has_candidates(n, 0);
-  for (uint32_t i : inCandidateIndexes) has_candidates[i] = 1;
-  std::vector<uint32_t> members;
+  std::vector<uint8_t>& has_candidates = scratch_.has_candidates;
+  has_candidates.assign(n, 0);
+  for (uint32_t i : scratch_.candidate_indexes) has_candidates[i] = 1;
+  std::vector<uint32_t>& members = scratch_.members;
+  members.clear();
   for (std::size_t i = 0; i < n; ++i)
     if (has_candidates[i]) members.push_back(static_cast<uint32_t>(i));
   const auto spatial_count = static_cast<uint32_t>(members.size());
   const int axis = widestAxis(reference_, members);
-  std::vector<uint32_t> keys(spatial_count), order(spatial_count);
+  std::vector<uint32_t>& keys = scratch_.keys;
+  std::vector<uint32_t>& order = scratch_.order;
+  resizeDiscarding(keys, spatial_count);
+  resizeDiscarding(order, spatial_count);
   for (uint32_t j = 0; j < spatial_count; ++j) keys[j] = lowKey(reference_.lo[axis][members[j]]);
   radixIndexSort(keys.data(), spatial_count, order.data());
   position_of_.assign(n, spatial_count);
@@ -195,22 +206,26 @@ void SkinList::keepSpatialOrder(const std::vector<uint32_t>& inCandidateIndexes)
 
 // The candidates by (first, partner) position: a counting sort by first position, then each
 // short run of one first position sorted by partner.
-void SkinList::keepSpatialCandidates(const std::vector<uint32_t>& inCandidateIndexes) {
-  const std::size_t count = inCandidateIndexes.size() / 2;
+void SkinList::keepSpatialCandidates() {
+  const std::vector<uint32_t>& candidate_indexes = scratch_.candidate_indexes;
+  const std::size_t count = candidate_indexes.size() / 2;
   const std::size_t spatial_count = spatial_count_;
-  std::vector<uint32_t> run_begin(spatial_count + 1, 0);
+  std::vector<uint32_t>& run_begin = scratch_.run_begin;
+  run_begin.assign(spatial_count + 1, 0);
   for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t a = position_of_[inCandidateIndexes[2 * k]];
-    const uint32_t b = position_of_[inCandidateIndexes[2 * k + 1]];
+    const uint32_t a = position_of_[candidate_indexes[2 * k]];
+    const uint32_t b = position_of_[candidate_indexes[2 * k + 1]];
     ++run_begin[std::min(a, b) + 1];
   }
   for (std::size_t first = 0; first < spatial_count; ++first)
     run_begin[first + 1] += run_begin[first];
-  std::vector<uint64_t> runs(count);  // partner position << 32 | canonical slot
-  std::vector<uint32_t> fill(run_begin.begin(), run_begin.end() - 1);
+  std::vector<uint64_t>& runs = scratch_.runs;
+  resizeDiscarding(runs, count);
+  std::vector<uint32_t>& fill = scratch_.fill;
+  fill.assign(run_begin.begin(), run_begin.end() - 1);
   for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t a = position_of_[inCandidateIndexes[2 * k]];
-    const uint32_t b = position_of_[inCandidateIndexes[2 * k + 1]];
+    const uint32_t a = position_of_[candidate_indexes[2 * k]];
+    const uint32_t b = position_of_[candidate_indexes[2 * k + 1]];
     runs[fill[std::min(a, b)]++] = (uint64_t{std::max(a, b)} << 32) | k;
   }
   resizeDiscarding(first_positions_, count);

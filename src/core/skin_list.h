@@ -39,9 +39,10 @@ struct alignas(64) BoundsRecord {
 
 class SkinList {
  public:
-  /// Writes into outInflated the boxes of inBoxes grown by inSkin / 2 on every side (rounded
-  /// outward) and remembers them as the reference of the next candidates.
-  void inflate(const BoxSet& inBoxes, double inSkin, BoxSet& outInflated);
+  /// The boxes of inBoxes grown by inSkin / 2 on every side (rounded outward), kept as the
+  /// reference of the next candidates and returned for the sweep that finds them (valid until
+  /// the next inflate()).
+  const BoxSet& inflate(const BoxSet& inBoxes, double inSkin, int inThreads = 1);
   /// Keeps inCandidates (pairs of the inflated boxes, canonical order, filters honoured) as the
   /// candidates; inBoxes are the boxes given to inflate(). Throws std::length_error when there
   /// are 2^32 candidates or more (their rows are indexed in 32 bits).
@@ -62,8 +63,8 @@ class SkinList {
 
  private:
   bool sameIdsAndFilters(const BoxSet& inBoxes) const;
-  void keepSpatialOrder(const std::vector<uint32_t>& inCandidateIndexes);
-  void keepSpatialCandidates(const std::vector<uint32_t>& inCandidateIndexes);
+  void keepSpatialOrder();
+  void keepSpatialCandidates();
   bool gatherInside(const BoxSet& inBoxes, int inThreads);
   void testSpatialCandidates(int inThreads);
   void copyHits(int inThreads, PairList& outPairs);
@@ -83,6 +84,18 @@ class SkinList {
   // Per pass: the frame's bounds by position, and a verdict bit per canonical candidate, one
   // row of verdictWords() words per thread (bit k of the row: candidate k overlaps).
   std::vector<BoundsRecord> gathered_;
+  // adopt()'s working lists, kept between sweeps so that a sweep frame reuses their pages
+  // instead of faulting in and zeroing millions of entries again.
+  struct AdoptScratch {
+    std::vector<uint32_t> candidate_indexes;  // both boxes of candidate k at 2k, 2k+1
+    std::vector<uint8_t> has_candidates;      // by box index
+    std::vector<uint32_t> members;            // boxes with candidates, then their sort keys
+    std::vector<uint32_t> keys;
+    std::vector<uint32_t> order;
+    std::vector<uint32_t> run_begin;  // by first position: where its candidates start
+    std::vector<uint32_t> fill;
+    std::vector<uint64_t> runs;  // partner position << 32 | canonical slot
+  } scratch_;
   std::vector<uint64_t> verdicts_;
   int verdict_rows_ = 1;  // the threads of the last test, each with its row
   bool valid_ = false;

@@ -83,6 +83,10 @@ constexpr std::size_t kMinSkinBoxes = 1024;
 /// check and gather) of a pass on one thread, conservative.
 constexpr double kInitialNsPerCandidate = 10.0;
 constexpr double kInitialNsPerBox = 5.0;
+/// Until a grown sweep has been measured: nanoseconds per box to grow the boxes and per
+/// candidate to keep the grown sweep's pairs (spatial order, rows), one thread, conservative.
+constexpr double kInitialGrowNsPerBox = 10.0;
+constexpr double kInitialKeepNsPerCandidate = 30.0;
 /// Weight of the newest measurement in the running cost averages.
 constexpr double kCostSmoothing = 0.5;
 

@@ -169,6 +169,20 @@ TEST(FramePlan, SkinGrowsWithMotionWhileItPays) {
   EXPECT_LT(slow, faster);
 }
 
+// The grown sweep's own work (growing the boxes, keeping the candidates) is charged to the
+// skin: when it costs more than the passes save, no skin is chosen.
+TEST(FramePlan, DearKeepingTurnsTheSkinOff) {
+  SkinCosts costs = uniformCosts();
+  SkinChoice choice;
+  costs.grow_ns_per_box = 1.0;
+  costs.keep_ns_per_candidate = 1.0;
+  EXPECT_GT(chooseSkin(0.01, 100000, costs, choice), 0.0);
+  EXPECT_EQ(choice, SkinChoice::kChosen);
+  costs.grow_ns_per_box = 1e6;  // one grown sweep dearer than thousands of plain ones
+  EXPECT_EQ(chooseSkin(0.01, 100000, costs, choice), 0.0);
+  EXPECT_EQ(choice, SkinChoice::kTooFast);
+}
+
 TEST(FramePlan, PathsNameThePlan) {
   FramePlan plan;
   plan.work = FrameWork::kSweep;

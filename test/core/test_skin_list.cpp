@@ -21,8 +21,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// Keeps the candidates of inBoxes grown by inSkin, as a sweep of the inflated boxes would.
 void keepCandidates(SkinList& ioList, const BoxSet& inBoxes, double inSkin) {
-  BoxSet inflated;
-  ioList.inflate(inBoxes, inSkin, inflated);
+  const BoxSet& inflated = ioList.inflate(inBoxes, inSkin);
   ioList.adopt(inBoxes, bruteForcePairs(inflated));
 }
 
