@@ -1,6 +1,7 @@
 // Single-axis sort-and-sweep for small frames (small_frame.h).
 //
-// Candidates are tested on float32 bounds rounded outward (sort_keys.h), so a float test never
+// Candidates are tested on float32 bounds rounded outward (sort_keys.h), measured from the
+// frame's key origin (sweep_and_prune.h) as the sweep's keys are, so a float test never
 // misses a true overlap; each float hit is confirmed on the float64 input by boxesOverlap, so
 // the result is exact. Floats halve the bytes a block reads and double the lanes of a vector.
 #include "core/small_frame.h"
@@ -8,9 +9,11 @@
 #include <cmath>
 #include <limits>
 
+#include "core/axis_spread.h"
 #include "core/buffers.h"
 #include "core/radix_sort.h"
 #include "core/sort_keys.h"
+#include "core/sweep_and_prune.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1
@@ -23,35 +26,27 @@ namespace {
 // Candidates one AVX2 block tests; also the NaN padding after the last box.
 constexpr uint32_t kBlock = 8;
 
-// Mean extent over the span of the low ends on inAxis, finite values only; infinite when the
-// span is degenerate (a sweep on that axis would see every box start at once).
+// Mean finite extent over the span of the finite bounds on inAxis; infinite when the span is
+// degenerate (a sweep on that axis would see every box start at once).
 double relativeExtent(const BoxSet& inBoxes, int inAxis) {
-  const double* low = inBoxes.lo[inAxis].data();
-  const double* high = inBoxes.hi[inAxis].data();
-  double lowest = std::numeric_limits<double>::infinity();
-  double highest = -lowest;
-  double extent_sum = 0.0;
-  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    const double extent = high[i] - low[i];
-    if (std::isfinite(low[i])) {
-      lowest = std::min(lowest, low[i]);
-      highest = std::max(highest, low[i]);
-    }
-    extent_sum += std::isfinite(extent) ? extent : 0.0;
-  }
-  const double span = highest - lowest;
+  const AxisSpread spread = measureAxisSpread(inBoxes, inAxis, 1);
+  const double span = spread.span();
   if (!(span > 0.0) || !std::isfinite(span)) return std::numeric_limits<double>::infinity();
-  return extent_sum / static_cast<double>(inBoxes.size()) / span;
+  return spread.meanExtent() / span;
 }
 
 // Sorts the boxes by low key on inAxis and lays their outward float bounds out in sweep
-// order, inAxis first.
+// order, inAxis first. Keys are measured from the frame's key origin, as the sweep's are: a
+// robot's few thousand boxes in UTM or Earth-centred coordinates would otherwise share their
+// float32 values and all become candidates of one another.
 void prepareSweep(const BoxSet& inBoxes, int inAxis, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
+  const KeyOrigin origin = keyOriginOf(inBoxes, 1);
   resizeDiscarding(ioWork.order, n);
   resizeDiscarding(ioWork.scratch, n);
   const double* sweep_low = inBoxes.lo[inAxis].data();
-  for (uint32_t i = 0; i < n; ++i) ioWork.order[i] = packKeyIndex(lowKey(sweep_low[i]), i);
+  for (uint32_t i = 0; i < n; ++i)
+    ioWork.order[i] = packKeyIndex(origin.low(inAxis, sweep_low[i]), i);
   const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
   resizeDiscarding(ioWork.box_of, n);
   for (uint32_t k = 0; k < n; ++k) ioWork.box_of[k] = static_cast<uint32_t>(sorted[k]);
@@ -66,8 +61,8 @@ void prepareSweep(const BoxSet& inBoxes, int inAxis, SmallFrameWorkspace& ioWork
     resizeDiscarding(sorted_high, n + kBlock);
     for (uint32_t k = 0; k < n; ++k) {
       const uint32_t box = ioWork.box_of[k];
-      sorted_low[k] = keyToFloat(lowKey(low[box]));
-      sorted_high[k] = keyToFloat(highKey(high[box]));
+      sorted_low[k] = keyToFloat(origin.low(axis, low[box]));
+      sorted_high[k] = keyToFloat(origin.high(axis, high[box]));
     }
     std::fill(sorted_low.begin() + n, sorted_low.end(), nan);
     std::fill(sorted_high.begin() + n, sorted_high.end(), nan);

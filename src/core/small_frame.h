@@ -30,7 +30,8 @@ constexpr std::size_t kSmallFrameMaxBoxesParallel = std::size_t{1} << 13;
 struct SmallFrameWorkspace {
   std::vector<uint64_t> order;    ///< (low key << 32 | box) on the sweep axis, then sorted
   std::vector<uint64_t> scratch;  ///< the radix sort's second buffer
-  /// Float32 bounds rounded outward (sort_keys.h), in sweep order, structure of arrays: axis
+  /// Float32 bounds rounded outward (sort_keys.h) relative to the frame's key origin
+  /// (sweep_and_prune.h), in sweep order, structure of arrays: axis
   /// 0 is the sweep axis. Low arrays are padded with NaN so a block of candidates may read
   /// past the last box: NaN compares false, so padding never overlaps anything.
   std::vector<float> lo[3];
@@ -40,7 +41,7 @@ struct SmallFrameWorkspace {
 };
 
 /// The sweep axis of a small frame: the one whose mean box extent is smallest relative to the
-/// span of the low ends, i.e. the fewest boxes start inside a box's interval.
+/// span of the finite bounds, i.e. the fewest boxes start inside a box's interval.
 int chooseSmallFrameAxis(const BoxSet& inBoxes);
 
 /// Every overlapping, filter-allowed pair of inBoxes (exactly bruteForcePairs' result), in

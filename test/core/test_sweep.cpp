@@ -144,6 +144,31 @@ TEST(SmallFrame, RandomBoxesOfEverySize) {
   }
 }
 
+// A robot's few thousand 5 cm boxes on a 10 m site in UTM, Earth-centred and 1e9 coordinates:
+// exact, and the float keys still tell the boxes apart (keys of the raw coordinates would
+// collapse onto a handful of floats and make every box a candidate of every other).
+TEST(SmallFrame, SmallBoxesFarFromTheOriginKeepDistinctKeys) {
+  const BoxSet site = test_support::randomBoxes(2000, 10.0, 0.05, 11);
+  for (double offset : {0.0, 5.4e6, 4.7e6 + 0.25, 1e9}) {
+    BoxSet shifted = site;
+    for (int axis = 0; axis < 3; ++axis) {
+      for (std::size_t i = 0; i < site.size(); ++i) {
+        shifted.lo[axis][i] += offset;
+        shifted.hi[axis][i] += offset;
+      }
+    }
+    const std::string label = "offset " + std::to_string(offset);
+    expectSmallFrameMatches(shifted, label);
+    SmallFrameWorkspace work;
+    PairList pairs;
+    pairSmallFrame(shifted, work, pairs);
+    std::vector<float> lows(work.lo[0].begin(), work.lo[0].begin() + site.size());
+    std::sort(lows.begin(), lows.end());
+    const auto distinct = std::unique(lows.begin(), lows.end()) - lows.begin();
+    EXPECT_GT(distinct, 1900) << label;
+  }
+}
+
 TEST(SmallFrame, TouchingLatticeWithZeroExtents) {
   for (uint64_t seed : {1u, 2u, 3u}) {
     expectSmallFrameMatches(test_support::latticeBoxes(1500, 12, 2, seed), "lattice");
