@@ -18,39 +18,66 @@ std::string formatNumber(double inValue) {
   return text.str();
 }
 
-// First box with an unusable coordinate: NaN anywhere, or min > max on some axis.
+// Why box i cannot be used, or an empty string: NaN anywhere, or min > max on some axis.
+std::string coordinateProblem(const BoxSet& inBoxes, std::size_t i) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const double low = inBoxes.lo[axis][i];
+    const double high = inBoxes.hi[axis][i];
+    if (std::isnan(low)) return std::string("min_") + kAxisNames[axis] + " is NaN";
+    if (std::isnan(high)) return std::string("max_") + kAxisNames[axis] + " is NaN";
+    if (low > high)
+      return std::string("min_") + kAxisNames[axis] + " (" + formatNumber(low) + ") > max_" +
+             kAxisNames[axis] + " (" + formatNumber(high) + ")";
+  }
+  return std::string();
+}
+
+// First box with an unusable coordinate. `low <= high` is false exactly when either is NaN or
+// low > high, so the scan is one comparison a bound and a message is built only for a bad box.
 std::optional<ValidationError> findBadCoordinate(const BoxSet& inBoxes) {
-  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const double low = inBoxes.lo[axis][i];
-      const double high = inBoxes.hi[axis][i];
-      std::string reason;
-      if (std::isnan(low))
-        reason = std::string("min_") + kAxisNames[axis] + " is NaN";
-      else if (std::isnan(high))
-        reason = std::string("max_") + kAxisNames[axis] + " is NaN";
-      else if (low > high)
-        reason = std::string("min_") + kAxisNames[axis] + " (" + formatNumber(low) + ") > max_" +
-                 kAxisNames[axis] + " (" + formatNumber(high) + ")";
-      if (!reason.empty()) return ValidationError{i, inBoxes.ids[i], reason};
-    }
+  const std::size_t n = inBoxes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    bool usable = true;
+    for (int axis = 0; axis < 3; ++axis) usable &= inBoxes.lo[axis][i] <= inBoxes.hi[axis][i];
+    if (!usable) return ValidationError{i, inBoxes.ids[i], coordinateProblem(inBoxes, i)};
   }
   return std::nullopt;
 }
 
-// First repeated id, found in O(n) passes by radix-sorting the ids.
+ValidationError duplicateAt(const BoxSet& inBoxes, std::size_t inIndex, std::size_t inEarlier) {
+  return ValidationError{inIndex, inBoxes.ids[inIndex],
+                         "duplicate id (also box " + std::to_string(inEarlier) + ")"};
+}
+
+// First repeated id (the smallest index whose id an earlier box has). Ids are usually dense
+// (0..n-1, or a robot's range): then one pass over a bit per possible id finds it; sparse ids
+// are radix-sorted instead, O(n) passes either way.
 std::optional<ValidationError> findDuplicateId(const BoxSet& inBoxes) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
+  if (n < 2) return std::nullopt;
+  const auto [smallest, largest] = std::minmax_element(inBoxes.ids.begin(), inBoxes.ids.end());
+  const uint64_t id_range = uint64_t{*largest} - *smallest + 1;
+  if (id_range <= 8 * uint64_t{n}) {
+    std::vector<uint64_t> seen((id_range + 63) / 64, 0);
+    for (uint32_t k = 0; k < n; ++k) {
+      const uint32_t bit = inBoxes.ids[k] - *smallest;
+      const uint64_t mask = uint64_t{1} << (bit % 64);
+      if ((seen[bit / 64] & mask) == 0) {
+        seen[bit / 64] |= mask;
+        continue;
+      }
+      const auto earlier = std::find(inBoxes.ids.begin(), inBoxes.ids.begin() + k, inBoxes.ids[k]);
+      return duplicateAt(inBoxes, k, static_cast<std::size_t>(earlier - inBoxes.ids.begin()));
+    }
+    return std::nullopt;
+  }
   std::vector<uint32_t> order(n);
   radixIndexSort(inBoxes.ids.data(), n, order.data());
   std::optional<ValidationError> first;
   for (uint32_t k = 1; k < n; ++k) {
     if (inBoxes.ids[order[k]] != inBoxes.ids[order[k - 1]]) continue;
     // The stable sort keeps index order among equal ids: order[k] is a later repeat.
-    const std::size_t index = order[k];
-    if (!first || index < first->index)
-      first = ValidationError{index, inBoxes.ids[index],
-                              "duplicate id (also box " + std::to_string(order[k - 1]) + ")"};
+    if (!first || order[k] < first->index) first = duplicateAt(inBoxes, order[k], order[k - 1]);
   }
   return first;
 }

@@ -7,6 +7,9 @@ namespace sap_broadphase {
 
 namespace {
 
+// Below this many boxes a copy takes less than waking a second thread would.
+constexpr std::size_t kParallelCopyBoxes = std::size_t{1} << 15;
+
 // Says what the sender can change: the two lengths that disagree and the two valid choices.
 std::string lengthError(const char* inField, std::size_t inLength, std::size_t inBoxes) {
   return std::string(inField) + " has " + std::to_string(inLength) + " entries but bounds holds " +
@@ -44,8 +47,11 @@ std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBo
     outBoxes.lo[axis].resize(count);
     outBoxes.hi[axis].resize(count);
   }
+  // A 2^20-box message is 50 MB: the copy into the engine's layout runs on every core.
   const double* bounds = inMsg.bounds.data();
-  for (std::size_t i = 0; i < count; ++i) {
+  const auto boxes = static_cast<std::ptrdiff_t>(count);
+#pragma omp parallel for schedule(static) if (count >= kParallelCopyBoxes)
+  for (std::ptrdiff_t i = 0; i < boxes; ++i) {
     const double* box = bounds + 6 * i;
     for (int axis = 0; axis < 3; ++axis) {
       outBoxes.lo[axis][i] = box[axis];

@@ -101,6 +101,24 @@ TEST(Validate, RefusesDuplicateIds) {
   EXPECT_NE(error->reason.find("duplicate"), std::string::npos) << error->reason;
 }
 
+// Dense ids (a bit per possible id) and sparse ids (sorted) name the same first repeat: the
+// smallest index whose id an earlier box has, and that earlier box.
+TEST(Validate, FindsTheFirstRepeatWithDenseAndSparseIds) {
+  for (uint32_t spacing : {1u, 1000003u}) {
+    BoxSet boxes;
+    const double low[3] = {0, 0, 0}, high[3] = {1, 1, 1};
+    for (uint32_t i = 0; i < 1000; ++i) boxes.add(i * spacing, low, high);
+    EXPECT_FALSE(validate(boxes).has_value()) << spacing;
+    boxes.ids[700] = boxes.ids[200];
+    boxes.ids[900] = boxes.ids[100];
+    const auto error = validate(boxes);
+    ASSERT_TRUE(error.has_value()) << spacing;
+    EXPECT_EQ(error->index, 700u) << spacing;
+    EXPECT_EQ(error->id, 200u * spacing);
+    EXPECT_NE(error->reason.find("also box 200"), std::string::npos) << error->reason;
+  }
+}
+
 TEST(Validate, RefusesMismatchedLengths) {
   for (int axis = 0; axis < 3; ++axis) {
     BoxSet shortLo = threeBoxes();
