@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "core/small_frame.h"
 #include "core/tuning.h"
@@ -90,21 +91,30 @@ double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts
   }
   const double boxes = static_cast<double>(inBoxes);
   double plain_candidates = 0.0;
-  double best_skin = 0.0;
-  double best_ns = tuning::kSkinWorthIt * sweepNs(costs, boxes, 0.0, plain_candidates);
+  const double plain_ns = tuning::kSkinWorthIt * sweepNs(costs, boxes, 0.0, plain_candidates);
   const double widest_box =
       *std::max_element(std::begin(inCosts.mean_extent), std::end(inCosts.mean_extent));
-  for (double motions : tuning::kSkinInMotions) {
-    const double skin = motions * inMotion;
+  // The expected cost of each skin tried (0: beyond the largest skin considered).
+  double skin_ns[std::size(tuning::kSkinInMotions)] = {};
+  double cheapest_ns = plain_ns;
+  for (std::size_t k = 0; k < std::size(tuning::kSkinInMotions); ++k) {
+    const double skin = tuning::kSkinInMotions[k] * inMotion;
     if (skin > tuning::kMaxSkinInExtents * widest_box) break;
-    const double ns = cycleNsPerFrame(costs, boxes, skin, inMotion);
-    if (ns < best_ns) {
-      best_ns = ns;
-      best_skin = skin;
+    skin_ns[k] = cycleNsPerFrame(costs, boxes, skin, inMotion);
+    cheapest_ns = std::min(cheapest_ns, skin_ns[k]);
+  }
+  if (!(cheapest_ns < plain_ns)) return 0.0;
+  // Near its minimum the cost of a cycle is flat in the skin, while the model's error grows
+  // with the candidates (a wider skin's candidates outgrow the caches the measured pass ran
+  // in): of the skins within a small margin of the cheapest, the smallest is taken.
+  for (std::size_t k = 0; k < std::size(tuning::kSkinInMotions); ++k) {
+    if (skin_ns[k] > 0.0 && skin_ns[k] <= tuning::kSkinCostMargin * cheapest_ns &&
+        skin_ns[k] < plain_ns) {
+      outChoice = SkinChoice::kChosen;
+      return tuning::kSkinInMotions[k] * inMotion;
     }
   }
-  if (best_skin > 0.0) outChoice = SkinChoice::kChosen;
-  return best_skin;
+  return 0.0;
 }
 
 FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed) {

@@ -74,6 +74,9 @@ constexpr double kMaxSkinInExtents = 2.0;
 /// A skin is only used when the model expects it to cost at most this fraction of a plain
 /// sweep per frame: a margin for the model's error, so that fast motion turns skin off.
 constexpr double kSkinWorthIt = 0.8;
+/// Skins whose expected cost is within this factor of the cheapest count as equally cheap;
+/// the smallest of them is used (its candidates are the fewest, its prediction the surest).
+constexpr double kSkinCostMargin = 1.1;
 /// Frames whose largest displacement sets the motion v: the maximum over a short window,
 /// since one box leaving its skin forces a new sweep.
 constexpr int kMotionWindow = 4;
