@@ -3,8 +3,11 @@
 // Bullet's dynamic tree with a dispatcher, our uniform grid), against the engine with its
 // default configuration: one-shot (everything built from scratch each frame) and steady state
 // (state kept across frames), the peak memory per box of each, and every frame's pairs
-// compared with ours.
+// compared with ours. The engine also runs without skin (every frame swept) on the chosen
+// threads and on one thread, the per-core comparison with the single-threaded peers.
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <map>
 
@@ -79,6 +82,44 @@ BroadphaseConfig oursConfig(int inThreads) {
   return config;
 }
 
+/// Our engine on frames that must each be swept (no skin, no reuse of an identical frame): on
+/// the chosen threads, and on one thread for the per-core comparison with the single-threaded
+/// peers. Rows after the default's, before the peers'.
+struct OursVariant {
+  std::string name;
+  BroadphaseConfig config;
+};
+
+std::vector<OursVariant> oursVariants(int inThreads) {
+  std::vector<OursVariant> variants;
+  for (int threads : {inThreads, 1}) {
+    if (threads == 1 && inThreads == 1 && !variants.empty()) break;
+    BroadphaseConfig config = oursConfig(threads);
+    config.skin = 0.0;
+    config.reuse_unchanged_frames = false;
+    variants.push_back({"sap_broadphase_no_skin_t" + std::to_string(threads), config});
+  }
+  return variants;
+}
+
+/// Runs one frame of an engine configuration both ways: a fresh engine (one-shot) and the
+/// kept one (steady), checking both against inTruth.
+void runOursFrame(Broadphase& ioSteady, const BroadphaseConfig& inConfig, const BoxSet& inBoxes,
+                  const PairList& inTruth, bool inTimed, Contender& ioEntry) {
+  ++ioEntry.frames_checked;
+  Stopwatch clock;
+  const PairList& kept = ioSteady.update(inBoxes);
+  const double steadyMs = clock.ms();
+  ioEntry.wrong_steady += kept != inTruth;
+  clock.restart();
+  Broadphase fresh(inConfig);
+  const PairList& once = fresh.update(inBoxes);
+  const double oneShotMs = clock.ms();
+  ioEntry.wrong_one_shot += once != inTruth;
+  ioEntry.last_pairs = kept.size();
+  if (inTimed) ioEntry.steady_ms.push_back(steadyMs), ioEntry.one_shot_ms.push_back(oneShotMs);
+}
+
 /// True when inPairs (any order) are exactly inTruth (canonical order).
 bool samePairs(PairList inPairs, const PairList& inTruth) {
   sap_broadphase::sortPairsCanonical(inPairs);
@@ -88,7 +129,7 @@ bool samePairs(PairList inPairs, const PairList& inTruth) {
 /// Peak memory per contender while it builds its structure for the case's first frame and
 /// answers it (pairs included), each in turn.
 void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
-                   std::vector<Contender>& ioContenders) {
+                   std::vector<Contender>& ioContenders, std::size_t inFirstPeer) {
   FrameFeed feed = inCase.makeFeed();
   const BoxSet& boxes = feed.boxes();
   PeakMeter meter;
@@ -99,11 +140,11 @@ void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
     ioContenders[0].memory_bytes = meter.grownBytes();
   }
   for (std::size_t p = 0; p < ioPeers.size(); ++p) {
-    if (ioContenders[p + 1].skipped_slow) continue;
+    if (ioContenders[inFirstPeer + p].skipped_slow) continue;
     meter.start();
     ioPeers[p]->begin();
     { const PeerResult result = ioPeers[p]->step(boxes); }
-    ioContenders[p + 1].memory_bytes = meter.grownBytes();
+    ioContenders[inFirstPeer + p].memory_bytes = meter.grownBytes();
     ioPeers[p]->begin();  // frees the steady state
   }
 }
@@ -138,17 +179,23 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
                                Peers& ioPeers, PeerCosts& ioCosts, Progress& ioProgress) {
   std::vector<double>& costs = ioCosts[sceneKey(inCase)];
   costs.resize(ioPeers.size(), 0.0);
-  std::vector<Contender> contenders(1 + ioPeers.size());
+  const std::vector<OursVariant> variants = oursVariants(inThreads);
+  const std::size_t first_peer = 1 + variants.size();
+  std::vector<Contender> contenders(first_peer + ioPeers.size());
   contenders[0].name = contenders[0].family = "sap_broadphase";
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    contenders[1 + v].name = contenders[1 + v].family = variants[v].name;
   for (std::size_t p = 0; p < ioPeers.size(); ++p) {
-    contenders[p + 1].name = ioPeers[p]->name();
-    contenders[p + 1].family = ioPeers[p]->family();
-    contenders[p + 1].skipped_slow = costs[p] * inCase.n > kSlowFrameMs;
+    contenders[first_peer + p].name = ioPeers[p]->name();
+    contenders[first_peer + p].family = ioPeers[p]->family();
+    contenders[first_peer + p].skipped_slow = costs[p] * inCase.n > kSlowFrameMs;
   }
-  measureMemory(inCase, inThreads, ioPeers, contenders);
+  measureMemory(inCase, inThreads, ioPeers, contenders, first_peer);
   for (int run = 0; run < inRuns; ++run) {
     FrameFeed feed = inCase.makeFeed();
     Broadphase steady(oursConfig(inThreads));
+    std::vector<Broadphase> variant_engines;
+    for (const OursVariant& variant : variants) variant_engines.emplace_back(variant.config);
     for (auto& peer : ioPeers) peer->begin();
     for (Contender& entry : contenders) entry.stopped_slow = false;
     for (int f = 0; f < inFrames; ++f) {
@@ -168,12 +215,37 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
       ours.wrong_one_shot += !oneShotAgrees;
       ours.last_pairs = truth.size();
       if (timed) ours.steady_ms.push_back(steadyMs), ours.one_shot_ms.push_back(oneShotMs);
+      for (std::size_t v = 0; v < variants.size(); ++v)
+        runOursFrame(variant_engines[v], variants[v].config, boxes, truth, timed,
+                     contenders[1 + v]);
       for (std::size_t p = 0; p < ioPeers.size(); ++p)
-        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[p + 1], costs[p]);
+        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[first_peer + p], costs[p]);
       ioProgress.step(inCase.name);
     }
   }
   return contenders;
+}
+
+/// Threads a peer uses, read from its name ("grid_t2", "cgal_tbb_t2_c1000"); 1 otherwise.
+int peerThreads(const std::string& inName) {
+  const std::size_t at = inName.find("_t");
+  if (at == std::string::npos || at + 2 >= inName.size() || !std::isdigit(inName[at + 2])) return 1;
+  return std::atoi(inName.c_str() + at + 2);
+}
+
+/// The fastest median among contenders [inFirst, end) on at most inMaxThreads threads:
+/// outName its name ("-" when none ran).
+double fastestOf(const std::vector<Contender>& inContenders, std::size_t inFirst,
+                 std::vector<double> Contender::*inTimes, int inMaxThreads, std::string& outName) {
+  double best = std::numeric_limits<double>::infinity();
+  outName = "-";
+  for (std::size_t k = inFirst; k < inContenders.size(); ++k) {
+    const Contender& entry = inContenders[k];
+    if ((entry.*inTimes).empty() || peerThreads(entry.name) > inMaxThreads) continue;
+    const double ms = median(entry.*inTimes);
+    if (ms < best) best = ms, outName = entry.name;
+  }
+  return best;
 }
 
 /// Fastest median of each family (knob sweeps: the best setting), by family name.
@@ -202,9 +274,14 @@ void runPeers(const Options& inOptions) {
       "against ours; ratio = ours / peer",
       {"case", "contender", "one_shot_ms", "ratio_one_shot", "steady_ms", "ratio_steady", "pairs",
        "pairs_one_shot", "pairs_steady", "bytes_per_box", "frames", "semantics"});
-  Table summary("Peers: our time / fastest peer's (any knob setting)",
-                {"case", "ours_one_shot_ms", "fastest_one_shot", "ratio_one_shot", "ours_steady_ms",
-                 "fastest_steady", "ratio_steady", "threads"});
+  Table summary(
+      "Peers: our time / fastest peer's (any knob setting); one thread without skin "
+      "against the fastest single-threaded peer",
+      {"case", "ours_one_shot_ms", "fastest_one_shot", "ratio_one_shot", "ours_steady_ms",
+       "fastest_steady", "ratio_steady", "threads", "ours_no_skin_one_shot_ms",
+       "ours_no_skin_steady_ms", "ours_1t_no_skin_one_shot_ms", "fastest_1t_one_shot",
+       "ratio_1t_one_shot", "ours_1t_no_skin_steady_ms", "fastest_1t_steady", "ratio_1t_steady"});
+  const std::size_t firstPeer = 1 + oursVariants(threads).size();
   Panel oneShotPanel{
       "One-shot (best knob of each library)", "", "ms per frame", false, true, PlotStyle::kPoints};
   Panel steadyPanel{"Steady state (best knob of each library)",
@@ -226,18 +303,19 @@ void runPeers(const Options& inOptions) {
       const Contender& entry = contenders[k];
       const double once = median(entry.one_shot_ms), kept = median(entry.steady_ms);
       const bool ours = k == 0;
+      const bool variant = k > 0 && k < firstPeer;
       const bool ran = !entry.one_shot_ms.empty();
       detail.addRow(
           {cases[c].name, entry.name, ran ? fmt(once) : "-", ours ? "1" : fmtRatio(oursOnce, once),
            ran ? fmt(kept) : "-", ours ? "1" : fmtRatio(oursKept, kept), fmtCount(entry.last_pairs),
            pairStatus(entry.wrong_one_shot, entry.frames_checked),
            ours ? "reference" : pairStatus(entry.wrong_steady, entry.frames_checked),
-           ran ? fmt(static_cast<double>(entry.memory_bytes) / cases[c].n) : "-",
+           ran && !variant ? fmt(static_cast<double>(entry.memory_bytes) / cases[c].n) : "-",
            entry.skipped_slow
                ? "skipped (slow)"
                : std::to_string(entry.one_shot_ms.size()) + (entry.stopped_slow ? " (slow)" : ""),
-           ours ? "exact, closed intervals" : peers[k - 1]->semantics()});
-      if (ours || entry.one_shot_ms.empty()) continue;
+           k < firstPeer ? "exact, closed intervals" : peers[k - firstPeer]->semantics()});
+      if (k < firstPeer || entry.one_shot_ms.empty()) continue;
       if (once < bestOnce) bestOnce = once, bestOnceName = entry.name;
       if (kept < bestKept) bestKept = kept, bestKeptName = entry.name;
     }
@@ -245,9 +323,21 @@ void runPeers(const Options& inOptions) {
       oneShotSeries[family].add(c, ms);
     for (const auto& [family, ms] : familyBest(contenders, &Contender::steady_ms))
       steadySeries[family].add(c, ms);
+    const Contender& noSkin = contenders[1];
+    const Contender& oneThread = contenders[firstPeer - 1];
+    const double oneOnce = median(oneThread.one_shot_ms), oneKept = median(oneThread.steady_ms);
+    std::string singleOnceName, singleKeptName;
+    const double singleOnce =
+        fastestOf(contenders, firstPeer, &Contender::one_shot_ms, 1, singleOnceName);
+    const double singleKept =
+        fastestOf(contenders, firstPeer, &Contender::steady_ms, 1, singleKeptName);
     summary.addRow({cases[c].name, fmt(oursOnce), bestOnceName + " " + fmt(bestOnce),
                     fmtRatio(oursOnce, bestOnce), fmt(oursKept), bestKeptName + " " + fmt(bestKept),
-                    fmtRatio(oursKept, bestKept), std::to_string(threads)});
+                    fmtRatio(oursKept, bestKept), std::to_string(threads),
+                    fmt(median(noSkin.one_shot_ms)), fmt(median(noSkin.steady_ms)), fmt(oneOnce),
+                    singleOnceName + " " + fmt(singleOnce), fmtRatio(oneOnce, singleOnce),
+                    fmt(oneKept), singleKeptName + " " + fmt(singleKept),
+                    fmtRatio(oneKept, singleKept)});
     oneShotPanel.xtics.push_back({static_cast<double>(c), cases[c].name});
     steadyPanel.xtics.push_back({static_cast<double>(c), cases[c].name});
   }
