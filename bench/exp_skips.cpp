@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "bench_output.h"
+#include "core/frame_plan.h"
 #include "core/random.h"
+#include "core/small_frame.h"
 #include "experiments.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
@@ -362,24 +364,49 @@ void unchangedRows(const Options& inOptions, Table& ioTable) {
          "reuse_unchanged_frames", ms, base, path, matches);
 }
 
-// Sequential against parallel for small frames: where the parallel path starts to pay.
+// The small-frame path (small_frame.h) against the sweep on one thread (Algorithm 1) and on
+// every thread (Algorithms 2-4), every frame swept (no skin, no reuse): where each crossover
+// of Method::kAuto lies (isSmallFrame). The note says which path the default takes.
 void smallFrameRows(const Options& inOptions, Table& ioTable) {
   const int frames = inOptions.framesOr(30, 5);
-  for (std::size_t n : {256u, 1024u, 2048u, 4096u, 8192u, 16384u, 32768u}) {
+  for (std::size_t n : {256u, 1024u, 2048u, 4096u, 8192u, 16384u, 32768u, 65536u}) {
     SceneSimulator scene(uniform(n, 0.2, inOptions.seed));
     std::vector<BoxSet> moving_frames;
     for (int f = 0; f <= frames; ++f, scene.step()) moving_frames.push_back(scene.boxes());
-    BroadphaseConfig sequential, parallel;
-    sequential.method = sap_broadphase::Method::kSequential;
-    parallel.method = sap_broadphase::Method::kParallel;
-    Broadphase engine(sequential), baseline(parallel);
-    bool matches = false, baseline_matches = false;
-    std::string path, baseline_path;
     const auto frame = [&](int f) -> const BoxSet& { return moving_frames[f]; };
-    const double ms = timeFrames(engine, frames, frame, matches, path);
-    const double base = timeFrames(baseline, frames, frame, baseline_matches, baseline_path);
-    addRow(ioTable, "small frame", "uniform n=" + fmtSize(n), "sequential vs parallel", ms, base,
-           path, matches && baseline_matches);
+    std::vector<double> small_times;
+    bool small_matches = true;
+    sap_broadphase::SmallFrameWorkspace workspace;
+    Broadphase reference{BroadphaseConfig()};
+    for (int f = 0; f <= frames; ++f) {
+      PairList pairs;
+      const double ms =
+          millisecondsOf([&] { sap_broadphase::pairSmallFrame(frame(f), workspace, pairs); });
+      if (f > 0) small_times.push_back(ms);
+      small_matches = small_matches && pairs == reference.update(frame(f));
+    }
+    const double small_ms = median(small_times);
+    for (const sap_broadphase::Method method :
+         {sap_broadphase::Method::kSequential, sap_broadphase::Method::kParallel}) {
+      BroadphaseConfig sweep;
+      sweep.method = method;
+      sweep.threads = inOptions.threads;
+      sweep.skin = 0.0;
+      sweep.reuse_unchanged_frames = false;
+      Broadphase engine(sweep);
+      bool matches = false;
+      std::string path;
+      const double ms = timeFrames(engine, frames, frame, matches, path);
+      const int threads = method == sap_broadphase::Method::kParallel
+                              ? sap_broadphase::resolveThreadCount(inOptions.threads)
+                              : 1;
+      const bool takes_small = sap_broadphase::isSmallFrame(n, threads);
+      addRow(ioTable, "small frame", "uniform n=" + fmtSize(n) + ", d=0.2",
+             "small-frame path vs " + path + " sweep", small_ms, ms, "small",
+             matches && small_matches, "-",
+             "default on " + std::to_string(threads) + " thread(s) takes the " +
+                 (takes_small ? "small-frame path" : "sweep"));
+    }
   }
 }
 
