@@ -9,7 +9,8 @@ add_library(${PROJECT_NAME}_ros
   src/ros/sources.cpp
 )
 target_link_libraries(${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
-add_dependencies(${PROJECT_NAME}_ros ${PROJECT_NAME}_generate_messages_cpp)
+# node.cpp includes the header generated from cfg/BroadphaseNode.cfg.
+add_dependencies(${PROJECT_NAME}_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 
 add_executable(${PROJECT_NAME}_node src/apps/node_main.cpp)
 set_target_properties(${PROJECT_NAME}_node PROPERTIES OUTPUT_NAME node PREFIX "")

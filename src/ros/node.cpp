@@ -6,10 +6,12 @@
 #include <iterator>
 #include <utility>
 
+#include <dynamic_reconfigure/server.h>
 #include <tf2/exceptions.h>
 #include <visualization_msgs/MarkerArray.h>
 #include <boost/make_shared.hpp>
 
+#include "sap_broadphase/BroadphaseNodeConfig.h"
 #include "sap_broadphase/PairEvents.h"
 #include "sap_broadphase/ros/conversions.h"
 #include "sap_broadphase/ros/markers.h"
@@ -73,7 +75,9 @@ BroadphaseNode::BroadphaseNode(ros::NodeHandle& ioNode, const NodeParams& inPara
 BroadphaseNode::BroadphaseNode(ros::NodeHandle& ioNode, const ros::NodeHandle& inPrivate,
                                const NodeParams& inParams)
     : params_(inParams),
+      node_(ioNode),
       service_engine_(inParams.engine),
+      accepted_(inParams),
       engine_(inParams.engine),
       diagnostics_(ioNode, inPrivate, inPrivate.getNamespace()) {
   ROS_INFO("sap_broadphase: %s", describeNodeParams(params_).c_str());
@@ -113,9 +117,23 @@ BroadphaseNode::BroadphaseNode(ros::NodeHandle& ioNode, const ros::NodeHandle& i
     options.transport_hints = ros::TransportHints().tcpNoDelay();
     source_subs_.push_back(ioNode.subscribe(options));
   }
+
+  // The server starts from whatever the parameter server holds in its own types: a skin of
+  // 0.05 or an axis given as 2 would read as the .cfg defaults. The settings in force are
+  // given to it before the callback is set, so that the callback's first call (with the
+  // server's config) changes nothing.
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<BroadphaseNodeConfig>>(
+      reconfigure_mutex_, inPrivate);
+  BroadphaseNodeConfig in_force;
+  toReconfigureConfig(params_, in_force);
+  reconfigure_->updateConfig(in_force);
+  reconfigure_->setCallback([this](BroadphaseNodeConfig& ioConfig, uint32_t inLevel) {
+    onReconfigure(ioConfig, inLevel);
+  });
 }
 
 BroadphaseNode::~BroadphaseNode() {
+  reconfigure_.reset();
   for (ros::Subscriber& subscriber : source_subs_) subscriber.shutdown();
   static_sub_.shutdown();
   service_spinner_->stop();
@@ -157,6 +175,52 @@ void BroadphaseNode::onStaticBoxes(const BoxArrayConstPtr& inMsg) {
   wake_.notify_one();
 }
 
+void BroadphaseNode::onReconfigure(BroadphaseNodeConfig& ioConfig, uint32_t /*inLevel*/) {
+  NodeParams settings = accepted_;
+  const std::string problem = fromReconfigureConfig(ioConfig, settings);
+  if (!problem.empty()) {
+    ROS_WARN("sap_broadphase: reconfigure refused, the settings in force stay: %s",
+             problem.c_str());
+    toReconfigureConfig(accepted_, ioConfig);
+    return;
+  }
+  // Written back as the node reads them ("Z" -> "z", "0" -> "off"), so clients see the
+  // settings in force.
+  toReconfigureConfig(settings, ioConfig);
+  const bool new_engine = !sameEngineConfig(settings.engine, accepted_.engine);
+  if (!new_engine && sameMarkerSettings(settings, accepted_)) return;
+  accepted_ = settings;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_settings_ = settings;
+    if (new_engine) pending_service_config_ = settings.engine;
+  }
+  wake_.notify_one();
+}
+
+void BroadphaseNode::applySettings(const NodeParams& inSettings) {
+  const bool new_engine = !sameEngineConfig(inSettings.engine, params_.engine);
+  if (new_engine) {
+    // The engine takes its configuration once, at construction; the new one starts without
+    // temporal state (partition bounds, kept candidates, the last frame) and must be told
+    // the scenery again.
+    engine_ = Broadphase(inSettings.engine);
+    if (static_boxes_.size() > 0) engine_.setStaticBoxes(static_boxes_);
+  }
+  if (inSettings.publish_markers && !markers_pub_)
+    markers_pub_ = node_.advertise<visualization_msgs::MarkerArray>("markers", 1);
+  else if (!inSettings.publish_markers && markers_pub_)
+    markers_pub_.shutdown();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    params_.engine = inSettings.engine;
+    params_.publish_markers = inSettings.publish_markers;
+    params_.markers = inSettings.markers;
+  }
+  ROS_INFO("sap_broadphase: reconfigured%s: %s", new_engine ? " (new engine)" : "",
+           describeNodeParams(params_).c_str());
+}
+
 void BroadphaseNode::workerLoop() {
   const bool fixed_rate = params_.rate > 0.0;
   const auto period = std::chrono::duration_cast<Clock::duration>(
@@ -165,18 +229,25 @@ void BroadphaseNode::workerLoop() {
   for (;;) {
     std::map<SourceKey, Delivery> deliveries;
     BoxArrayConstPtr scenery;
+    std::optional<NodeParams> settings;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       if (fixed_rate) {
         wake_.wait_until(lock, next_tick, [this] { return stopping_; });
       } else {
-        wake_.wait_until(lock, next_tick,
-                         [this] { return stopping_ || !pending_.empty() || pending_static_; });
+        wake_.wait_until(lock, next_tick, [this] {
+          return stopping_ || !pending_.empty() || pending_static_ || pending_settings_;
+        });
       }
       if (stopping_) return;
       std::swap(deliveries, pending_);
       std::swap(scenery, pending_static_);
+      std::swap(settings, pending_settings_);
     }
+    // Between two frames, before this batch: every frame delivered after a reconfigure is
+    // computed with the new settings.
+    if (settings) applySettings(*settings);
+
     const Clock::time_point now = Clock::now();
     const bool tick = now >= next_tick;
     if (tick) next_tick = std::max(next_tick + period, now);
@@ -244,6 +315,7 @@ void BroadphaseNode::ingestStatic(const BoxArray& inMsg) {
   }
   ROS_INFO("sap_broadphase: static_boxes: %zu boxes indexed (frame '%s')", scenery.size(),
            inMsg.header.frame_id.c_str());
+  static_boxes_ = std::move(scenery);
 }
 
 void BroadphaseNode::expireSources() {
@@ -352,10 +424,10 @@ FrameStats BroadphaseNode::makeStats(const std_msgs::Header& inHeader, std::size
   FrameStats stats;
   stats.header = inHeader;
   stats.boxes = static_cast<uint32_t>(inBoxes);
+  std::lock_guard<std::mutex> lock(mutex_);  // refusals come from any thread
   stats.primary_axis = static_cast<uint8_t>(params_.engine.primary_axis);
   stats.secondary_axis = static_cast<uint8_t>(params_.engine.secondary_axis);
   stats.threads = static_cast<uint32_t>(resolveThreadCount(params_.engine.threads));
-  std::lock_guard<std::mutex> lock(mutex_);
   stats.static_world_boxes = counters_.static_boxes;
   stats.frames_received = counters_.received;
   stats.frames_processed = counters_.processed;
@@ -402,6 +474,12 @@ void BroadphaseNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioSta
 
 bool BroadphaseNode::onComputePairs(ComputePairs::Request& inRequest,
                                     ComputePairs::Response& outResponse) {
+  std::optional<BroadphaseConfig> config;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::swap(config, pending_service_config_);
+  }
+  if (config) service_engine_ = Broadphase(*config);
   outResponse.pairs.header = inRequest.boxes.header;
   if (auto reason = boxArrayToBoxSet(inRequest.boxes, service_boxes_)) {
     ROS_ERROR_THROTTLE(params_.refusal_log_period, "compute_pairs refused: %s", reason->c_str());

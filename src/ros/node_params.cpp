@@ -4,10 +4,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <set>
 #include <sstream>
 
 #include <xmlrpcpp/XmlRpcValue.h>
+
+#include "sap_broadphase/BroadphaseNodeConfig.h"
 
 namespace sap_broadphase {
 
@@ -88,15 +92,47 @@ bool parseAxisName(const std::string& inName, int& outAxis) {
   return false;
 }
 
-// ~skin is "auto" (the default), 0 (off) or a fixed skin in metres.
+bool parseSkin(const std::string& inText, std::optional<double>& outSkin) {
+  if (inText.empty() || inText == "auto") {
+    outSkin.reset();
+    return true;
+  }
+  if (inText == "off") {
+    outSkin = 0.0;
+    return true;
+  }
+  char* end = nullptr;
+  const double value = std::strtod(inText.c_str(), &end);
+  if (end == inText.c_str() || *end != '\0') return false;
+  outSkin = value;
+  return true;
+}
+
+std::string skinText(const std::optional<double>& inSkin) {
+  if (!inSkin) return "auto";
+  if (*inSkin == 0.0) return "off";
+  // The shortest text that reads back as the same double, so that a skin written to the
+  // parameter server by dynamic_reconfigure is the skin in force.
+  for (int digits = 6; digits < 17; ++digits) {
+    std::ostringstream text;
+    text.precision(digits);
+    text << *inSkin;
+    if (std::strtod(text.str().c_str(), nullptr) == *inSkin) return text.str();
+  }
+  std::ostringstream text;
+  text.precision(17);
+  text << *inSkin;
+  return text.str();
+}
+
+// ~skin is "auto" (the default), 0 (off) or a fixed skin in metres; as text also "off" or a
+// number, the form dynamic_reconfigure writes back to the parameter server.
 std::string readSkin(const ros::NodeHandle& inPrivate, std::optional<double>& outSkin) {
   XmlRpc::XmlRpcValue value;
   if (!inPrivate.getParam("skin", value)) return "";
   if (value.getType() == XmlRpc::XmlRpcValue::TypeString &&
-      static_cast<std::string>(value) == "auto") {
-    outSkin.reset();
+      parseSkin(static_cast<std::string>(value), outSkin))
     return "";
-  }
   if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble)
     outSkin = static_cast<double>(value);
   else if (value.getType() == XmlRpc::XmlRpcValue::TypeInt)
@@ -170,13 +206,18 @@ std::string describeNodeParams(const NodeParams& inParams) {
        << "), method " << methodName(engine.method) << ", parallel_min_boxes "
        << engine.parallel_min_boxes << ", axes "
        << "xyz"[engine.primary_axis] << "xyz"[engine.secondary_axis]
-       << (engine.axis_swapping ? " (swapping)" : "") << ", skin ";
-  if (!engine.skin)
-    text << "auto";
-  else if (*engine.skin == 0.0)
-    text << "off";
+       << (engine.axis_swapping ? " (swapping)" : "") << ", skin " << skinText(engine.skin);
+  if (engine.third_axis_slabs > 0) text << ", third_axis_slabs " << engine.third_axis_slabs;
+  if (!engine.exact_final_test) text << ", float32 final test (may report extra pairs)";
+  if (!engine.reuse_unchanged_frames) text << ", unchanged frames swept again";
+  if (engine.index_static_boxes) text << ", resting boxes indexed";
+  text << ", markers ";
+  if (inParams.publish_markers)
+    text << "at most " << inParams.markers.max_boxes << " boxes"
+         << (inParams.markers.show_non_colliding ? " (non-colliding too)" : "")
+         << (inParams.markers.show_pair_links ? " (pair links)" : "");
   else
-    text << *engine.skin;
+    text << "off";
   text << ", sources [";
   for (std::size_t i = 0; i < inParams.sources.size(); ++i)
     text << (i ? ", " : "") << inParams.sources[i];
@@ -192,6 +233,87 @@ std::string describeNodeParams(const NodeParams& inParams) {
     text << "'" << inParams.fixed_frame << "' (transform_timeout " << inParams.transform_timeout
          << " s)";
   return text.str();
+}
+
+void toReconfigureConfig(const NodeParams& inParams, BroadphaseNodeConfig& outConfig) {
+  const BroadphaseConfig& engine = inParams.engine;
+  outConfig.threads = engine.threads;
+  outConfig.method = methodName(engine.method);
+  outConfig.primary_axis = std::string(1, "xyz"[engine.primary_axis]);
+  outConfig.secondary_axis = std::string(1, "xyz"[engine.secondary_axis]);
+  outConfig.axis_swapping = engine.axis_swapping;
+  outConfig.axis_swap_threshold = engine.axis_swap_threshold;
+  outConfig.parallel_min_boxes = static_cast<int>(
+      std::min<std::size_t>(engine.parallel_min_boxes, std::numeric_limits<int>::max()));
+  outConfig.third_axis_slabs = engine.third_axis_slabs;
+  outConfig.exact_final_test = engine.exact_final_test;
+  outConfig.reuse_unchanged_frames = engine.reuse_unchanged_frames;
+  outConfig.index_static_boxes = engine.index_static_boxes;
+  outConfig.skin = skinText(engine.skin);
+  const MarkerOptions& markers = inParams.markers;
+  outConfig.publish_markers = inParams.publish_markers;
+  outConfig.max_marker_boxes =
+      static_cast<int>(std::min<std::size_t>(markers.max_boxes, std::numeric_limits<int>::max()));
+  outConfig.show_non_colliding = markers.show_non_colliding;
+  outConfig.show_pair_links = markers.show_pair_links;
+  outConfig.marker_line_width = markers.line_width;
+}
+
+std::string fromReconfigureConfig(const BroadphaseNodeConfig& inConfig, NodeParams& ioParams) {
+  BroadphaseConfig engine = ioParams.engine;
+  if (inConfig.threads < 0) return "threads must not be negative";
+  engine.threads = inConfig.threads;
+  const std::optional<Method> method = parseMethod(inConfig.method);
+  if (!method)
+    return "method must be auto, parallel, sequential or brute, not '" + inConfig.method + "'";
+  engine.method = *method;
+  if (!parseAxisName(inConfig.primary_axis, engine.primary_axis))
+    return "primary_axis must be x, y or z, not '" + inConfig.primary_axis + "'";
+  if (!parseAxisName(inConfig.secondary_axis, engine.secondary_axis))
+    return "secondary_axis must be x, y or z, not '" + inConfig.secondary_axis + "'";
+  engine.axis_swapping = inConfig.axis_swapping;
+  engine.axis_swap_threshold = inConfig.axis_swap_threshold;
+  if (inConfig.parallel_min_boxes < 0) return "parallel_min_boxes must not be negative";
+  engine.parallel_min_boxes = static_cast<std::size_t>(inConfig.parallel_min_boxes);
+  engine.third_axis_slabs = inConfig.third_axis_slabs;
+  engine.exact_final_test = inConfig.exact_final_test;
+  engine.reuse_unchanged_frames = inConfig.reuse_unchanged_frames;
+  engine.index_static_boxes = inConfig.index_static_boxes;
+  if (!parseSkin(inConfig.skin, engine.skin))
+    return "skin must be auto, off (or 0) or a skin > 0 in the boxes' units, not '" +
+           inConfig.skin + "'";
+  if (const auto problem = configProblem(engine)) return *problem;
+  if (inConfig.max_marker_boxes < 0) return "max_marker_boxes must not be negative";
+  if (!(inConfig.marker_line_width >= 0.0) || !std::isfinite(inConfig.marker_line_width))
+    return "marker_line_width must be a finite number >= 0";
+
+  ioParams.engine = engine;
+  ioParams.publish_markers = inConfig.publish_markers;
+  ioParams.markers.max_boxes = static_cast<std::size_t>(inConfig.max_marker_boxes);
+  ioParams.markers.show_non_colliding = inConfig.show_non_colliding;
+  ioParams.markers.show_pair_links = inConfig.show_pair_links;
+  ioParams.markers.line_width = inConfig.marker_line_width;
+  return "";
+}
+
+bool sameEngineConfig(const BroadphaseConfig& inA, const BroadphaseConfig& inB) {
+  return inA.threads == inB.threads && inA.method == inB.method &&
+         inA.primary_axis == inB.primary_axis && inA.secondary_axis == inB.secondary_axis &&
+         inA.axis_swapping == inB.axis_swapping &&
+         inA.axis_swap_threshold == inB.axis_swap_threshold &&
+         inA.parallel_min_boxes == inB.parallel_min_boxes &&
+         inA.third_axis_slabs == inB.third_axis_slabs &&
+         inA.reuse_unchanged_frames == inB.reuse_unchanged_frames &&
+         inA.index_static_boxes == inB.index_static_boxes && inA.skin == inB.skin &&
+         inA.exact_final_test == inB.exact_final_test;
+}
+
+bool sameMarkerSettings(const NodeParams& inA, const NodeParams& inB) {
+  return inA.publish_markers == inB.publish_markers &&
+         inA.markers.max_boxes == inB.markers.max_boxes &&
+         inA.markers.show_non_colliding == inB.markers.show_non_colliding &&
+         inA.markers.show_pair_links == inB.markers.show_pair_links &&
+         inA.markers.line_width == inB.markers.line_width;
 }
 
 }  // namespace sap_broadphase

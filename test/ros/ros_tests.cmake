@@ -41,3 +41,7 @@ add_rostest_gtest(test_sources test/ros/sources.test
 target_include_directories(test_sources PRIVATE test/ros)
 target_link_libraries(test_sources ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
 add_dependencies(test_sources ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)
+
+# dynamic_reconfigure of the node and of BroadphaseNodelet (python client): threads and skin
+# changed at run time show in stats, pairs equal the oracle's, invalid values are refused.
+add_rostest(test/ros/reconfigure.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)

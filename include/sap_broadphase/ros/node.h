@@ -1,7 +1,7 @@
 // BroadphaseNode: the latest frame of every source merged into one world (transformed into a
 // fixed frame with tf2), tested against a latched static world; pairs, pair events, markers,
 // stats and /diagnostics out from a worker thread; the compute_pairs service on its own
-// spinner thread with its own engine.
+// spinner thread with its own engine; dynamic_reconfigure of the engine and marker settings.
 #pragma once
 
 #include <condition_variable>
@@ -19,6 +19,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include <boost/thread/recursive_mutex.hpp>
 
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/ComputePairs.h"
@@ -28,7 +29,14 @@
 #include "sap_broadphase/ros/node_params.h"
 #include "sap_broadphase/ros/sources.h"
 
+namespace dynamic_reconfigure {
+template <class ConfigType>
+class Server;
+}  // namespace dynamic_reconfigure
+
 namespace sap_broadphase {
+
+class BroadphaseNodeConfig;  // generated from cfg/BroadphaseNode.cfg
 
 /// The ROS face of the engine. All topic and service names are relative to the node handle
 /// given, so they can be remapped or pushed into a namespace. Every thread it needs is its own
@@ -37,7 +45,7 @@ class BroadphaseNode {
  public:
   /// Subscribes, advertises and starts the worker and the service thread. The source callbacks
   /// run on ioNode's callback queue (spin it, e.g. ros::spin()); inPrivate names the node for
-  /// /diagnostics.
+  /// /diagnostics and serves dynamic_reconfigure on its callback queue.
   BroadphaseNode(ros::NodeHandle& ioNode, const ros::NodeHandle& inPrivate,
                  const NodeParams& inParams);
   /// As above with the private handle "~" of the process.
@@ -77,6 +85,13 @@ class BroadphaseNode {
   void onStaticBoxes(const BoxArrayConstPtr& inMsg);
   /// Service callback: converts, validates and computes on the service's own engine.
   bool onComputePairs(ComputePairs::Request& inRequest, ComputePairs::Response& outResponse);
+  /// dynamic_reconfigure callback: checks ioConfig and hands accepted settings to the worker
+  /// and the service thread; refused settings are logged and ioConfig is set back to the
+  /// settings in force, which the server then reports to its clients.
+  void onReconfigure(BroadphaseNodeConfig& ioConfig, uint32_t inLevel);
+  /// Takes reconfigured settings into force between two frames (worker thread): a new engine
+  /// (scenery declared again) when the engine settings changed, markers advertised or not.
+  void applySettings(const NodeParams& inSettings);
 
   /// The worker thread: waits for deliveries (or the next ~rate tick), takes them into the
   /// world, computes, publishes; between frames expires silent sources and reports diagnostics.
@@ -103,7 +118,10 @@ class BroadphaseNode {
   /// The /diagnostics status: rate, latency, drops, refusals, skips, time-outs, last error.
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus);
 
+  // The settings in force; the worker changes the run-time ones under mutex_ (it alone writes,
+  // so it reads them without the lock; other threads read them under mutex_).
   NodeParams params_;
+  ros::NodeHandle node_;  // to advertise `markers` when they are switched on at run time
   std::vector<ros::Subscriber> source_subs_;
   ros::Subscriber static_sub_;
   ros::Publisher pairs_pub_;
@@ -119,7 +137,7 @@ class BroadphaseNode {
   ros::CallbackQueue service_queue_;
   ros::ServiceServer service_;
   std::optional<ros::AsyncSpinner> service_spinner_;
-  Broadphase service_engine_;  // used only by the service thread
+  Broadphase service_engine_;  // used only by the service thread (rebuilt by it on reconfigure)
   BoxSet service_boxes_;       // its conversion buffer
   CapacityWatch service_watch_;
 
@@ -130,10 +148,20 @@ class BroadphaseNode {
   BoxArrayConstPtr pending_static_;
   bool stopping_ = false;
   Counters counters_;
+  std::optional<NodeParams> pending_settings_;              // for the worker
+  std::optional<BroadphaseConfig> pending_service_config_;  // for the service thread
+
+  // dynamic_reconfigure: the server (with a mutex of ours, so that giving it the settings in
+  // force cannot deadlock with a client's update) and the settings last accepted (its
+  // callback's own).
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<BroadphaseNodeConfig>> reconfigure_;
+  NodeParams accepted_;
 
   // Worker-owned state.
   Broadphase engine_;
   SourceSet sources_;
+  BoxSet static_boxes_;               // the scenery, declared again to a rebuilt engine
   std::vector<uint32_t> static_ids_;  // sorted ids of the scenery, for the id check
   std::string static_frame_;          // frame of the scenery without ~fixed_frame
   BoxSet converted_;                  // conversion buffer, swapped into the sources

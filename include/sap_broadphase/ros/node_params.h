@@ -1,6 +1,7 @@
 // The node's private parameters: reading, checking and defaults.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,8 @@
 #include "sap_broadphase/ros/markers.h"
 
 namespace sap_broadphase {
+
+class BroadphaseNodeConfig;  // generated from cfg/BroadphaseNode.cfg (dynamic_reconfigure)
 
 /// Everything BroadphaseNode can be told through its private parameters.
 struct NodeParams {
@@ -30,12 +33,33 @@ struct NodeParams {
 /// Parses an axis given as "x", "y", "z" (any case) or "0", "1", "2". False on anything else.
 bool parseAxisName(const std::string& inName, int& outAxis);
 
+/// Parses a skin given as text: "auto" or "" (automatic), "off" (0) or a number (0 = off,
+/// > 0 = fixed; configProblem() judges its range). False when the text is none of these.
+bool parseSkin(const std::string& inText, std::optional<double>& outSkin);
+
+/// The skin as parseSkin() reads it back: "auto", "off" or the shortest exact number.
+std::string skinText(const std::optional<double>& inSkin);
+
 /// Reads the private parameters of inPrivate over the defaults of NodeParams. Returns the
 /// problem (unknown axis or method, equal axes, negative counts, no sources) or an empty string.
 std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams);
 
-/// One line of the parameters in force (threads, method, thresholds, skin, sources, frames),
-/// logged once at start-up.
+/// One line of the parameters in force (threads, method, thresholds, skin, markers, sources,
+/// frames), logged at start-up and after every accepted reconfigure.
 std::string describeNodeParams(const NodeParams& inParams);
+
+/// The run-time settings of inParams (engine and markers) as a dynamic_reconfigure config.
+void toReconfigureConfig(const NodeParams& inParams, BroadphaseNodeConfig& outConfig);
+
+/// Takes the run-time settings of inConfig into ioParams, checked as at start-up (axes, method,
+/// skin, configProblem()). Returns the problem, with ioParams unchanged, or an empty string.
+std::string fromReconfigureConfig(const BroadphaseNodeConfig& inConfig, NodeParams& ioParams);
+
+/// True when both configurations build the same engine.
+bool sameEngineConfig(const BroadphaseConfig& inA, const BroadphaseConfig& inB);
+
+/// True when both parameter sets draw the same markers (publish_markers and MarkerOptions'
+/// settings that the node reads from parameters).
+bool sameMarkerSettings(const NodeParams& inA, const NodeParams& inB);
 
 }  // namespace sap_broadphase

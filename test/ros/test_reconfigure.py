@@ -1,0 +1,219 @@
+#!/usr/bin/python3
+"""dynamic_reconfigure of the node (namespace `node`) and of BroadphaseNodelet (namespace
+`nodelet`), through dynamic_reconfigure's python client: every frame published after a change
+is computed with the new threads and skin (as `stats` reports them) and its pairs equal the
+brute-force oracle's; invalid values are refused, the settings in force stay and the node keeps
+answering.
+
+No timing is asserted: every wait is for a condition (a connection, the answer to a frame),
+bounded by WAIT only so that a broken node fails the test instead of hanging it.
+"""
+import random
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from dynamic_reconfigure.client import Client
+from sap_broadphase.msg import BoxArray, FrameStats, PairArray
+
+PACKAGE = "sap_broadphase"
+NAMESPACES = ["node", "nodelet"]
+WAIT = 30.0  # seconds; a bound on waiting, never a speed check
+BOXES = 400
+
+
+def random_frame(seed):
+    """BOXES boxes of edges up to 2 in a cube of 20: a few hundred pairs."""
+    rng = random.Random(seed)
+    bounds = []
+    for _ in range(BOXES):
+        low = [rng.uniform(0.0, 20.0) for _ in range(3)]
+        bounds += low + [v + rng.uniform(0.0, 2.0) for v in low]
+    return bounds
+
+
+def overlap(box_a, box_b):
+    return all(box_a[k] <= box_b[k + 3] and box_b[k] <= box_a[k + 3] for k in range(3))
+
+
+def oracle_pairs(bounds, scenery_ids=(), scenery_bounds=()):
+    """Every pair of closed boxes overlapping on all three axes, as sorted (a, b) with a < b:
+    among the moving boxes (ids 0..n-1) and between them and the scenery, never scenery x
+    scenery."""
+    boxes = [bounds[6 * i:6 * i + 6] for i in range(len(bounds) // 6)]
+    scenery = [scenery_bounds[6 * i:6 * i + 6] for i in range(len(scenery_ids))]
+    pairs = []
+    for a, box_a in enumerate(boxes):
+        for b in range(a + 1, len(boxes)):
+            if overlap(box_a, boxes[b]):
+                pairs.append((a, b))
+        for scenery_id, box_b in zip(scenery_ids, scenery):
+            if overlap(box_a, box_b):
+                pairs.append((min(a, scenery_id), max(a, scenery_id)))
+    return sorted(pairs)
+
+
+class Endpoint:
+    """Topics and reconfigure client of one broad phase under /<namespace>."""
+
+    def __init__(self, namespace):
+        self.namespace = namespace
+        self.condition = threading.Condition()
+        self.pairs = {}  # stamp -> PairArray
+        self.stats = {}  # stamp -> FrameStats of a computed frame
+        self.publisher = rospy.Publisher("/%s/boxes" % namespace, BoxArray, queue_size=10)
+        self.static_publisher = rospy.Publisher("/%s/static_boxes" % namespace, BoxArray,
+                                                queue_size=1, latch=True)
+        self.scenery = BoxArray()
+        self.pairs_sub = rospy.Subscriber("/%s/pairs" % namespace, PairArray, self.on_pairs)
+        self.stats_sub = rospy.Subscriber("/%s/stats" % namespace, FrameStats, self.on_stats)
+        self.client = Client("/%s/sap_broadphase" % namespace, timeout=WAIT)
+        self.frames = 0
+
+    def on_pairs(self, msg):
+        with self.condition:
+            self.pairs[msg.header.stamp] = msg
+            self.condition.notify_all()
+
+    def on_stats(self, msg):
+        if msg.path == "refused":
+            return
+        with self.condition:
+            self.stats[msg.header.stamp] = msg
+            self.condition.notify_all()
+
+    def wait_for(self, predicate, what):
+        """Until predicate holds: woken by every answer, and polled for connection counts,
+        which notify nobody."""
+        deadline = time.monotonic() + WAIT
+        with self.condition:
+            while not self.condition.wait_for(predicate, 0.05):
+                if time.monotonic() > deadline or rospy.is_shutdown():
+                    raise AssertionError("%s: no %s within %.0f s" % (self.namespace, what, WAIT))
+
+    def connect(self):
+        self.wait_for(lambda: self.publisher.get_num_connections() > 0, "subscriber of boxes")
+        self.wait_for(lambda: self.pairs_sub.get_num_connections() > 0, "publisher of pairs")
+        self.wait_for(lambda: self.stats_sub.get_num_connections() > 0, "publisher of stats")
+        self.wait_for(lambda: self.static_publisher.get_num_connections() > 0,
+                      "subscriber of static_boxes")
+
+    def declare_scenery(self, count):
+        """Publishes count boxes with ids from 100000 as the (latched) scenery."""
+        self.scenery.header.frame_id = "world"
+        self.scenery.ids = [100000 + i for i in range(count)]
+        self.scenery.bounds = random_frame(hash((self.namespace, "scenery")) & 0xFFFF)[:6 * count]
+        self.static_publisher.publish(self.scenery)
+
+    def frame(self):
+        """Publishes a new random frame; returns its pairs (as tuples), the oracle's and stats."""
+        self.frames += 1
+        msg = BoxArray()
+        msg.header.frame_id = "world"
+        msg.header.stamp = rospy.Time(1000 + self.frames, 0)  # the frame's key in the answers
+        msg.bounds = random_frame(hash((self.namespace, self.frames)) & 0xFFFF)
+        self.publisher.publish(msg)
+        stamp = msg.header.stamp
+        self.wait_for(lambda: stamp in self.pairs and stamp in self.stats,
+                      "pairs and stats of frame %d" % self.frames)
+        flat = list(self.pairs[stamp].pairs)
+        pairs = [(flat[i], flat[i + 1]) for i in range(0, len(flat), 2)]
+        expected = oracle_pairs(msg.bounds, self.scenery.ids, self.scenery.bounds)
+        return pairs, expected, self.stats[stamp]
+
+
+class ReconfigureTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_reconfigure", anonymous=True)
+        cls.endpoints = [Endpoint(namespace) for namespace in NAMESPACES]
+        for endpoint in cls.endpoints:
+            endpoint.connect()
+
+    def check_exact(self, endpoint, pairs, expected, stats):
+        self.assertEqual(pairs, expected, "%s: pairs differ from the oracle" % endpoint.namespace)
+        self.assertEqual(stats.pairs, len(expected))
+        self.assertGreater(len(expected), 0, "the frames should have pairs to check")
+
+    def test_1_threads_and_skin_at_run_time(self):  # first: it checks the launch values
+        for endpoint in self.endpoints:
+            with self.subTest(namespace=endpoint.namespace):
+                start = endpoint.client.get_configuration(timeout=WAIT)
+                self.assertEqual(start["threads"], 1)  # the launch file's value
+                self.assertEqual(start["skin"], "auto")
+
+                # A fixed skin makes every sweep run on all configured threads.
+                config = endpoint.client.update_configuration({"threads": 2, "skin": "0.5"})
+                self.assertEqual((config["threads"], config["skin"]), (2, "0.5"))
+                pairs, expected, stats = endpoint.frame()
+                self.check_exact(endpoint, pairs, expected, stats)
+                self.assertEqual(stats.threads, 2)
+                self.assertEqual(stats.skin_choice, "fixed")
+                self.assertEqual(stats.skin, 0.5)
+
+                config = endpoint.client.update_configuration({"threads": 1, "skin": "0"})
+                self.assertEqual((config["threads"], config["skin"]), (1, "off"))
+                pairs, expected, stats = endpoint.frame()
+                self.check_exact(endpoint, pairs, expected, stats)
+                self.assertEqual(stats.threads, 1)
+                self.assertEqual(stats.skin_choice, "off")
+                self.assertEqual(stats.skin, 0.0)
+
+                config = endpoint.client.update_configuration({"threads": 3, "skin": "0.25"})
+                pairs, expected, stats = endpoint.frame()
+                self.check_exact(endpoint, pairs, expected, stats)
+                self.assertEqual(stats.threads, 3)
+                self.assertEqual((stats.skin_choice, stats.skin), ("fixed", 0.25))
+
+                config = endpoint.client.update_configuration({"skin": "auto"})
+                self.assertEqual((config["threads"], config["skin"]), (3, "auto"))
+                pairs, expected, stats = endpoint.frame()
+                self.check_exact(endpoint, pairs, expected, stats)
+                self.assertNotIn(stats.skin_choice, ("off", "fixed"))
+                self.assertEqual(rospy.get_param("/%s/sap_broadphase/skin" % endpoint.namespace),
+                                 "auto")
+
+    def test_2_invalid_values_refused(self):
+        for endpoint in self.endpoints:
+            with self.subTest(namespace=endpoint.namespace):
+                before = endpoint.client.update_configuration({"threads": 2, "skin": "off"})
+                for change in ({"skin": "-1"}, {"skin": "banana"}, {"skin": "nan"},
+                               {"primary_axis": "y", "secondary_axis": "y"},
+                               {"method": "quantum"}, {"threads": 2, "skin": "-0.5"}):
+                    config = endpoint.client.update_configuration(change)
+                    for name in change:
+                        self.assertEqual(config[name], before[name],
+                                         "%s: %s was not refused" % (endpoint.namespace, change))
+                # Still up, still exact, still with the settings in force before.
+                pairs, expected, stats = endpoint.frame()
+                self.check_exact(endpoint, pairs, expected, stats)
+                self.assertEqual(stats.skin_choice, "off")
+                after = endpoint.client.get_configuration(timeout=WAIT)
+                self.assertEqual((after["primary_axis"], after["secondary_axis"]), ("x", "y"))
+                self.assertEqual((after["threads"], after["skin"]), (2, "off"))
+
+    def test_3_scenery_kept_by_a_new_engine(self):  # last: the scenery stays
+        for endpoint in self.endpoints:
+            with self.subTest(namespace=endpoint.namespace):
+                endpoint.declare_scenery(300)
+                # The scenery takes effect between two frames: frames until one reports it.
+                for _ in range(100):
+                    pairs, expected, stats = endpoint.frame()
+                    if stats.static_world_boxes == 300:
+                        break
+                self.assertEqual(stats.static_world_boxes, 300)
+                self.check_exact(endpoint, pairs, expected, stats)
+                with_scenery = [pair for pair in expected if pair[1] >= 100000]
+                self.assertGreater(len(with_scenery), 0, "no pair with the scenery to check")
+
+                endpoint.client.update_configuration({"threads": 1, "skin": "0.5"})
+                pairs, expected, stats = endpoint.frame()
+                self.assertEqual((stats.threads, stats.skin_choice), (1, "fixed"))
+                self.assertEqual(stats.static_world_boxes, 300)
+                self.check_exact(endpoint, pairs, expected, stats)
+
+
+if __name__ == "__main__":
+    rostest.rosrun(PACKAGE, "reconfigure", ReconfigureTest)
