@@ -233,6 +233,29 @@ void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCou
   }
 }
 
+// Partition size Δ and count of the rank split: at most kPairingPartitionRanks ranks each, and
+// at least one partition per thread.
+void partitionRanks(uint32_t inObjects, int inThreads, uint32_t& outSize, uint32_t& outCount) {
+  const uint32_t wanted = std::max<uint32_t>(
+      inThreads, (inObjects + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
+  outSize = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
+  outCount = (inObjects + outSize - 1) / outSize;
+  assert(outSize <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
+}
+
+// Sweeps partition inPartition of the scattered entries with ioTrees (slab_count trees of the
+// partition's size, left empty again by the sweep).
+void sweepPartition(const PairingInput& inInput, const SweepWorkspace& inWork,
+                    uint32_t inPartitionSize, uint32_t inPartition, SuccTree* ioTrees,
+                    PairChunks& outPairs) {
+  const uint32_t rank_begin = inPartition * inPartitionSize;
+  const uint32_t rank_end = std::min(inInput.objects, rank_begin + inPartitionSize);
+  const std::size_t begin = inWork.partition_offsets[inPartition];
+  const std::size_t end = inWork.partition_offsets[inPartition + 1];
+  PartitionSweep sweep(inInput, rank_begin, rank_end, ioTrees, outPairs);
+  sweep.run(PartitionReader{inWork.partition_entries.data() + begin, end - begin});
+}
+
 }  // namespace
 
 void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
@@ -251,20 +274,30 @@ void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
 }
 
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
-  prepareTrees(ioWork.pairing, 0, inInput.slab_count, inInput.objects);
-  PartitionSweep sweep(inInput, 0, inInput.objects, ioWork.pairing.data(), outPairs);
-  sweep.run(WholeStreamReader{inInput.stream, 2 * std::size_t{inInput.objects}, inInput.objects});
+  const uint32_t n = inInput.objects;
+  if (n <= kPairingPartitionRanks ||
+      uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= kSequentialTreeBits) {
+    prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
+    PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
+    sweep.run(WholeStreamReader{inInput.stream, 2 * std::size_t{n}, n});
+    return;
+  }
+  // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
+  // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
+  // stream; on the big trees every insert, erase and range walk would miss the cache.
+  uint32_t partition_size = 0, partitions = 0;
+  partitionRanks(n, 1, partition_size, partitions);
+  scatterToPartitions(inInput, 1, partition_size, partitions, ioWork);
+  prepareTrees(ioWork.pairing, 0, inInput.slab_count, partition_size);
+  for (uint32_t p = 0; p < partitions; ++p)
+    sweepPartition(inInput, ioWork, partition_size, p, ioWork.pairing.data(), outPairs);
 }
 
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread) {
   const int threads = std::max(1, inThreads);
-  const uint32_t n = inInput.objects;
-  const uint32_t wanted =
-      std::max<uint32_t>(threads, (n + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
-  const uint32_t partition_size = std::max<uint32_t>(1, (n + wanted - 1) / wanted);  // Δ
-  const uint32_t partitions = (n + partition_size - 1) / partition_size;
-  assert(partition_size <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
+  uint32_t partition_size = 0, partitions = 0;  // Δ and m
+  partitionRanks(inInput.objects, threads, partition_size, partitions);
   scatterToPartitions(inInput, threads, partition_size, partitions, ioWork);
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, partition_size);
@@ -276,14 +309,8 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
     PairChunks& pairs = outPairsPerThread[thread];
     pairs.clear();
 #pragma omp for schedule(dynamic, 1)
-    for (uint32_t p = 0; p < partitions; ++p) {
-      const uint32_t rank_begin = p * partition_size;
-      const uint32_t rank_end = std::min(n, rank_begin + partition_size);
-      const std::size_t begin = ioWork.partition_offsets[p];
-      const std::size_t end = ioWork.partition_offsets[p + 1];
-      PartitionSweep sweep(inInput, rank_begin, rank_end, trees, pairs);
-      sweep.run(PartitionReader{ioWork.partition_entries.data() + begin, end - begin});
-    }
+    for (uint32_t p = 0; p < partitions; ++p)
+      sweepPartition(inInput, ioWork, partition_size, p, trees, pairs);
   }
 }
 
