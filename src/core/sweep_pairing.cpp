@@ -31,9 +31,12 @@ inline uint64_t highEntry(uint32_t inRank) {
   return inRank | kEntryHighBit;
 }
 
-inline bool keysApart(const RankedKeys& inA, const RankedKeys& inB) {
-  return inA.lo[0] > inB.hi[0] || inB.lo[0] > inA.hi[0] || inA.lo[1] > inB.hi[1] ||
-         inB.lo[1] > inA.hi[1] || inA.lo[2] > inB.hi[2] || inB.lo[2] > inA.hi[2];
+// Keys overlap on every axis. Without branches: all six comparisons, combined with bitwise
+// operators.
+inline bool keysOverlapFlat(const RankedKeys& inA, const RankedKeys& inB) {
+  const bool apart = (inA.lo[0] > inB.hi[0]) | (inB.lo[0] > inA.hi[0]) | (inA.lo[1] > inB.hi[1]) |
+                     (inB.lo[1] > inA.hi[1]) | (inA.lo[2] > inB.hi[2]) | (inB.lo[2] > inA.hi[2]);
+  return !apart;
 }
 
 // Keys deep enough inside each other that the float64 intervals must overlap too.
@@ -122,26 +125,53 @@ class PartitionSweep {
   }
 
   // Tests box inObject (rank inRank) against slab inSlab's active ranks in [inBegin, inEnd).
+  // Two stages: a branch-free filter over the candidates the tree yields (slab rule and key
+  // test, whose outcomes are close to random and mispredicted about half the time as branches)
+  // compacts the survivors into a small buffer; only those, a few percent of the candidates,
+  // take the exact test, the filters and the output, with branches.
   void testCandidates(int inSlab, uint32_t inBegin, uint32_t inEnd, uint32_t inObject,
                       uint32_t inRank) {
-    const RankedKeys& keys = input_.keys[inRank];
+    const RankedKeys keys = input_.keys[inRank];
+    const RankedKeys* all_keys = input_.keys;
     const RankedSlabs* slabs = input_.slabs;
-    const RankedFilter* filters = input_.filters;
-    const uint32_t* object_of_rank = input_.object_of_rank;
+    const uint32_t slab = static_cast<uint32_t>(inSlab);
+    const uint32_t first_slab = slabs ? slabs[inRank].first : 0;
+    const uint32_t rank_begin = rank_begin_;
+    uint32_t survivors[kSurvivorBlock];
+    uint32_t count = 0;
     trees_[inSlab].forEachInRange(inBegin, inEnd, [&](uint32_t inLocalRank) {
-      const uint32_t other_rank = inLocalRank + rank_begin_;
+      const uint32_t other_rank = inLocalRank + rank_begin;
+      bool keep = keysOverlapFlat(keys, all_keys[other_rank]);
       // A pair sharing several slabs is reported only in the slab of the larger low end.
-      if (slabs && inSlab != std::max(slabs[inRank].first, slabs[other_rank].first)) return;
-      const RankedKeys& other_keys = input_.keys[other_rank];
-      if (keysApart(keys, other_keys)) return;
-      const uint32_t other = object_of_rank[other_rank];
-      if (input_.boxes && !keysCertainlyOverlap(keys, other_keys) &&
-          !boxesOverlap(*input_.boxes, inObject, other))
-        return;
-      if (filters && !filtersAllow(filters[inRank], filters[other_rank])) return;
-      pairs_.push_back(makeIdPair(input_.ids[inObject], input_.ids[other]));
+      if (slabs) keep &= slab == std::max<uint32_t>(first_slab, slabs[other_rank].first);
+      survivors[count] = other_rank;
+      count += keep;
+      if (count == kSurvivorBlock) {
+        reportSurvivors(survivors, count, keys, inObject, inRank);
+        count = 0;
+      }
     });
+    reportSurvivors(survivors, count, keys, inObject, inRank);
   }
+
+  // Exact test (float64, for keys too close to decide), filters and output of candidates whose
+  // keys overlap.
+  void reportSurvivors(const uint32_t* inRanks, uint32_t inCount, const RankedKeys& inKeys,
+                       uint32_t inObject, uint32_t inRank) {
+    const RankedFilter* filters = input_.filters;
+    for (uint32_t k = 0; k < inCount; ++k) {
+      const uint32_t other_rank = inRanks[k];
+      const uint32_t other = input_.object_of_rank[other_rank];
+      if (input_.boxes && !keysCertainlyOverlap(inKeys, input_.keys[other_rank]) &&
+          !boxesOverlap(*input_.boxes, inObject, other))
+        continue;
+      if (filters && !filtersAllow(filters[inRank], filters[other_rank])) continue;
+      pairs_.push_back(makeIdPair(input_.ids[inObject], input_.ids[other]));
+    }
+  }
+
+  // Candidates a block of the two-stage test holds (stack buffer).
+  static constexpr uint32_t kSurvivorBlock = 64;
 
   const PairingInput& input_;
   const uint32_t rank_begin_;
