@@ -31,9 +31,12 @@ inline uint64_t highEntry(uint32_t inRank) {
   return inRank | kEntryHighBit;
 }
 
-inline bool keysApart(const RankedKeys& inA, const RankedKeys& inB) {
-  return inA.lo[0] > inB.hi[0] || inB.lo[0] > inA.hi[0] || inA.lo[1] > inB.hi[1] ||
-         inB.lo[1] > inA.hi[1] || inA.lo[2] > inB.hi[2] || inB.lo[2] > inA.hi[2];
+// Keys overlap on every axis. Without branches: all six comparisons, combined with bitwise
+// operators.
+inline bool keysOverlapFlat(const RankedKeys& inA, const RankedKeys& inB) {
+  const bool apart = (inA.lo[0] > inB.hi[0]) | (inB.lo[0] > inA.hi[0]) | (inA.lo[1] > inB.hi[1]) |
+                     (inB.lo[1] > inA.hi[1]) | (inA.lo[2] > inB.hi[2]) | (inB.lo[2] > inA.hi[2]);
+  return !apart;
 }
 
 // Keys deep enough inside each other that the float64 intervals must overlap too.
@@ -57,6 +60,9 @@ struct WholeStreamReader {
   std::size_t count;
   uint32_t rank_end;  // ranks are local to [0, rank_end)
   std::size_t size() const { return count; }
+  uint32_t rankAt(std::size_t inK) const {
+    return secondary_stream::rankAndKind(stream, inK) & ~secondary_stream::kHighBit;
+  }
   void read(std::size_t inK, uint32_t& outRank, bool& outHigh, uint32_t& outBegin,
             uint32_t& outEnd) const {
     const uint32_t rank_and_kind = secondary_stream::rankAndKind(stream, inK);
@@ -71,6 +77,7 @@ struct PartitionReader {
   const uint64_t* entries;
   std::size_t count;
   std::size_t size() const { return count; }
+  uint32_t rankAt(std::size_t inK) const { return static_cast<uint32_t>(entries[inK]) & kRankMask; }
   void read(std::size_t inK, uint32_t& outRank, bool& outHigh, uint32_t& outBegin,
             uint32_t& outEnd) const {
     const uint64_t entry = entries[inK];
@@ -97,7 +104,11 @@ class PartitionSweep {
   void run(const Reader& inReader) {
     uint32_t rank = 0, begin = 0, end = 0;
     bool high = false;
-    for (std::size_t k = 0; k < inReader.size(); ++k) {
+    const std::size_t size = inReader.size();
+    for (std::size_t k = 0; k < size; ++k) {
+      // Ranks come in secondary-axis order, so the box records they index are scattered over
+      // the rank arrays and each one's first touch misses the cache: fetch them ahead.
+      if (k + kPrefetchAhead < size) prefetchRecords(inReader.rankAt(k + kPrefetchAhead));
       inReader.read(k, rank, high, begin, end);
       const RankedSlabs slabs = slabsOf(rank);
       if (high) {
@@ -117,31 +128,68 @@ class PartitionSweep {
   }
 
  private:
+  // Endpoints between a record's prefetch and its use: enough to cover a miss to memory at a
+  // few nanoseconds an endpoint.
+  static constexpr std::size_t kPrefetchAhead = 16;
+
+  void prefetchRecords(uint32_t inRank) const {
+    __builtin_prefetch(&input_.keys[inRank]);
+    __builtin_prefetch(&input_.object_of_rank[inRank]);
+    if (input_.slabs) __builtin_prefetch(&input_.slabs[inRank]);
+  }
+
   RankedSlabs slabsOf(uint32_t inRank) const {
     return input_.slabs ? input_.slabs[inRank] : RankedSlabs{0, 0};
   }
 
   // Tests box inObject (rank inRank) against slab inSlab's active ranks in [inBegin, inEnd).
+  // Two stages: a branch-free filter over the candidates the tree yields (slab rule and key
+  // test, whose outcomes are close to random and mispredicted about half the time as branches)
+  // compacts the survivors into a small buffer; only those, a few percent of the candidates,
+  // take the exact test, the filters and the output, with branches.
   void testCandidates(int inSlab, uint32_t inBegin, uint32_t inEnd, uint32_t inObject,
                       uint32_t inRank) {
-    const RankedKeys& keys = input_.keys[inRank];
+    const RankedKeys keys = input_.keys[inRank];
+    const RankedKeys* all_keys = input_.keys;
     const RankedSlabs* slabs = input_.slabs;
-    const RankedFilter* filters = input_.filters;
-    const uint32_t* object_of_rank = input_.object_of_rank;
+    const uint32_t slab = static_cast<uint32_t>(inSlab);
+    const uint32_t first_slab = slabs ? slabs[inRank].first : 0;
+    const uint32_t rank_begin = rank_begin_;
+    uint32_t survivors[kSurvivorBlock];
+    uint32_t count = 0;
     trees_[inSlab].forEachInRange(inBegin, inEnd, [&](uint32_t inLocalRank) {
-      const uint32_t other_rank = inLocalRank + rank_begin_;
+      const uint32_t other_rank = inLocalRank + rank_begin;
+      bool keep = keysOverlapFlat(keys, all_keys[other_rank]);
       // A pair sharing several slabs is reported only in the slab of the larger low end.
-      if (slabs && inSlab != std::max(slabs[inRank].first, slabs[other_rank].first)) return;
-      const RankedKeys& other_keys = input_.keys[other_rank];
-      if (keysApart(keys, other_keys)) return;
-      const uint32_t other = object_of_rank[other_rank];
-      if (input_.boxes && !keysCertainlyOverlap(keys, other_keys) &&
-          !boxesOverlap(*input_.boxes, inObject, other))
-        return;
-      if (filters && !filtersAllow(filters[inRank], filters[other_rank])) return;
-      pairs_.push_back(makeIdPair(input_.ids[inObject], input_.ids[other]));
+      if (slabs) keep &= slab == std::max<uint32_t>(first_slab, slabs[other_rank].first);
+      survivors[count] = other_rank;
+      count += keep;
+      if (count == kSurvivorBlock) {
+        reportSurvivors(survivors, count, keys, inObject, inRank);
+        count = 0;
+      }
     });
+    reportSurvivors(survivors, count, keys, inObject, inRank);
   }
+
+  // Exact test (float64, for keys too close to decide), filters and output of candidates whose
+  // keys overlap.
+  void reportSurvivors(const uint32_t* inRanks, uint32_t inCount, const RankedKeys& inKeys,
+                       uint32_t inObject, uint32_t inRank) {
+    const RankedFilter* filters = input_.filters;
+    for (uint32_t k = 0; k < inCount; ++k) {
+      const uint32_t other_rank = inRanks[k];
+      const uint32_t other = input_.object_of_rank[other_rank];
+      if (input_.boxes && !keysCertainlyOverlap(inKeys, input_.keys[other_rank]) &&
+          !boxesOverlap(*input_.boxes, inObject, other))
+        continue;
+      if (filters && !filtersAllow(filters[inRank], filters[other_rank])) continue;
+      pairs_.push_back(makeIdPair(input_.ids[inObject], input_.ids[other]));
+    }
+  }
+
+  // Candidates a block of the two-stage test holds (stack buffer).
+  static constexpr uint32_t kSurvivorBlock = 64;
 
   const PairingInput& input_;
   const uint32_t rank_begin_;
@@ -233,6 +281,29 @@ void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCou
   }
 }
 
+// Partition size Δ and count of the rank split: at most kPairingPartitionRanks ranks each, and
+// at least one partition per thread.
+void partitionRanks(uint32_t inObjects, int inThreads, uint32_t& outSize, uint32_t& outCount) {
+  const uint32_t wanted = std::max<uint32_t>(
+      inThreads, (inObjects + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
+  outSize = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
+  outCount = (inObjects + outSize - 1) / outSize;
+  assert(outSize <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
+}
+
+// Sweeps partition inPartition of the scattered entries with ioTrees (slab_count trees of the
+// partition's size, left empty again by the sweep).
+void sweepPartition(const PairingInput& inInput, const SweepWorkspace& inWork,
+                    uint32_t inPartitionSize, uint32_t inPartition, SuccTree* ioTrees,
+                    PairChunks& outPairs) {
+  const uint32_t rank_begin = inPartition * inPartitionSize;
+  const uint32_t rank_end = std::min(inInput.objects, rank_begin + inPartitionSize);
+  const std::size_t begin = inWork.partition_offsets[inPartition];
+  const std::size_t end = inWork.partition_offsets[inPartition + 1];
+  PartitionSweep sweep(inInput, rank_begin, rank_end, ioTrees, outPairs);
+  sweep.run(PartitionReader{inWork.partition_entries.data() + begin, end - begin});
+}
+
 }  // namespace
 
 void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
@@ -251,20 +322,30 @@ void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
 }
 
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
-  prepareTrees(ioWork.pairing, 0, inInput.slab_count, inInput.objects);
-  PartitionSweep sweep(inInput, 0, inInput.objects, ioWork.pairing.data(), outPairs);
-  sweep.run(WholeStreamReader{inInput.stream, 2 * std::size_t{inInput.objects}, inInput.objects});
+  const uint32_t n = inInput.objects;
+  if (n <= kPairingPartitionRanks ||
+      uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= kSequentialTreeBits) {
+    prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
+    PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
+    sweep.run(WholeStreamReader{inInput.stream, 2 * std::size_t{n}, n});
+    return;
+  }
+  // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
+  // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
+  // stream; on the big trees every insert, erase and range walk would miss the cache.
+  uint32_t partition_size = 0, partitions = 0;
+  partitionRanks(n, 1, partition_size, partitions);
+  scatterToPartitions(inInput, 1, partition_size, partitions, ioWork);
+  prepareTrees(ioWork.pairing, 0, inInput.slab_count, partition_size);
+  for (uint32_t p = 0; p < partitions; ++p)
+    sweepPartition(inInput, ioWork, partition_size, p, ioWork.pairing.data(), outPairs);
 }
 
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread) {
   const int threads = std::max(1, inThreads);
-  const uint32_t n = inInput.objects;
-  const uint32_t wanted =
-      std::max<uint32_t>(threads, (n + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
-  const uint32_t partition_size = std::max<uint32_t>(1, (n + wanted - 1) / wanted);  // Δ
-  const uint32_t partitions = (n + partition_size - 1) / partition_size;
-  assert(partition_size <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
+  uint32_t partition_size = 0, partitions = 0;  // Δ and m
+  partitionRanks(inInput.objects, threads, partition_size, partitions);
   scatterToPartitions(inInput, threads, partition_size, partitions, ioWork);
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, partition_size);
@@ -276,14 +357,8 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
     PairChunks& pairs = outPairsPerThread[thread];
     pairs.clear();
 #pragma omp for schedule(dynamic, 1)
-    for (uint32_t p = 0; p < partitions; ++p) {
-      const uint32_t rank_begin = p * partition_size;
-      const uint32_t rank_end = std::min(n, rank_begin + partition_size);
-      const std::size_t begin = ioWork.partition_offsets[p];
-      const std::size_t end = ioWork.partition_offsets[p + 1];
-      PartitionSweep sweep(inInput, rank_begin, rank_end, trees, pairs);
-      sweep.run(PartitionReader{ioWork.partition_entries.data() + begin, end - begin});
-    }
+    for (uint32_t p = 0; p < partitions; ++p)
+      sweepPartition(inInput, ioWork, partition_size, p, trees, pairs);
   }
 }
 
