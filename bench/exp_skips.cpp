@@ -102,6 +102,15 @@ void copyBounds(const BoxSet& inFrom, std::size_t inFirst, BoxSet& ioTo, std::si
   }
 }
 
+// The engine without its coherence skips (no skin, no reuse of an identical frame): every
+// frame swept, so that a row measures its own skip and nothing else.
+BroadphaseConfig sweptEveryFrame() {
+  BroadphaseConfig config;
+  config.skin = 0.0;
+  config.reuse_unchanged_frames = false;
+  return config;
+}
+
 // Half the boxes carry group 0 (they can pair with nothing).
 void filterRows(const Options& inOptions, Table& ioTable) {
   const std::size_t n = inOptions.size(std::size_t{1} << 18, std::size_t{1} << 13);
@@ -115,7 +124,7 @@ void filterRows(const Options& inOptions, Table& ioTable) {
   const int frames = inOptions.framesOr(5, 3);
   bool matches = false, baseline_matches = false;
   std::string path, baseline_path;
-  Broadphase engine{BroadphaseConfig()}, baseline{BroadphaseConfig()};
+  Broadphase engine{sweptEveryFrame()}, baseline{sweptEveryFrame()};
   const double ms = timeFrames(
       engine, frames, [&](int) -> const BoxSet& { return boxes; }, matches, path);
   const double base = timeFrames(
@@ -147,9 +156,9 @@ void staticRows(const Options& inOptions, Table& ioTable) {
     return frame;
   };
   const int frames = inOptions.framesOr(6, 3);
-  BroadphaseConfig indexed;
+  BroadphaseConfig indexed = sweptEveryFrame();
   indexed.index_static_boxes = true;
-  Broadphase engine(indexed), baseline{BroadphaseConfig()};
+  Broadphase engine(indexed), baseline{sweptEveryFrame()};
   bool matches = false, baseline_matches = false;
   std::string path, baseline_path;
   // The first frame builds the index; the median covers the steady frames after it.
@@ -351,9 +360,9 @@ void largeWorldRows(const Options& inOptions, Table& ioTable) {
 void unchangedRows(const Options& inOptions, Table& ioTable) {
   const std::size_t n = inOptions.size(std::size_t{1} << 18, std::size_t{1} << 13);
   const BoxSet boxes = SceneSimulator(uniform(n, 0.2, inOptions.seed)).boxes();
-  BroadphaseConfig reusing;
+  BroadphaseConfig reusing = sweptEveryFrame();
   reusing.reuse_unchanged_frames = true;
-  Broadphase engine(reusing), baseline{BroadphaseConfig()};
+  Broadphase engine(reusing), baseline{sweptEveryFrame()};
   bool matches = false, baseline_matches = false;
   std::string path, baseline_path;
   const int frames = inOptions.framesOr(5, 3);
@@ -410,7 +419,8 @@ void smallFrameRows(const Options& inOptions, Table& ioTable) {
   }
 }
 
-// Skin reuse at three motion speeds (mean box edges per frame) and four skins.
+// Skin reuse at three motion speeds (mean box edges per frame): four fixed skins and the
+// automatic one against no skin.
 void skinRows(const Options& inOptions, Table& ioTable) {
   const std::size_t n = inOptions.size(std::size_t{1} << 17, std::size_t{1} << 12);
   const int frames = inOptions.framesOr(40, 10);
@@ -421,13 +431,14 @@ void skinRows(const Options& inOptions, Table& ioTable) {
     std::vector<BoxSet> moving_frames;
     for (int f = 0; f <= frames; ++f, scene.step()) moving_frames.push_back(scene.boxes());
     const auto frame = [&](int f) -> const BoxSet& { return moving_frames[f]; };
-    Broadphase baseline{BroadphaseConfig()};
+    Broadphase baseline{sweptEveryFrame()};
     bool baseline_matches = false;
     std::string baseline_path;
     const double base = timeFrames(baseline, frames, frame, baseline_matches, baseline_path);
-    for (double skin : {0.05, 0.2, 0.5, 1.0}) {
+    // Fixed skins, then the default's automatic one (-1).
+    for (double skin : {0.05, 0.2, 0.5, 1.0, -1.0}) {
       BroadphaseConfig config;
-      config.skin = skin;
+      if (skin >= 0.0) config.skin = skin;
       Broadphase engine(config);
       bool matches = false;
       std::string path;
@@ -445,8 +456,9 @@ void skinRows(const Options& inOptions, Table& ioTable) {
       double total = 0.0;
       for (double t : times) total += t;
       addRow(ioTable, "skin", "uniform n=" + fmtSize(n) + ", speed " + fmt(speed, 2),
-             "skin " + fmt(skin, 2) + " (" + std::to_string(skin_frames) + "/" +
-                 std::to_string(frames + 1) + " frames reused)",
+             (skin >= 0.0 ? "skin " + fmt(skin, 2) : std::string("automatic skin (default)")) +
+                 " (" + std::to_string(skin_frames) + "/" + std::to_string(frames + 1) +
+                 " frames reused)",
              total / times.size(), base, "mean over frames", matches);
     }
   }

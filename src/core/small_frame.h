@@ -21,10 +21,11 @@ namespace sap_broadphase {
 /// against 5.3 ms, and 1.6 against 3.9 ms). Its candidates grow as n^(5/3) on a uniform scene,
 /// the engine's as n, hence a crossover; 2^14 keeps a margin for denser scenes.
 constexpr std::size_t kSmallFrameMaxBoxesOneThread = std::size_t{1} << 14;
-/// The same against the parallel engine on two threads, which can at best halve the engine's
-/// time: at density 0.35 that meets the small frame near 2^13 (1.27 against 2.74 / 2 ms).
-/// Derived from the one-thread measurements, not measured on an idle machine.
-constexpr std::size_t kSmallFrameMaxBoxesParallel = std::size_t{1} << 13;
+/// The same against the parallel engine on two threads. Measured with `sap_bench -e skips`
+/// (uniform, density 0.2, every frame swept, 2 cores idle): the small frame leads 2.04× at
+/// 2^13, 1.53× at 2^14 and 1.15× at 2^15 and trails from 2^16 (1.07 / 2.19, 2.66 / 4.07,
+/// 6.99 / 8.04, 20.0 / 15.4 ms); 2^14 keeps the margin for denser scenes.
+constexpr std::size_t kSmallFrameMaxBoxesParallel = std::size_t{1} << 14;
 
 /// Buffers of pairSmallFrame, reused from frame to frame (grown, never shrunk).
 struct SmallFrameWorkspace {

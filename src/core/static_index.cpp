@@ -269,6 +269,50 @@ void StaticIndex::scanSlots(const QueryBox& inBox, std::size_t inBegin, std::siz
       outPairs.push_back(makeIdPair(inBox.id, slot_ids_[s]));
 }
 
+// Queries of a frame land in cells far apart in a large index, so each one waits for its
+// cells' offsets, their slot lists and the slots themselves, one miss after the other. The
+// three are fetched ahead in stages, for the query kPrefetchAhead[stage] positions later:
+// offsets first, the slot lists once the offsets are in, the slots once the lists are in.
+void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, int inStage) const {
+  if (grid_count_ == 0) return;
+  uint32_t low[3], high[3];
+  uint64_t visited = 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    low[axis] = cellOf(axis, inQueries.lo[axis][inQuery]);
+    high[axis] = cellOf(axis, inQueries.hi[axis][inQuery]);
+    visited *= high[axis] - low[axis] + 1;
+  }
+  if (visited > kMostCellsPrefetched) return;  // a large box: its scan is long anyway
+  for (uint32_t z = low[2]; z <= high[2]; ++z) {
+    for (uint32_t y = low[1]; y <= high[1]; ++y) {
+      const std::size_t row = (std::size_t{z} * dims_[1] + y) * dims_[0];
+      if (inStage == 0) {
+        __builtin_prefetch(&cell_begin_[row + low[0]]);
+        continue;
+      }
+      const std::size_t begin = cell_begin_[row + low[0]];
+      const std::size_t end = cell_begin_[row + high[0] + 1];
+      if (inStage == 1) {
+        if (begin < end) __builtin_prefetch(&cell_slots_[begin]);
+        continue;
+      }
+      for (std::size_t e = begin; e < std::min(end, begin + kMostCellsPrefetched); ++e)
+        __builtin_prefetch(&slots_[cell_slots_[e]]);
+    }
+  }
+}
+
+void StaticIndex::queryRange(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+                             std::size_t inBegin, std::size_t inEnd, PairList& outPairs) const {
+  for (std::size_t k = inBegin; k < inEnd; ++k) {
+    for (int stage = 0; stage < 3; ++stage) {
+      if (k + kPrefetchAhead[stage] < inEnd)
+        prefetchQuery(inQueries, inQueryIndexes[k + kPrefetchAhead[stage]], stage);
+    }
+    query(inQueries, inQueryIndexes[k], outPairs);
+  }
+}
+
 void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                            int inThreads, PairList& outPairs) const {
   const std::size_t count = inQueryIndexes.size();
@@ -276,15 +320,18 @@ void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>&
       std::min<std::size_t>(resolveThreadCount(inThreads),
                             std::max<std::size_t>(1, count / tuning::kMinQueriesPerThread)));
   if (threads == 1) {
-    for (uint32_t i : inQueryIndexes) query(inQueries, i, outPairs);
+    queryRange(inQueries, inQueryIndexes, 0, count, outPairs);
     return;
   }
+  // Contiguous shares, so that each thread prefetches its own next queries and the parts,
+  // joined in thread order, are the sequential order.
   std::vector<PairList> parts(threads);
 #pragma omp parallel num_threads(threads)
   {
-    PairList& mine = parts[omp_get_thread_num()];
-#pragma omp for schedule(static, tuning::kQueryChunk)
-    for (std::size_t k = 0; k < count; ++k) query(inQueries, inQueryIndexes[k], mine);
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    queryRange(inQueries, inQueryIndexes, count * thread / team, count * (thread + 1) / team,
+               parts[thread]);
   }
   std::size_t total = outPairs.size();
   for (const PairList& part : parts) total += part.size();

@@ -36,8 +36,6 @@ constexpr double kCellsPerBox = 1.0;
 constexpr uint64_t kMaxCellsPerBox = 64;
 /// Fewest queries worth a thread of their own in queryAll.
 constexpr std::size_t kMinQueriesPerThread = 64;
-/// Queries handed out together (static schedule: the same split on every run).
-constexpr int kQueryChunk = 16;
 
 /// Most distinct group/mask classes looked at among the unchanged boxes.
 constexpr std::size_t kMaxFilterClasses = 64;

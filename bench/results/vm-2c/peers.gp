@@ -5,110 +5,178 @@ set grid
 set key outside below horizontal
 set style fill transparent solid 0.6 noborder
 $P0S0 << EOD
-0 38.417222 0
-1 43.75469 0
-2 427.014859 0
-3 531.34378 0
-4 95.407389 0
-5 117.537519 0
+0 321.814594 0
+1 713.108885 0
+2 11537.8406 0
+4 4734.6234 0
+5 20242.5686 0
+6 961.704058 0
 EOD
 $P0S1 << EOD
-0 41.974645 0
-1 55.167581 0
-2 679.879601 0
-3 959.829793 0
-4 215.864445 0
-5 127.585224 0
+0 60.457904 0
+1 99.765011 0
+2 946.669566 0
+3 1753.5624 0
+4 370.942473 0
+5 65.050862 0
+6 79.055704 0
 EOD
 $P0S2 << EOD
-0 206.287711 0
-1 277.907137 0
-2 2344.54138 0
-3 3196.87637 0
-4 1134.33486 0
-5 41.575732 0
+0 188.775042 0
+1 224.643307 0
+2 2767.12419 0
+3 3211.07339 0
+4 525.293108 0
+5 152.818058 0
+6 110.271909 0
 EOD
 $P0S3 << EOD
-0 345.073771 0
-1 501.785406 0
-2 6269.7441 0
-3 10144.1207 0
-4 2769.74947 0
-5 12488.6384 0
+0 133.352618 0
+1 184.793006 0
+2 2068.73387 0
+3 2499.95972 0
+4 999.354502 0
+5 507.509526 0
+6 136.790016 0
 EOD
 $P0S4 << EOD
-0 138.391223 0
-1 160.691927 0
-2 1652.4249 0
-3 1872.24737 0
-4 686.566653 0
-5 457.628959 0
+0 42.747973 0
+1 59.014438 0
+2 1474.54136 0
+3 1479.13357 0
+4 340.46812 0
+5 155.935138 0
+6 37.981836 0
+EOD
+$P0S5 << EOD
+0 40.366844 0
+1 43.724461 0
+2 365.725881 0
+3 423.039242 0
+4 140.646132 0
+5 82.26068 0
+6 32.718955 0
+EOD
+$P0S6 << EOD
+0 27.31302 0
+1 38.377709 0
+2 506.176591 0
+3 500.749807 0
+4 195.474537 0
+5 112.037498 0
+6 30.036732 0
+EOD
+$P0S7 << EOD
+0 34.185303 0
+1 43.441903 0
+2 528.470964 0
+3 520.704338 0
+4 157.656863 0
+5 91.577135 0
+6 33.891164 0
 EOD
 $P1S0 << EOD
-0 18.864449 0
-1 26.680148 0
-2 183.46061 0
-3 265.899903 0
-4 196.092869 0
-5 55.529549 0
+0 609.128154 0
+1 1597.26885 0
+2 10647.4472 0
+4 10544.8304 0
+5 19380.3408 0
+6 75.047919 0
 EOD
 $P1S1 << EOD
-0 35.167184 0
-1 51.082013 0
-2 610.190721 0
-3 919.926138 0
-4 210.302214 0
-5 126.591448 0
+0 60.457904 0
+1 99.765011 0
+2 946.669566 0
+3 1753.5624 0
+4 370.942473 0
+5 65.050862 0
+6 79.055704 0
 EOD
 $P1S2 << EOD
-0 206.336974 0
-1 279.731377 0
-2 2351.46071 0
-3 3209.37214 0
-4 1138.13542 0
-5 41.819334 0
+0 188.775042 0
+1 224.643307 0
+2 2767.12419 0
+3 3211.07339 0
+4 525.293108 0
+5 152.818058 0
+6 110.271909 0
 EOD
 $P1S3 << EOD
-0 491.635059 0
-1 973.000585 0
-2 11666.5555 0
-3 18130.3305 0
-4 4713.3227 0
-5 1552.35627 0
+0 55.008417 0
+1 117.949044 0
+2 636.881521 0
+3 1022.93067 0
+4 451.373014 0
+5 223.01515 0
+6 23.030082 0
 EOD
 $P1S4 << EOD
-0 42.371885 0
-1 76.18581 0
-2 407.279776 0
-3 714.199928 0
-4 227.780014 0
-5 105.195888 0
+0 42.747973 0
+1 59.014438 0
+2 1474.54136 0
+3 1479.13357 0
+4 340.46812 0
+5 155.935138 0
+6 37.981836 0
+EOD
+$P1S5 << EOD
+0 20.040986 0
+1 31.726084 0
+2 125.044972 0
+3 112.402132 0
+4 178.993114 0
+5 151.95751 0
+6 18.82397 0
+EOD
+$P1S6 << EOD
+0 32.873037 0
+1 46.52075 0
+2 510.604344 0
+3 536.984339 0
+4 159.796523 0
+5 127.865309 0
+6 32.595849 0
+EOD
+$P1S7 << EOD
+0 25.732633 0
+1 39.554888 0
+2 238.8375 0
+3 369.96817 0
+4 108.167886 0
+5 73.489215 0
+6 31.504204 0
 EOD
 set multiplot layout 1,2
-set title "One-shot"
+set title "One-shot (best knob of each library)"
 set xlabel ""
 set ylabel "ms per frame"
 unset logscale x
 set logscale y
 set yrange [*:*]
-set xtics ("uniform d=0.05 n=2^17" 0, "uniform d=0.35 n=2^17" 1, "uniform d=0.05 n=2^20" 2, "uniform d=0.35 n=2^20" 3, "ball n=2^19 f75" 4, "plane u=y 750^2 f225" 5) rotate by -30
+set xtics ("uniform d=0.05 n=2^17" 0, "uniform d=0.35 n=2^17" 1, "uniform d=0.05 n=2^20" 2, "uniform d=0.35 n=2^20" 3, "ball n=2^19 f75" 4, "plane u=y 750^2 f225" 5, "lattice n=125000" 6) rotate by -30
 unset label
-plot $P0S0 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase", \
-     $P0S1 using 1:2 with points pt 7 ps 1.5 title "grid_t2", \
-     $P0S2 using 1:2 with points pt 7 ps 1.5 title "cgal", \
-     $P0S3 using 1:2 with points pt 7 ps 1.5 title "bullet_dbvt", \
-     $P0S4 using 1:2 with points pt 7 ps 1.5 title "fcl_dynamic_aabb"
-set title "Steady state"
+plot $P0S0 using 1:2 with points pt 7 ps 1.5 title "bullet", \
+     $P0S1 using 1:2 with points pt 7 ps 1.5 title "cgal", \
+     $P0S2 using 1:2 with points pt 7 ps 1.5 title "cgal_tbb", \
+     $P0S3 using 1:2 with points pt 7 ps 1.5 title "fcl", \
+     $P0S4 using 1:2 with points pt 7 ps 1.5 title "grid", \
+     $P0S5 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase", \
+     $P0S6 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase_no_skin_t1", \
+     $P0S7 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase_no_skin_t2"
+set title "Steady state (best knob of each library)"
 set xlabel ""
 set ylabel "ms per frame"
 unset logscale x
 set logscale y
 set yrange [*:*]
-set xtics ("uniform d=0.05 n=2^17" 0, "uniform d=0.35 n=2^17" 1, "uniform d=0.05 n=2^20" 2, "uniform d=0.35 n=2^20" 3, "ball n=2^19 f75" 4, "plane u=y 750^2 f225" 5) rotate by -30
+set xtics ("uniform d=0.05 n=2^17" 0, "uniform d=0.35 n=2^17" 1, "uniform d=0.05 n=2^20" 2, "uniform d=0.35 n=2^20" 3, "ball n=2^19 f75" 4, "plane u=y 750^2 f225" 5, "lattice n=125000" 6) rotate by -30
 unset label
-plot $P1S0 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase", \
-     $P1S1 using 1:2 with points pt 7 ps 1.5 title "grid_t2", \
-     $P1S2 using 1:2 with points pt 7 ps 1.5 title "cgal", \
-     $P1S3 using 1:2 with points pt 7 ps 1.5 title "bullet_dbvt", \
-     $P1S4 using 1:2 with points pt 7 ps 1.5 title "fcl_dynamic_aabb"
+plot $P1S0 using 1:2 with points pt 7 ps 1.5 title "bullet", \
+     $P1S1 using 1:2 with points pt 7 ps 1.5 title "cgal", \
+     $P1S2 using 1:2 with points pt 7 ps 1.5 title "cgal_tbb", \
+     $P1S3 using 1:2 with points pt 7 ps 1.5 title "fcl", \
+     $P1S4 using 1:2 with points pt 7 ps 1.5 title "grid", \
+     $P1S5 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase", \
+     $P1S6 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase_no_skin_t1", \
+     $P1S7 using 1:2 with points pt 7 ps 1.5 title "sap_broadphase_no_skin_t2"
 unset multiplot
