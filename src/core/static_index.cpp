@@ -218,15 +218,21 @@ void StaticIndex::query(const BoxSet& inQueries, std::size_t inQuery, PairList& 
   scanSlots(box, grid_count_, slots_.size(), outPairs);
 }
 
+uint64_t StaticIndex::cellRange(const double inLow[3], const double inHigh[3], uint32_t outLow[3],
+                                uint32_t outHigh[3]) const {
+  uint64_t cells = 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    outLow[axis] = cellOf(axis, inLow[axis]);
+    outHigh[axis] = cellOf(axis, inHigh[axis]);
+    cells *= outHigh[axis] - outLow[axis] + 1;
+  }
+  return cells;
+}
+
 void StaticIndex::scanCells(const QueryBox& inBox, PairList& outPairs) const {
   if (grid_count_ == 0) return;
   uint32_t low[3], high[3];
-  uint64_t visited = 1;
-  for (int axis = 0; axis < 3; ++axis) {
-    low[axis] = cellOf(axis, inBox.lo[axis]);
-    high[axis] = cellOf(axis, inBox.hi[axis]);
-    visited *= high[axis] - low[axis] + 1;
-  }
+  const uint64_t visited = cellRange(inBox.lo, inBox.hi, low, high);
   // A cell visit costs an offset read plus its list; once that exceeds one test per binned
   // box, testing each binned box once is cheaper (and needs no duplicate rule).
   const double per_cell =
@@ -275,14 +281,12 @@ void StaticIndex::scanSlots(const QueryBox& inBox, std::size_t inBegin, std::siz
 // offsets first, the slot lists once the offsets are in, the slots once the lists are in.
 void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, int inStage) const {
   if (grid_count_ == 0) return;
+  const double box_low[3] = {inQueries.lo[0][inQuery], inQueries.lo[1][inQuery],
+                             inQueries.lo[2][inQuery]};
+  const double box_high[3] = {inQueries.hi[0][inQuery], inQueries.hi[1][inQuery],
+                              inQueries.hi[2][inQuery]};
   uint32_t low[3], high[3];
-  uint64_t visited = 1;
-  for (int axis = 0; axis < 3; ++axis) {
-    low[axis] = cellOf(axis, inQueries.lo[axis][inQuery]);
-    high[axis] = cellOf(axis, inQueries.hi[axis][inQuery]);
-    visited *= high[axis] - low[axis] + 1;
-  }
-  if (visited > kMostCellsPrefetched) return;  // a large box: its scan is long anyway
+  if (cellRange(box_low, box_high, low, high) > kMostCellsPrefetched) return;  // a large box
   for (uint32_t z = low[2]; z <= high[2]; ++z) {
     for (uint32_t y = low[1]; y <= high[1]; ++y) {
       const std::size_t row = (std::size_t{z} * dims_[1] + y) * dims_[0];
