@@ -1,0 +1,580 @@
+// The distributed broad phase: a frame is (1) cut the slabs when they are out of balance,
+// (2) send each changed box to the other slabs it overlaps, (3) one Broadphase on the slab,
+// (4) keep the pairs this slab owns, (5) deliver them. docs/DISTRIBUTED.md has the why.
+#include "sap_broadphase/distributed/distributed_broadphase.h"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "slab_cuts.h"
+
+namespace sap_broadphase::distributed {
+
+namespace {
+
+/// One box on the wire and in a slab's store of boxes received from other ranks.
+struct BoxRecord {
+  uint32_t id;
+  uint32_t group;
+  uint32_t mask;
+  uint32_t padding;
+  double lo[3];
+  double hi[3];
+};
+static_assert(sizeof(BoxRecord) == 64, "box records travel as raw bytes");
+
+/// Header of the bytes one rank sends another in a frame (omitted when there is nothing).
+struct DeltaHeader {
+  uint32_t upserts;   ///< box records that follow: new or changed boxes in the slab
+  uint32_t removals;  ///< ids that follow: boxes that left the slab
+};
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point inStart) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - inStart).count();
+}
+
+void checkMpi(int inStatus, const char* inWhat) {
+  if (inStatus != MPI_SUCCESS) throw std::runtime_error(std::string("MPI call failed: ") + inWhat);
+}
+
+/// An MPI count: the exchange's counts are ints; a frame that needs more fails loudly.
+int mpiCount(std::size_t inBytes, const char* inWhat) {
+  if (inBytes > static_cast<std::size_t>(INT_MAX))
+    throw std::runtime_error(std::string("distributed broad phase: ") + inWhat +
+                             " exceeds 2 GiB to one rank in one frame; use more ranks");
+  return static_cast<int>(inBytes);
+}
+
+/// Offsets of consecutive blocks of inCounts.
+std::vector<int> displacements(const std::vector<int>& inCounts) {
+  std::vector<int> offsets(inCounts.size(), 0);
+  std::size_t offset = 0;
+  for (std::size_t k = 0; k < inCounts.size(); ++k) {
+    offsets[k] = mpiCount(offset, "the receive buffer");
+    offset += static_cast<std::size_t>(inCounts[k]);
+  }
+  return offsets;
+}
+
+std::size_t sum(const std::vector<int>& inCounts) {
+  std::size_t total = 0;
+  for (int count : inCounts) total += static_cast<std::size_t>(count);
+  return total;
+}
+
+}  // namespace
+
+struct DistributedBroadphase::Impl {
+  MPI_Comm comm = MPI_COMM_NULL;
+  int rank = 0;
+  int ranks = 1;
+  DistributedConfig config;
+  Broadphase engine;
+
+  std::vector<double> cuts;
+  bool have_cuts = false;
+  double last_imbalance = 1.0;
+  double last_engine_ms = 0.0;
+
+  // What this rank sent last frame, per own box: the slab range and the bounds the other
+  // slabs hold. Valid while have_sent (a re-cut makes every slab start empty).
+  bool have_sent = false;
+  std::vector<uint32_t> sent_ids;
+  std::vector<int> sent_first;
+  std::vector<int> sent_last;
+  std::vector<BoxRecord> sent_boxes;
+
+  // This frame's slab range of each own box.
+  std::vector<int> first_slab;
+  std::vector<int> last_slab;
+
+  // Boxes received from each rank that overlap this slab, sorted by id: kept across frames.
+  std::vector<std::vector<BoxRecord>> resident;
+
+  // The slab's boxes, with ids 0..m-1 (dense ids keep the engine's pair sort a counting
+  // sort), and per position the box's real id, its owner rank and the slab its min is in.
+  BoxSet slab;
+  std::vector<uint32_t> slab_ids;
+  std::vector<int> slab_owner;
+  std::vector<int> slab_min_slab;
+
+  PairList result;
+  PairSortScratch sort_scratch;
+  DistributedReport report;
+
+  Impl(MPI_Comm inComm, const DistributedConfig& inConfig)
+      : config(inConfig), engine(inConfig.engine) {
+    if (inConfig.slab_axis < 0 || inConfig.slab_axis > 2)
+      throw std::invalid_argument("slab_axis must be 0, 1 or 2");
+    checkMpi(MPI_Comm_dup(inComm, &comm), "MPI_Comm_dup");
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &ranks);
+    resident.resize(static_cast<std::size_t>(ranks));
+  }
+  ~Impl() {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized && comm != MPI_COMM_NULL) MPI_Comm_free(&comm);
+  }
+
+  int slabOf(double inX) const { return slabOfCoordinate(cuts, inX); }
+
+  void cutSlabs(const BoxSet& inBoxes);
+  void exchangeBoxes(const BoxSet& inBoxes);
+  void assembleSlab(const BoxSet& inBoxes);
+  void keepOwnedPairs(const PairList& inSlabPairs, PairDelivery inDelivery,
+                      std::vector<std::vector<IdPair>>& outByRank);
+  void deliverToOwners(const std::vector<std::vector<IdPair>>& inByRank);
+  void gatherAtRoot(const std::vector<IdPair>& inOwned, int inRoot);
+  void measureImbalance();
+};
+
+void DistributedBroadphase::Impl::cutSlabs(const BoxSet& inBoxes) {
+  const int axis = config.slab_axis;
+  const std::size_t n = inBoxes.size();
+  const std::size_t wanted = std::max<std::size_t>(config.samples_per_rank, 1);
+  const std::size_t stride = std::max<std::size_t>(n / wanted, 1);
+  std::vector<double> local;
+  for (std::size_t i = stride / 2; i < n; i += stride) {
+    if (auto position = samplePosition(inBoxes.lo[axis][i], inBoxes.hi[axis][i]))
+      local.push_back(*position);
+  }
+  // A sample stands for stride boxes, so a rank with more boxes weighs more.
+  const double weight = local.empty() ? 0.0 : static_cast<double>(n) / local.size();
+  std::vector<double> mine;
+  mine.reserve(2 * local.size());
+  for (double position : local) {
+    mine.push_back(position);
+    mine.push_back(weight);
+  }
+  int myCount = mpiCount(mine.size(), "the sample");
+  std::vector<int> counts(static_cast<std::size_t>(ranks));
+  checkMpi(MPI_Allgather(&myCount, 1, MPI_INT, counts.data(), 1, MPI_INT, comm), "MPI_Allgather");
+  const std::vector<int> offsets = displacements(counts);
+  std::vector<double> all(sum(counts));
+  checkMpi(MPI_Allgatherv(mine.data(), myCount, MPI_DOUBLE, all.data(), counts.data(),
+                          offsets.data(), MPI_DOUBLE, comm),
+           "MPI_Allgatherv");
+  report.control_bytes_sent += static_cast<uint64_t>(ranks - 1) * (sizeof(int) + myCount * 8);
+
+  std::vector<WeightedSample> samples(all.size() / 2);
+  for (std::size_t k = 0; k < samples.size(); ++k) samples[k] = {all[2 * k], all[2 * k + 1]};
+
+  if (config.balance == SlabBalance::kCost && have_cuts) {
+    // Each old slab's measured engine time, spread over the samples that fell in it: the cut
+    // then follows the cost density, not the box density.
+    std::vector<double> slabMs(static_cast<std::size_t>(ranks));
+    checkMpi(MPI_Allgather(&last_engine_ms, 1, MPI_DOUBLE, slabMs.data(), 1, MPI_DOUBLE, comm),
+             "MPI_Allgather");
+    report.control_bytes_sent += static_cast<uint64_t>(ranks - 1) * sizeof(double);
+    std::vector<double> slabWeight(static_cast<std::size_t>(ranks), 0.0);
+    double totalMs = 0.0;
+    for (double ms : slabMs) totalMs += ms;
+    for (const WeightedSample& sample : samples)
+      slabWeight[slabOf(sample.position)] += sample.weight;
+    if (totalMs > 0.0) {
+      for (WeightedSample& sample : samples) {
+        const int slab = slabOf(sample.position);
+        sample.weight *= slabMs[slab] / slabWeight[slab];
+      }
+    }
+  }
+  cuts = cutsFromSamples(samples, ranks);
+  have_cuts = true;
+}
+
+void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
+  const int axis = config.slab_axis;
+  const std::size_t n = inBoxes.size();
+  first_slab.resize(n);
+  last_slab.resize(n);
+  const std::vector<double>& lo = inBoxes.lo[axis];
+  const std::vector<double>& hi = inBoxes.hi[axis];
+#pragma omp parallel for schedule(static) num_threads(resolveThreadCount(config.engine.threads))
+  for (std::size_t i = 0; i < n; ++i) {
+    first_slab[i] = slabOf(lo[i]);
+    last_slab[i] = slabOf(hi[i]);
+  }
+
+  // Which own box was which last frame: the same ids in the same order (a simulation's usual
+  // frame) match by index; otherwise by id.
+  const bool sameOrder = have_sent && sent_ids == inBoxes.ids;
+  std::vector<int64_t> previous;
+  std::vector<char> stillHere;
+  if (have_sent && !sameOrder) {
+    std::unordered_map<uint32_t, uint32_t> indexOf;
+    indexOf.reserve(sent_ids.size());
+    for (std::size_t j = 0; j < sent_ids.size(); ++j) indexOf.emplace(sent_ids[j], j);
+    previous.assign(n, -1);
+    stillHere.assign(sent_ids.size(), 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      auto found = indexOf.find(inBoxes.ids[i]);
+      if (found == indexOf.end()) continue;
+      previous[i] = found->second;
+      stillHere[found->second] = 1;
+    }
+  }
+
+  std::vector<std::vector<BoxRecord>> upserts(static_cast<std::size_t>(ranks));
+  std::vector<std::vector<uint32_t>> removals(static_cast<std::size_t>(ranks));
+  std::vector<BoxRecord> current(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    BoxRecord& box = current[i];
+    box = BoxRecord{inBoxes.ids[i], inBoxes.group(i), inBoxes.mask(i), 0, {}, {}};
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = inBoxes.lo[a][i];
+      box.hi[a] = inBoxes.hi[a][i];
+    }
+    const int t0 = first_slab[i];
+    const int t1 = last_slab[i];
+    const int64_t j = !have_sent ? -1 : sameOrder ? static_cast<int64_t>(i) : previous[i];
+    if (t0 == rank && t1 == rank && (j < 0 || (sent_first[j] == rank && sent_last[j] == rank)))
+      continue;  // lives in this slab only, now and before: nothing to tell anyone
+    int u0 = 1;
+    int u1 = 0;  // empty range: nobody holds it yet
+    bool changed = true;
+    if (j >= 0) {
+      u0 = sent_first[j];
+      u1 = sent_last[j];
+      // Bit-for-bit: a slab that holds old bounds would miss or invent pairs.
+      changed = std::memcmp(&box, &sent_boxes[j], sizeof(BoxRecord)) != 0;
+    }
+    for (int s = t0; s <= t1; ++s) {
+      if (s != rank && (changed || s < u0 || s > u1)) upserts[s].push_back(box);
+    }
+    for (int s = u0; s <= u1; ++s) {
+      if (s != rank && (s < t0 || s > t1)) removals[s].push_back(box.id);
+    }
+  }
+  for (std::size_t j = 0; j < stillHere.size(); ++j) {
+    if (stillHere[j]) continue;  // a box that is gone: every slab that held it forgets it
+    for (int s = sent_first[j]; s <= sent_last[j]; ++s) {
+      if (s != rank) removals[s].push_back(sent_ids[j]);
+    }
+  }
+  sent_ids = inBoxes.ids;
+  sent_first = first_slab;
+  sent_last = last_slab;
+  sent_boxes.swap(current);
+  have_sent = true;
+
+  // Pack, exchange sizes, exchange bytes.
+  std::vector<int> sendCounts(static_cast<std::size_t>(ranks), 0);
+  for (int s = 0; s < ranks; ++s) {
+    if (upserts[s].empty() && removals[s].empty()) continue;
+    sendCounts[s] = mpiCount(sizeof(DeltaHeader) + upserts[s].size() * sizeof(BoxRecord) +
+                                 removals[s].size() * sizeof(uint32_t),
+                             "the boxes sent");
+    report.boxes_sent += upserts[s].size();
+    report.removals_sent += removals[s].size();
+    report.box_bytes_sent += static_cast<uint64_t>(sendCounts[s]);
+  }
+  const std::vector<int> sendOffsets = displacements(sendCounts);
+  std::vector<unsigned char> sendBytes(sum(sendCounts));
+  for (int s = 0; s < ranks; ++s) {
+    if (sendCounts[s] == 0) continue;
+    unsigned char* out = sendBytes.data() + sendOffsets[s];
+    const DeltaHeader header{static_cast<uint32_t>(upserts[s].size()),
+                             static_cast<uint32_t>(removals[s].size())};
+    std::memcpy(out, &header, sizeof header);
+    out += sizeof header;
+    std::memcpy(out, upserts[s].data(), upserts[s].size() * sizeof(BoxRecord));
+    out += upserts[s].size() * sizeof(BoxRecord);
+    std::memcpy(out, removals[s].data(), removals[s].size() * sizeof(uint32_t));
+  }
+  std::vector<int> receiveCounts(static_cast<std::size_t>(ranks), 0);
+  checkMpi(MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm),
+           "MPI_Alltoall");
+  report.control_bytes_sent += static_cast<uint64_t>(ranks - 1) * sizeof(int);
+  const std::vector<int> receiveOffsets = displacements(receiveCounts);
+  std::vector<unsigned char> receiveBytes(sum(receiveCounts));
+  checkMpi(MPI_Alltoallv(sendBytes.data(), sendCounts.data(), sendOffsets.data(), MPI_BYTE,
+                         receiveBytes.data(), receiveCounts.data(), receiveOffsets.data(), MPI_BYTE,
+                         comm),
+           "MPI_Alltoallv");
+
+  // Merge each sender's changes into what this slab holds from it, keeping id order.
+  for (int p = 0; p < ranks; ++p) {
+    if (receiveCounts[p] == 0) continue;
+    const unsigned char* in = receiveBytes.data() + receiveOffsets[p];
+    DeltaHeader header;
+    std::memcpy(&header, in, sizeof header);
+    in += sizeof header;
+    std::vector<BoxRecord> changedBoxes(header.upserts);
+    std::memcpy(changedBoxes.data(), in, header.upserts * sizeof(BoxRecord));
+    in += header.upserts * sizeof(BoxRecord);
+    std::vector<uint32_t> gone(header.removals);
+    std::memcpy(gone.data(), in, header.removals * sizeof(uint32_t));
+    const auto byId = [](const BoxRecord& x, const BoxRecord& y) { return x.id < y.id; };
+    if (!std::is_sorted(changedBoxes.begin(), changedBoxes.end(), byId))
+      std::sort(changedBoxes.begin(), changedBoxes.end(), byId);
+    std::sort(gone.begin(), gone.end());
+
+    const std::vector<BoxRecord>& held = resident[p];
+    std::vector<BoxRecord> merged;
+    merged.reserve(held.size() + changedBoxes.size());
+    std::size_t h = 0, c = 0, g = 0;
+    while (h < held.size() || c < changedBoxes.size()) {
+      if (c < changedBoxes.size() && (h == held.size() || changedBoxes[c].id <= held[h].id)) {
+        if (h < held.size() && held[h].id == changedBoxes[c].id) ++h;  // replaced
+        merged.push_back(changedBoxes[c++]);
+        continue;
+      }
+      while (g < gone.size() && gone[g] < held[h].id) ++g;
+      if (g == gone.size() || gone[g] != held[h].id) merged.push_back(held[h]);
+      ++h;
+    }
+    resident[p].swap(merged);
+  }
+}
+
+void DistributedBroadphase::Impl::assembleSlab(const BoxSet& inBoxes) {
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < inBoxes.size(); ++i)
+    m += first_slab[i] <= rank && rank <= last_slab[i];
+  std::size_t held = 0;
+  bool residentFilters = false;
+  for (const std::vector<BoxRecord>& boxes : resident) {
+    held += boxes.size();
+    for (const BoxRecord& box : boxes)
+      residentFilters |= box.group != kDefaultGroup || box.mask != kDefaultMask;
+  }
+  const bool filters = inBoxes.hasFilters() || residentFilters;
+  m += held;
+  report.resident_boxes = held;
+  report.slab_boxes = m;
+
+  slab.ids.resize(m);
+  for (int a = 0; a < 3; ++a) {
+    slab.lo[a].resize(m);
+    slab.hi[a].resize(m);
+  }
+  slab.groups.resize(filters ? m : 0);
+  slab.masks.resize(filters ? m : 0);
+  slab_ids.resize(m);
+  slab_owner.resize(m);
+  slab_min_slab.resize(m);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    if (first_slab[i] > rank || rank > last_slab[i]) continue;
+    slab.ids[k] = static_cast<uint32_t>(k);
+    for (int a = 0; a < 3; ++a) {
+      slab.lo[a][k] = inBoxes.lo[a][i];
+      slab.hi[a][k] = inBoxes.hi[a][i];
+    }
+    if (filters) {
+      slab.groups[k] = inBoxes.group(i);
+      slab.masks[k] = inBoxes.mask(i);
+    }
+    slab_ids[k] = inBoxes.ids[i];
+    slab_owner[k] = rank;
+    slab_min_slab[k] = first_slab[i];
+    ++k;
+  }
+  for (int p = 0; p < ranks; ++p) {
+    for (const BoxRecord& box : resident[p]) {
+      slab.ids[k] = static_cast<uint32_t>(k);
+      for (int a = 0; a < 3; ++a) {
+        slab.lo[a][k] = box.lo[a];
+        slab.hi[a][k] = box.hi[a];
+      }
+      if (filters) {
+        slab.groups[k] = box.group;
+        slab.masks[k] = box.mask;
+      }
+      slab_ids[k] = box.id;
+      slab_owner[k] = p;
+      slab_min_slab[k] = slabOf(box.lo[config.slab_axis]);
+      ++k;
+    }
+  }
+}
+
+/// The pairs this slab owns: under kToOwners listed under each of the two boxes' owner ranks,
+/// under kGatherAtRoot once, under this rank.
+void DistributedBroadphase::Impl::keepOwnedPairs(const PairList& inSlabPairs,
+                                                 PairDelivery inDelivery,
+                                                 std::vector<std::vector<IdPair>>& outByRank) {
+  const bool toOwners = inDelivery == PairDelivery::kToOwners;
+  for (const IdPair& pair : inSlabPairs) {
+    // The ownership rule. Both boxes overlap on the slab axis, so the larger of their mins m
+    // lies in both boxes; the slab holding m is in both boxes' slab ranges (slabOf is
+    // monotone), so exactly that one slab sees both boxes and keeps the pair. The larger min's
+    // slab is the larger of the two min slabs, again because slabOf is monotone.
+    if (std::max(slab_min_slab[pair.a], slab_min_slab[pair.b]) != rank) continue;
+    const IdPair found = makeIdPair(slab_ids[pair.a], slab_ids[pair.b]);
+    ++report.slab_pairs;
+    if (!toOwners) {
+      outByRank[rank].push_back(found);
+      continue;
+    }
+    const int ownerA = slab_owner[pair.a];
+    const int ownerB = slab_owner[pair.b];
+    outByRank[ownerA].push_back(found);
+    if (ownerB != ownerA) outByRank[ownerB].push_back(found);
+  }
+}
+
+void DistributedBroadphase::Impl::deliverToOwners(
+    const std::vector<std::vector<IdPair>>& inByRank) {
+  std::vector<int> sendCounts(static_cast<std::size_t>(ranks), 0);
+  for (int s = 0; s < ranks; ++s) {
+    if (s == rank) continue;
+    sendCounts[s] = mpiCount(inByRank[s].size() * sizeof(IdPair), "the pairs sent");
+    report.pair_bytes_sent += static_cast<uint64_t>(sendCounts[s]);
+  }
+  const std::vector<int> sendOffsets = displacements(sendCounts);
+  std::vector<unsigned char> sendBytes(sum(sendCounts));
+  for (int s = 0; s < ranks; ++s) {
+    if (sendCounts[s] > 0)
+      std::memcpy(sendBytes.data() + sendOffsets[s], inByRank[s].data(), sendCounts[s]);
+  }
+  std::vector<int> receiveCounts(static_cast<std::size_t>(ranks), 0);
+  checkMpi(MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm),
+           "MPI_Alltoall");
+  report.control_bytes_sent += static_cast<uint64_t>(ranks - 1) * sizeof(int);
+  const std::vector<int> receiveOffsets = displacements(receiveCounts);
+  const std::size_t own = inByRank[rank].size();
+  result.resize(own + sum(receiveCounts) / sizeof(IdPair));
+  std::copy(inByRank[rank].begin(), inByRank[rank].end(), result.begin());
+  checkMpi(MPI_Alltoallv(sendBytes.data(), sendCounts.data(), sendOffsets.data(), MPI_BYTE,
+                         result.data() + own, receiveCounts.data(), receiveOffsets.data(), MPI_BYTE,
+                         comm),
+           "MPI_Alltoallv");
+  sortPairsCanonical(result, sort_scratch);
+}
+
+void DistributedBroadphase::Impl::gatherAtRoot(const std::vector<IdPair>& inOwned, int inRoot) {
+  const int myBytes = mpiCount(inOwned.size() * sizeof(IdPair), "the pairs sent");
+  if (rank != inRoot) report.pair_bytes_sent += static_cast<uint64_t>(myBytes);
+  std::vector<int> counts(static_cast<std::size_t>(ranks), 0);
+  checkMpi(MPI_Gather(&myBytes, 1, MPI_INT, counts.data(), 1, MPI_INT, inRoot, comm), "MPI_Gather");
+  if (rank != inRoot) report.control_bytes_sent += sizeof(int);
+  std::vector<int> offsets;
+  if (rank == inRoot) {
+    offsets = displacements(counts);
+    result.resize(sum(counts) / sizeof(IdPair));
+  } else {
+    result.clear();
+  }
+  checkMpi(MPI_Gatherv(inOwned.data(), myBytes, MPI_BYTE, result.data(), counts.data(),
+                       offsets.data(), MPI_BYTE, inRoot, comm),
+           "MPI_Gatherv");
+  if (rank == inRoot) sortPairsCanonical(result, sort_scratch);
+}
+
+void DistributedBroadphase::Impl::measureImbalance() {
+  // Fullest slab against the mean, by the measure the cuts balance.
+  const double inOwned = config.balance == SlabBalance::kCost
+                             ? last_engine_ms
+                             : static_cast<double>(report.slab_boxes);
+  double largest = 0.0;
+  double total = 0.0;
+  checkMpi(MPI_Allreduce(&inOwned, &largest, 1, MPI_DOUBLE, MPI_MAX, comm), "MPI_Allreduce");
+  checkMpi(MPI_Allreduce(&inOwned, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+  report.control_bytes_sent += 2 * sizeof(double);
+  const double mean = total / ranks;
+  last_imbalance = mean > 0.0 ? largest / mean : 1.0;
+  report.imbalance = last_imbalance;
+}
+
+DistributedBroadphase::DistributedBroadphase(MPI_Comm inCommunicator,
+                                             const DistributedConfig& inConfig)
+    : impl_(std::make_unique<Impl>(inCommunicator, inConfig)) {}
+
+DistributedBroadphase::~DistributedBroadphase() = default;
+
+const PairList& DistributedBroadphase::update(const BoxSet& inLocalBoxes, PairDelivery inDelivery,
+                                              int inRoot) {
+  Impl& self = *impl_;
+  if (inRoot < 0 || inRoot >= self.ranks) throw std::invalid_argument("root rank out of range");
+  const Clock::time_point frameStart = Clock::now();
+  self.report = DistributedReport();
+  self.report.local_boxes = inLocalBoxes.size();
+
+  Clock::time_point start = Clock::now();
+  if (!self.have_cuts || self.last_imbalance - 1.0 > self.config.recut_imbalance) {
+    self.cutSlabs(inLocalBoxes);
+    // New slabs start empty: every box is sent afresh to the slabs it overlaps.
+    for (std::vector<BoxRecord>& held : self.resident) held.clear();
+    self.have_sent = false;
+    self.report.recut = true;
+  }
+  self.report.ms_cut = msSince(start);
+
+  start = Clock::now();
+  self.exchangeBoxes(inLocalBoxes);
+  self.report.ms_exchange = msSince(start);
+
+  start = Clock::now();
+  self.assembleSlab(inLocalBoxes);
+  self.report.ms_assemble = msSince(start);
+
+  start = Clock::now();
+  const PairList& slabPairs = self.engine.update(self.slab);
+  self.report.ms_engine = msSince(start);
+  self.report.engine = self.engine.stats();
+  self.last_engine_ms = self.report.ms_engine;
+
+  start = Clock::now();
+  std::vector<std::vector<IdPair>> byRank(static_cast<std::size_t>(self.ranks));
+  self.keepOwnedPairs(slabPairs, inDelivery, byRank);
+  self.report.ms_filter = msSince(start);
+
+  start = Clock::now();
+  if (inDelivery == PairDelivery::kToOwners)
+    self.deliverToOwners(byRank);
+  else
+    self.gatherAtRoot(byRank[self.rank], inRoot);
+  self.report.pairs_returned = self.result.size();
+  self.measureImbalance();
+  self.report.ms_deliver = msSince(start);
+  self.report.ms_total = msSince(frameStart);
+  return self.result;
+}
+
+const DistributedReport& DistributedBroadphase::stats() const {
+  return impl_->report;
+}
+
+const std::vector<double>& DistributedBroadphase::cuts() const {
+  return impl_->cuts;
+}
+
+int DistributedBroadphase::slabOf(double inX) const {
+  return impl_->slabOf(inX);
+}
+
+int DistributedBroadphase::homeRank(double inMin, double inMax) const {
+  return impl_->slabOf(samplePosition(inMin, inMax).value_or(0.0));
+}
+
+int DistributedBroadphase::rank() const {
+  return impl_->rank;
+}
+
+int DistributedBroadphase::ranks() const {
+  return impl_->ranks;
+}
+
+void DistributedBroadphase::reset() {
+  Impl& self = *impl_;
+  self.engine.reset();
+  self.cuts.clear();
+  self.have_cuts = false;
+  self.have_sent = false;
+  self.last_imbalance = 1.0;
+  self.last_engine_ms = 0.0;
+  for (std::vector<BoxRecord>& held : self.resident) held.clear();
+  checkMpi(MPI_Barrier(self.comm), "MPI_Barrier");
+}
+
+}  // namespace sap_broadphase::distributed
