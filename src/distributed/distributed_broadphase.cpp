@@ -129,6 +129,8 @@ struct DistributedBroadphase::Impl {
 
   void cutSlabs(const BoxSet& inBoxes);
   void exchangeBoxes(const BoxSet& inBoxes);
+  void matchPrevious(const std::vector<uint32_t>& inIds, std::vector<int64_t>& outPrevious,
+                     std::vector<char>& outStillHere) const;
   void assembleSlab(const BoxSet& inBoxes);
   void keepOwnedPairs(const PairList& inSlabPairs, PairDelivery inDelivery,
                       std::vector<std::vector<IdPair>>& outByRank);
@@ -191,6 +193,37 @@ void DistributedBroadphase::Impl::cutSlabs(const BoxSet& inBoxes) {
   have_cuts = true;
 }
 
+/// outPrevious[i]: the index last frame of box i (-1: new); outStillHere[j]: last frame's box j
+/// is still here.
+void DistributedBroadphase::Impl::matchPrevious(const std::vector<uint32_t>& inIds,
+                                                std::vector<int64_t>& outPrevious,
+                                                std::vector<char>& outStillHere) const {
+  outPrevious.assign(inIds.size(), -1);
+  outStillHere.assign(sent_ids.size(), 0);
+  if (std::is_sorted(inIds.begin(), inIds.end()) &&
+      std::is_sorted(sent_ids.begin(), sent_ids.end())) {
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < inIds.size(); ++i) {
+      while (j < sent_ids.size() && sent_ids[j] < inIds[i]) ++j;
+      if (j == sent_ids.size()) break;
+      if (sent_ids[j] != inIds[i]) continue;
+      outPrevious[i] = static_cast<int64_t>(j);
+      outStillHere[j] = 1;
+    }
+    return;
+  }
+  std::unordered_map<uint32_t, uint32_t> indexOf;
+  indexOf.reserve(sent_ids.size());
+  for (std::size_t j = 0; j < sent_ids.size(); ++j)
+    indexOf.emplace(sent_ids[j], static_cast<uint32_t>(j));
+  for (std::size_t i = 0; i < inIds.size(); ++i) {
+    auto found = indexOf.find(inIds[i]);
+    if (found == indexOf.end()) continue;
+    outPrevious[i] = found->second;
+    outStillHere[found->second] = 1;
+  }
+}
+
 void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
   const int axis = config.slab_axis;
   const std::size_t n = inBoxes.size();
@@ -205,23 +238,12 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
   }
 
   // Which own box was which last frame: the same ids in the same order (a simulation's usual
-  // frame) match by index; otherwise by id.
+  // frame) match by index; ids in increasing order (bodies kept sorted, some joining or
+  // leaving) by a merge; anything else by a hash of the ids.
   const bool sameOrder = have_sent && sent_ids == inBoxes.ids;
   std::vector<int64_t> previous;
   std::vector<char> stillHere;
-  if (have_sent && !sameOrder) {
-    std::unordered_map<uint32_t, uint32_t> indexOf;
-    indexOf.reserve(sent_ids.size());
-    for (std::size_t j = 0; j < sent_ids.size(); ++j) indexOf.emplace(sent_ids[j], j);
-    previous.assign(n, -1);
-    stillHere.assign(sent_ids.size(), 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      auto found = indexOf.find(inBoxes.ids[i]);
-      if (found == indexOf.end()) continue;
-      previous[i] = found->second;
-      stillHere[found->second] = 1;
-    }
-  }
+  if (have_sent && !sameOrder) matchPrevious(inBoxes.ids, previous, stillHere);
 
   std::vector<std::vector<BoxRecord>> upserts(static_cast<std::size_t>(ranks));
   std::vector<std::vector<uint32_t>> removals(static_cast<std::size_t>(ranks));
