@@ -1,11 +1,12 @@
 // sap_bench_distributed: the worker of `sap_bench -e distributed`, run under mpirun (sap_bench
 // starts it; it can also be run by hand). A uniform scene as a spatially decomposed simulation
 // holds it: each rank owns the bodies whose centre lies in its slab, moves them, and after
-// each frame hands the bodies that left its slab to their new rank (the simulation's own
-// migration, timed apart). Prints one RESULT line (rank 0) with the steady-state averages.
+// the first frame, and every --migrate-every frames, hands the bodies that left its slab to
+// their new rank (the simulation's own migration, timed apart). Prints one RESULT line
+// (rank 0) with the averages over the frames after the first two.
 //
 // usage: mpirun -np R sap_bench_distributed --n N [--frames F] [--threads T]
-//                                           [--motion EDGES] [--density D] [--seed S]
+//                         [--motion EDGES] [--density D] [--seed S] [--migrate-every M]
 #include <mpi.h>
 #include <omp.h>
 
@@ -43,6 +44,10 @@ struct Options {
   double motion = 0.01;  ///< distance a frame, in mean box edges (the mean edge is 1)
   double density = 0.05;
   uint64_t seed = 1;
+  /// Frames between the simulation's migrations (after the first frame, then every so many),
+  /// as LAMMPS-style codes re-neighbour every 10 to 20 steps; between them a body that left
+  /// its slab stays with its rank and its box is sent to the slab it is in.
+  int migrate_every = 10;
 };
 
 /// splitmix64 of (seed, id, stream): the same body on every rank.
@@ -128,13 +133,14 @@ void migrate(Bodies& ioBodies, const DistributedBroadphase& inBroadphase, MPI_Co
   const int ranks = inBroadphase.ranks();
   const int rank = inBroadphase.rank();
   std::vector<std::vector<BodyRecord>> leaving(static_cast<std::size_t>(ranks));
-  Bodies staying;
+  std::vector<char> leaves(ioBodies.size(), 0);
+  std::size_t leavingCount = 0;
   for (std::size_t i = 0; i < ioBodies.size(); ++i) {
     const int home = inBroadphase.homeRank(ioBodies.boxes.lo[0][i], ioBodies.boxes.hi[0][i]);
-    if (home == rank)
-      appendBody(staying, recordOf(ioBodies, i));
-    else
-      leaving[home].push_back(recordOf(ioBodies, i));
+    if (home == rank) continue;
+    leaving[home].push_back(recordOf(ioBodies, i));
+    leaves[i] = 1;
+    ++leavingCount;
   }
   std::vector<int> sendCounts(ranks), receiveCounts(ranks), sendOffsets(ranks),
       receiveOffsets(ranks);
@@ -153,6 +159,11 @@ void migrate(Bodies& ioBodies, const DistributedBroadphase& inBroadphase, MPI_Co
   std::vector<BodyRecord> arrived(static_cast<std::size_t>(total) / sizeof(BodyRecord));
   MPI_Alltoallv(sendBuffer.data(), sendCounts.data(), sendOffsets.data(), MPI_BYTE, arrived.data(),
                 receiveCounts.data(), receiveOffsets.data(), MPI_BYTE, inComm);
+  if (leavingCount == 0 && arrived.empty()) return;  // the usual frame: nobody moves house
+  Bodies staying;
+  for (std::size_t i = 0; i < ioBodies.size(); ++i) {
+    if (!leaves[i]) appendBody(staying, recordOf(ioBodies, i));
+  }
   if (arrived.empty()) {
     ioBodies = std::move(staying);
     return;
@@ -175,7 +186,7 @@ struct Totals {
   int frames = 0;
   double ms_frame = 0, ms_exchange = 0, ms_engine = 0, ms_other = 0, ms_migrate = 0;
   double box_bytes = 0, pair_bytes = 0, control_bytes = 0, boxes_sent = 0, imbalance = 0;
-  double slab_boxes_max = 0, slab_boxes_sum = 0, pairs = 0, recuts = 0;
+  double slab_boxes_max = 0, slab_boxes_sum = 0, border_boxes_max = 0, pairs = 0, recuts = 0;
 };
 
 double maxOver(double inValue, MPI_Comm inComm) {
@@ -206,6 +217,8 @@ bool parse(int argc, char** argv, Options& outOptions) {
       outOptions.density = std::atof(value);
     else if (name == "--seed")
       outOptions.seed = std::strtoull(value, nullptr, 10);
+    else if (name == "--migrate-every")
+      outOptions.migrate_every = std::atoi(value);
     else
       return false;
   }
@@ -226,7 +239,7 @@ int main(int argc, char** argv) {
     if (rank == 0)
       std::fprintf(stderr,
                    "usage: mpirun -np R sap_bench_distributed --n N [--frames F>=3] "
-                   "[--threads T] [--motion EDGES] [--density D] [--seed S]\n");
+                   "[--threads T] [--motion EDGES] [--density D] [--seed S] [--migrate-every M]\n");
     MPI_Finalize();
     return 2;
   }
@@ -264,13 +277,15 @@ int main(int argc, char** argv) {
       steady.imbalance += report.imbalance;
       steady.slab_boxes_max += maxOver(static_cast<double>(report.slab_boxes), MPI_COMM_WORLD);
       steady.slab_boxes_sum += sumOver(static_cast<double>(report.slab_boxes), MPI_COMM_WORLD);
+      steady.border_boxes_max += maxOver(static_cast<double>(report.border_boxes), MPI_COMM_WORLD);
       steady.recuts += report.recut ? 1 : 0;
     }
     // Pairs returned, summed over ranks: a pair whose boxes have two owners counts twice.
     if (frame >= kWarmupFrames)
       steady.pairs += sumOver(static_cast<double>(report.pairs_returned), MPI_COMM_WORLD);
     const auto migrateStart = std::chrono::steady_clock::now();
-    migrate(bodies, broadphase, MPI_COMM_WORLD);
+    if (frame % std::max(options.migrate_every, 1) == 0)
+      migrate(bodies, broadphase, MPI_COMM_WORLD);
     moveBodies(bodies, world);
     if (frame >= kWarmupFrames)
       steady.ms_migrate += maxOver(
@@ -286,7 +301,8 @@ int main(int argc, char** argv) {
         "ms_engine=%.3f ms_other=%.3f ms_migrate=%.3f box_bytes=%.0f pair_bytes=%.0f "
         "control_bytes=%.0f boxes_sent=%.0f bytes_per_box=%.4f box_bytes_share=%.5f "
         "all_bytes_share=%.5f imbalance=%.4f slab_boxes_max=%.0f slab_boxes_mean=%.0f "
-        "pairs_returned=%.0f recuts=%.0f first_ms=%.3f first_box_bytes=%.0f\n",
+        "pairs_returned=%.0f recuts=%.0f first_ms=%.3f first_box_bytes=%.0f own_path=%s "
+        "own_skin=%s border_boxes_max=%.0f\n",
         static_cast<unsigned long long>(options.n), ranks, options.threads, steady.frames,
         options.motion, steady.ms_frame / f, steady.ms_exchange / f, steady.ms_engine / f,
         steady.ms_other / f, steady.ms_migrate / f, steady.box_bytes / f, steady.pair_bytes / f,
@@ -295,7 +311,9 @@ int main(int argc, char** argv) {
         steady.box_bytes / f / frameBytes,
         (steady.box_bytes + steady.pair_bytes + steady.control_bytes) / f / frameBytes,
         steady.imbalance / f, steady.slab_boxes_max / f, steady.slab_boxes_sum / f / ranks,
-        steady.pairs / f, steady.recuts, firstFrameMs, firstFrameBoxBytes);
+        steady.pairs / f, steady.recuts, firstFrameMs, firstFrameBoxBytes,
+        framePathName(broadphase.stats().engine.path),
+        skinChoiceName(broadphase.stats().engine.skin_choice), steady.border_boxes_max / f);
   }
   MPI_Finalize();
   return 0;

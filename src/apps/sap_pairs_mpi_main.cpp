@@ -40,8 +40,10 @@ const char* const kUsage =
     "  --threads N   worker threads of each rank, N >= 1 (default: all cores)\n"
     "  --method M    each rank's engine: sap (default), sequential or brute\n"
     "  --count       print only the number of pairs\n"
-    "  --stats       print one line a rank to stderr: boxes, slab boxes, pairs, bytes sent\n"
-    "                and the milliseconds of exchange, engine and delivery\n"
+    "  --stats       print one line a rank to stderr: its boxes, its slab's boxes, its border\n"
+    "                set, pairs among its own boxes and across owners, bytes sent, the own\n"
+    "                engine's path and threads, and milliseconds of reading, exchange,\n"
+    "                engines, delivery and in all\n"
     "  --help        print this help\n"
     "\n"
     "Exit status: 0 success; 2 bad input (then nothing on stdout and 'FILE:LINE: reason' on\n"
@@ -164,9 +166,11 @@ BoxSet dealBoxes(const BoxSet& inAll, int inRank, int inRanks) {
 void printStats(const DistributedReport& inStats, double inReadMs, int inRank, int inRanks) {
   char line[512];
   std::snprintf(line, sizeof line,
-                "rank %d boxes %zu slab_boxes %zu slab_pairs %zu bytes_sent %llu path %s "
+                "rank %d boxes %zu slab_boxes %zu border_boxes %zu own_pairs %zu cross_pairs %zu "
+                "bytes_sent %llu path %s "
                 "threads %d ms read %.3f exchange %.3f engine %.3f deliver %.3f total %.3f\n",
-                inRank, inStats.local_boxes, inStats.slab_boxes, inStats.slab_pairs,
+                inRank, inStats.local_boxes, inStats.slab_boxes, inStats.border_boxes,
+                inStats.own_pairs, inStats.cross_pairs,
                 static_cast<unsigned long long>(inStats.box_bytes_sent + inStats.pair_bytes_sent +
                                                 inStats.control_bytes_sent),
                 framePathName(inStats.engine.path), inStats.engine.threads, inReadMs,

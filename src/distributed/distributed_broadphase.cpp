@@ -1,6 +1,8 @@
 // The distributed broad phase: a frame is (1) cut the slabs when they are out of balance,
-// (2) send each changed box to the other slabs it overlaps, (3) one Broadphase on the slab,
-// (4) keep the pairs this slab owns, (5) deliver them. docs/DISTRIBUTED.md has the why.
+// (2) send each changed box to the other slabs it overlaps, (3) one Broadphase on the rank's
+// own boxes (the pairs among them), (4) one on the slab's border set (the boxes received and
+// the own boxes they may touch), keeping the pairs of boxes of two owners that this slab owns,
+// (5) deliver them. docs/DISTRIBUTED.md has the why.
 #include "sap_broadphase/distributed/distributed_broadphase.h"
 
 #include <algorithm>
@@ -77,7 +79,12 @@ struct DistributedBroadphase::Impl {
   int rank = 0;
   int ranks = 1;
   DistributedConfig config;
-  Broadphase engine;
+  // Pairs among this rank's own boxes: the boxes exactly as the caller gives them, so the
+  // engine's temporal coherence (kept candidates, reuse) works as in one process.
+  Broadphase own_engine;
+  // Pairs between boxes of two owners, on the border set: what other ranks sent and the own
+  // boxes in this slab that reach the same stretch of the slab axis.
+  Broadphase border_engine;
 
   std::vector<double> cuts;
   bool have_cuts = false;
@@ -91,6 +98,7 @@ struct DistributedBroadphase::Impl {
   std::vector<int> sent_first;
   std::vector<int> sent_last;
   std::vector<BoxRecord> sent_boxes;
+  std::vector<BoxRecord> sent_boxes_scratch;
 
   // This frame's slab range of each own box.
   std::vector<int> first_slab;
@@ -99,19 +107,19 @@ struct DistributedBroadphase::Impl {
   // Boxes received from each rank that overlap this slab, sorted by id: kept across frames.
   std::vector<std::vector<BoxRecord>> resident;
 
-  // The slab's boxes, with ids 0..m-1 (dense ids keep the engine's pair sort a counting
+  // The border set, with ids 0..m-1 (dense ids keep the engine's pair sort a counting
   // sort), and per position the box's real id, its owner rank and the slab its min is in.
-  BoxSet slab;
-  std::vector<uint32_t> slab_ids;
-  std::vector<int> slab_owner;
-  std::vector<int> slab_min_slab;
+  BoxSet border;
+  std::vector<uint32_t> border_ids;
+  std::vector<int> border_owner;
+  std::vector<int> border_min_slab;
 
   PairList result;
   PairSortScratch sort_scratch;
   DistributedReport report;
 
   Impl(MPI_Comm inComm, const DistributedConfig& inConfig)
-      : config(inConfig), engine(inConfig.engine) {
+      : config(inConfig), own_engine(inConfig.engine), border_engine(inConfig.engine) {
     if (inConfig.slab_axis < 0 || inConfig.slab_axis > 2)
       throw std::invalid_argument("slab_axis must be 0, 1 or 2");
     checkMpi(MPI_Comm_dup(inComm, &comm), "MPI_Comm_dup");
@@ -131,11 +139,11 @@ struct DistributedBroadphase::Impl {
   void exchangeBoxes(const BoxSet& inBoxes);
   void matchPrevious(const std::vector<uint32_t>& inIds, std::vector<int64_t>& outPrevious,
                      std::vector<char>& outStillHere) const;
-  void assembleSlab(const BoxSet& inBoxes);
-  void keepOwnedPairs(const PairList& inSlabPairs, PairDelivery inDelivery,
+  void assembleBorderSet(const BoxSet& inBoxes);
+  void keepOwnedPairs(const PairList& inBorderPairs, PairDelivery inDelivery,
                       std::vector<std::vector<IdPair>>& outByRank);
-  void deliverToOwners(const std::vector<std::vector<IdPair>>& inByRank);
-  void gatherAtRoot(const std::vector<IdPair>& inOwned, int inRoot);
+  void deliverToOwners(const PairList& inOwnPairs, std::vector<std::vector<IdPair>>& ioByRank);
+  void gatherAtRoot(const PairList& inOwnPairs, std::vector<IdPair>& ioCrossPairs, int inRoot);
   void measureImbalance();
 };
 
@@ -247,26 +255,29 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
 
   std::vector<std::vector<BoxRecord>> upserts(static_cast<std::size_t>(ranks));
   std::vector<std::vector<uint32_t>> removals(static_cast<std::size_t>(ranks));
-  std::vector<BoxRecord> current(n);
+  // The bounds the other slabs hold, per box with a slab other than this one in its range
+  // (entries of boxes that stay home are never read). Same order: updated in place.
+  std::vector<BoxRecord>& nowSent = sameOrder ? sent_boxes : sent_boxes_scratch;
+  nowSent.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    BoxRecord& box = current[i];
-    box = BoxRecord{inBoxes.ids[i], inBoxes.group(i), inBoxes.mask(i), 0, {}, {}};
-    for (int a = 0; a < 3; ++a) {
-      box.lo[a] = inBoxes.lo[a][i];
-      box.hi[a] = inBoxes.hi[a][i];
-    }
     const int t0 = first_slab[i];
     const int t1 = last_slab[i];
     const int64_t j = !have_sent ? -1 : sameOrder ? static_cast<int64_t>(i) : previous[i];
     if (t0 == rank && t1 == rank && (j < 0 || (sent_first[j] == rank && sent_last[j] == rank)))
       continue;  // lives in this slab only, now and before: nothing to tell anyone
+    BoxRecord box{inBoxes.ids[i], inBoxes.group(i), inBoxes.mask(i), 0, {}, {}};
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = inBoxes.lo[a][i];
+      box.hi[a] = inBoxes.hi[a][i];
+    }
     int u0 = 1;
     int u1 = 0;  // empty range: nobody holds it yet
     bool changed = true;
     if (j >= 0) {
       u0 = sent_first[j];
       u1 = sent_last[j];
-      // Bit-for-bit: a slab that holds old bounds would miss or invent pairs.
+      // Bit for bit: a slab that holds old bounds would miss or invent pairs. (Read only
+      // when another slab holds the box, i.e. when the entry was written.)
       changed = std::memcmp(&box, &sent_boxes[j], sizeof(BoxRecord)) != 0;
     }
     for (int s = t0; s <= t1; ++s) {
@@ -275,6 +286,7 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
     for (int s = u0; s <= u1; ++s) {
       if (s != rank && (s < t0 || s > t1)) removals[s].push_back(box.id);
     }
+    nowSent[i] = box;
   }
   for (std::size_t j = 0; j < stillHere.size(); ++j) {
     if (stillHere[j]) continue;  // a box that is gone: every slab that held it forgets it
@@ -282,10 +294,12 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
       if (s != rank) removals[s].push_back(sent_ids[j]);
     }
   }
-  sent_ids = inBoxes.ids;
+  if (!sameOrder) {
+    sent_ids = inBoxes.ids;
+    sent_boxes.swap(sent_boxes_scratch);
+  }
   sent_first = first_slab;
   sent_last = last_slab;
-  sent_boxes.swap(current);
   have_sent = true;
 
   // Pack, exchange sizes, exchange bytes.
@@ -358,124 +372,172 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
   }
 }
 
-void DistributedBroadphase::Impl::assembleSlab(const BoxSet& inBoxes) {
-  std::size_t m = 0;
-  for (std::size_t i = 0; i < inBoxes.size(); ++i)
-    m += first_slab[i] <= rank && rank <= last_slab[i];
+/// The x-ranges (slab axis) covered by the boxes received, merged into disjoint sorted
+/// intervals: an own box outside them cannot touch a received box.
+std::vector<std::pair<double, double>> receivedStretches(
+    const std::vector<std::vector<BoxRecord>>& inResident, int inAxis) {
+  std::vector<std::pair<double, double>> stretches;
+  for (const std::vector<BoxRecord>& boxes : inResident) {
+    for (const BoxRecord& box : boxes) stretches.emplace_back(box.lo[inAxis], box.hi[inAxis]);
+  }
+  std::sort(stretches.begin(), stretches.end());
+  std::size_t kept = 0;
+  for (const auto& stretch : stretches) {
+    if (kept > 0 && stretch.first <= stretches[kept - 1].second) {
+      stretches[kept - 1].second = std::max(stretches[kept - 1].second, stretch.second);
+    } else {
+      stretches[kept++] = stretch;
+    }
+  }
+  stretches.resize(kept);
+  return stretches;
+}
+
+/// True when [inLo, inHi] meets one of the disjoint sorted inStretches (closed intervals).
+bool meetsStretch(const std::vector<std::pair<double, double>>& inStretches, double inLo,
+                  double inHi) {
+  // The first stretch that does not end before inLo.
+  auto next = std::lower_bound(
+      inStretches.begin(), inStretches.end(), inLo,
+      [](const std::pair<double, double>& stretch, double x) { return stretch.second < x; });
+  return next != inStretches.end() && next->first <= inHi;
+}
+
+void DistributedBroadphase::Impl::assembleBorderSet(const BoxSet& inBoxes) {
+  const int axis = config.slab_axis;
+  const std::vector<std::pair<double, double>> stretches = receivedStretches(resident, axis);
   std::size_t held = 0;
-  bool residentFilters = false;
+  bool filters = inBoxes.hasFilters();
   for (const std::vector<BoxRecord>& boxes : resident) {
     held += boxes.size();
     for (const BoxRecord& box : boxes)
-      residentFilters |= box.group != kDefaultGroup || box.mask != kDefaultMask;
+      filters |= box.group != kDefaultGroup || box.mask != kDefaultMask;
   }
-  const bool filters = inBoxes.hasFilters() || residentFilters;
-  m += held;
-  report.resident_boxes = held;
-  report.slab_boxes = m;
-
-  slab.ids.resize(m);
-  for (int a = 0; a < 3; ++a) {
-    slab.lo[a].resize(m);
-    slab.hi[a].resize(m);
-  }
-  slab.groups.resize(filters ? m : 0);
-  slab.masks.resize(filters ? m : 0);
-  slab_ids.resize(m);
-  slab_owner.resize(m);
-  slab_min_slab.resize(m);
-  std::size_t k = 0;
+  std::size_t inSlab = 0;
+  std::vector<uint32_t> ownTouching;
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
     if (first_slab[i] > rank || rank > last_slab[i]) continue;
-    slab.ids[k] = static_cast<uint32_t>(k);
+    ++inSlab;
+    if (!stretches.empty() && meetsStretch(stretches, inBoxes.lo[axis][i], inBoxes.hi[axis][i]))
+      ownTouching.push_back(static_cast<uint32_t>(i));
+  }
+  report.resident_boxes = held;
+  report.slab_boxes = inSlab + held;
+  const std::size_t m = held == 0 ? 0 : ownTouching.size() + held;
+  report.border_boxes = m;
+
+  border.ids.resize(m);
+  for (int a = 0; a < 3; ++a) {
+    border.lo[a].resize(m);
+    border.hi[a].resize(m);
+  }
+  border.groups.resize(filters ? m : 0);
+  border.masks.resize(filters ? m : 0);
+  border_ids.resize(m);
+  border_owner.resize(m);
+  border_min_slab.resize(m);
+  if (m == 0) return;
+  std::size_t k = 0;
+  for (uint32_t i : ownTouching) {
+    border.ids[k] = static_cast<uint32_t>(k);
     for (int a = 0; a < 3; ++a) {
-      slab.lo[a][k] = inBoxes.lo[a][i];
-      slab.hi[a][k] = inBoxes.hi[a][i];
+      border.lo[a][k] = inBoxes.lo[a][i];
+      border.hi[a][k] = inBoxes.hi[a][i];
     }
     if (filters) {
-      slab.groups[k] = inBoxes.group(i);
-      slab.masks[k] = inBoxes.mask(i);
+      border.groups[k] = inBoxes.group(i);
+      border.masks[k] = inBoxes.mask(i);
     }
-    slab_ids[k] = inBoxes.ids[i];
-    slab_owner[k] = rank;
-    slab_min_slab[k] = first_slab[i];
+    border_ids[k] = inBoxes.ids[i];
+    border_owner[k] = rank;
+    border_min_slab[k] = first_slab[i];
     ++k;
   }
   for (int p = 0; p < ranks; ++p) {
     for (const BoxRecord& box : resident[p]) {
-      slab.ids[k] = static_cast<uint32_t>(k);
+      border.ids[k] = static_cast<uint32_t>(k);
       for (int a = 0; a < 3; ++a) {
-        slab.lo[a][k] = box.lo[a];
-        slab.hi[a][k] = box.hi[a];
+        border.lo[a][k] = box.lo[a];
+        border.hi[a][k] = box.hi[a];
       }
       if (filters) {
-        slab.groups[k] = box.group;
-        slab.masks[k] = box.mask;
+        border.groups[k] = box.group;
+        border.masks[k] = box.mask;
       }
-      slab_ids[k] = box.id;
-      slab_owner[k] = p;
-      slab_min_slab[k] = slabOf(box.lo[config.slab_axis]);
+      border_ids[k] = box.id;
+      border_owner[k] = p;
+      border_min_slab[k] = slabOf(box.lo[axis]);
       ++k;
     }
   }
 }
 
-/// The pairs this slab owns: under kToOwners listed under each of the two boxes' owner ranks,
-/// under kGatherAtRoot once, under this rank.
-void DistributedBroadphase::Impl::keepOwnedPairs(const PairList& inSlabPairs,
+/// The pairs of boxes of two owners that this slab owns: under kToOwners listed under each
+/// owner rank, under kGatherAtRoot once, under this rank.
+void DistributedBroadphase::Impl::keepOwnedPairs(const PairList& inBorderPairs,
                                                  PairDelivery inDelivery,
                                                  std::vector<std::vector<IdPair>>& outByRank) {
   const bool toOwners = inDelivery == PairDelivery::kToOwners;
-  for (const IdPair& pair : inSlabPairs) {
+  for (const IdPair& pair : inBorderPairs) {
+    const int ownerA = border_owner[pair.a];
+    const int ownerB = border_owner[pair.b];
+    // Two boxes of one owner: that owner's own engine found the pair.
+    if (ownerA == ownerB) continue;
     // The ownership rule. Both boxes overlap on the slab axis, so the larger of their mins m
     // lies in both boxes; the slab holding m is in both boxes' slab ranges (slabOf is
-    // monotone), so exactly that one slab sees both boxes and keeps the pair. The larger min's
-    // slab is the larger of the two min slabs, again because slabOf is monotone.
-    if (std::max(slab_min_slab[pair.a], slab_min_slab[pair.b]) != rank) continue;
-    const IdPair found = makeIdPair(slab_ids[pair.a], slab_ids[pair.b]);
-    ++report.slab_pairs;
+    // monotone), so that one slab holds both boxes and keeps the pair. The larger min's slab
+    // is the larger of the two min slabs, again because slabOf is monotone.
+    if (std::max(border_min_slab[pair.a], border_min_slab[pair.b]) != rank) continue;
+    const IdPair found = makeIdPair(border_ids[pair.a], border_ids[pair.b]);
+    ++report.cross_pairs;
     if (!toOwners) {
       outByRank[rank].push_back(found);
       continue;
     }
-    const int ownerA = slab_owner[pair.a];
-    const int ownerB = slab_owner[pair.b];
     outByRank[ownerA].push_back(found);
-    if (ownerB != ownerA) outByRank[ownerB].push_back(found);
+    outByRank[ownerB].push_back(found);
   }
 }
 
-void DistributedBroadphase::Impl::deliverToOwners(
-    const std::vector<std::vector<IdPair>>& inByRank) {
+/// This rank's own pairs and the pairs of boxes of two owners that involve its boxes, sorted.
+void DistributedBroadphase::Impl::deliverToOwners(const PairList& inOwnPairs,
+                                                  std::vector<std::vector<IdPair>>& ioByRank) {
   std::vector<int> sendCounts(static_cast<std::size_t>(ranks), 0);
   for (int s = 0; s < ranks; ++s) {
     if (s == rank) continue;
-    sendCounts[s] = mpiCount(inByRank[s].size() * sizeof(IdPair), "the pairs sent");
+    sendCounts[s] = mpiCount(ioByRank[s].size() * sizeof(IdPair), "the pairs sent");
     report.pair_bytes_sent += static_cast<uint64_t>(sendCounts[s]);
   }
   const std::vector<int> sendOffsets = displacements(sendCounts);
   std::vector<unsigned char> sendBytes(sum(sendCounts));
   for (int s = 0; s < ranks; ++s) {
     if (sendCounts[s] > 0)
-      std::memcpy(sendBytes.data() + sendOffsets[s], inByRank[s].data(), sendCounts[s]);
+      std::memcpy(sendBytes.data() + sendOffsets[s], ioByRank[s].data(), sendCounts[s]);
   }
   std::vector<int> receiveCounts(static_cast<std::size_t>(ranks), 0);
   checkMpi(MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm),
            "MPI_Alltoall");
   report.control_bytes_sent += static_cast<uint64_t>(ranks - 1) * sizeof(int);
   const std::vector<int> receiveOffsets = displacements(receiveCounts);
-  const std::size_t own = inByRank[rank].size();
-  result.resize(own + sum(receiveCounts) / sizeof(IdPair));
-  std::copy(inByRank[rank].begin(), inByRank[rank].end(), result.begin());
+  PairList& cross = ioByRank[rank];
+  const std::size_t found = cross.size();
+  cross.resize(found + sum(receiveCounts) / sizeof(IdPair));
   checkMpi(MPI_Alltoallv(sendBytes.data(), sendCounts.data(), sendOffsets.data(), MPI_BYTE,
-                         result.data() + own, receiveCounts.data(), receiveOffsets.data(), MPI_BYTE,
-                         comm),
+                         cross.data() + found, receiveCounts.data(), receiveOffsets.data(),
+                         MPI_BYTE, comm),
            "MPI_Alltoallv");
-  sortPairsCanonical(result, sort_scratch);
+  // Own pairs come sorted from the engine; the few cross pairs are sorted and merged in.
+  sortPairsCanonical(cross, sort_scratch);
+  result.resize(inOwnPairs.size() + cross.size());
+  std::merge(inOwnPairs.begin(), inOwnPairs.end(), cross.begin(), cross.end(), result.begin());
 }
 
-void DistributedBroadphase::Impl::gatherAtRoot(const std::vector<IdPair>& inOwned, int inRoot) {
-  const int myBytes = mpiCount(inOwned.size() * sizeof(IdPair), "the pairs sent");
+/// Every pair, once, sorted on the root.
+void DistributedBroadphase::Impl::gatherAtRoot(const PairList& inOwnPairs,
+                                               std::vector<IdPair>& ioCrossPairs, int inRoot) {
+  ioCrossPairs.insert(ioCrossPairs.end(), inOwnPairs.begin(), inOwnPairs.end());
+  const std::vector<IdPair>& mine = ioCrossPairs;
+  const int myBytes = mpiCount(mine.size() * sizeof(IdPair), "the pairs sent");
   if (rank != inRoot) report.pair_bytes_sent += static_cast<uint64_t>(myBytes);
   std::vector<int> counts(static_cast<std::size_t>(ranks), 0);
   checkMpi(MPI_Gather(&myBytes, 1, MPI_INT, counts.data(), 1, MPI_INT, inRoot, comm), "MPI_Gather");
@@ -487,8 +549,8 @@ void DistributedBroadphase::Impl::gatherAtRoot(const std::vector<IdPair>& inOwne
   } else {
     result.clear();
   }
-  checkMpi(MPI_Gatherv(inOwned.data(), myBytes, MPI_BYTE, result.data(), counts.data(),
-                       offsets.data(), MPI_BYTE, inRoot, comm),
+  checkMpi(MPI_Gatherv(mine.data(), myBytes, MPI_BYTE, result.data(), counts.data(), offsets.data(),
+                       MPI_BYTE, inRoot, comm),
            "MPI_Gatherv");
   if (rank == inRoot) sortPairsCanonical(result, sort_scratch);
 }
@@ -537,25 +599,31 @@ const PairList& DistributedBroadphase::update(const BoxSet& inLocalBoxes, PairDe
   self.report.ms_exchange = msSince(start);
 
   start = Clock::now();
-  self.assembleSlab(inLocalBoxes);
+  self.assembleBorderSet(inLocalBoxes);
   self.report.ms_assemble = msSince(start);
 
   start = Clock::now();
-  const PairList& slabPairs = self.engine.update(self.slab);
-  self.report.ms_engine = msSince(start);
-  self.report.engine = self.engine.stats();
+  const PairList& ownPairs = self.own_engine.update(inLocalBoxes);
+  self.report.ms_own_engine = msSince(start);
+  self.report.own_pairs = ownPairs.size();
+  self.report.engine = self.own_engine.stats();
+  start = Clock::now();
+  const PairList& borderPairs = self.border_engine.update(self.border);
+  self.report.ms_border_engine = msSince(start);
+  self.report.border_engine = self.border_engine.stats();
+  self.report.ms_engine = self.report.ms_own_engine + self.report.ms_border_engine;
   self.last_engine_ms = self.report.ms_engine;
 
   start = Clock::now();
   std::vector<std::vector<IdPair>> byRank(static_cast<std::size_t>(self.ranks));
-  self.keepOwnedPairs(slabPairs, inDelivery, byRank);
+  self.keepOwnedPairs(borderPairs, inDelivery, byRank);
   self.report.ms_filter = msSince(start);
 
   start = Clock::now();
   if (inDelivery == PairDelivery::kToOwners)
-    self.deliverToOwners(byRank);
+    self.deliverToOwners(ownPairs, byRank);
   else
-    self.gatherAtRoot(byRank[self.rank], inRoot);
+    self.gatherAtRoot(ownPairs, byRank[self.rank], inRoot);
   self.report.pairs_returned = self.result.size();
   self.measureImbalance();
   self.report.ms_deliver = msSince(start);
@@ -589,7 +657,8 @@ int DistributedBroadphase::ranks() const {
 
 void DistributedBroadphase::reset() {
   Impl& self = *impl_;
-  self.engine.reset();
+  self.own_engine.reset();
+  self.border_engine.reset();
   self.cuts.clear();
   self.have_cuts = false;
   self.have_sent = false;

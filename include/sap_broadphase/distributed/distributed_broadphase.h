@@ -43,30 +43,38 @@ struct DistributedReport {
   std::size_t local_boxes = 0;      ///< boxes this rank passed to update()
   std::size_t slab_boxes = 0;       ///< boxes in this rank's slab (own + received)
   std::size_t resident_boxes = 0;   ///< boxes received from other ranks, kept across frames
+  std::size_t border_boxes = 0;     ///< the border set: received boxes + own ones they reach
   std::size_t boxes_sent = 0;       ///< box records sent to other ranks this frame
   std::size_t removals_sent = 0;    ///< "box left your slab" notices sent this frame
-  std::size_t slab_pairs = 0;       ///< pairs this slab owns (the ownership rule)
+  std::size_t own_pairs = 0;        ///< pairs among this rank's own boxes
+  std::size_t cross_pairs = 0;      ///< pairs of boxes of two owners that this slab owns
   std::size_t pairs_returned = 0;   ///< pairs update() returned on this rank
   uint64_t box_bytes_sent = 0;      ///< bytes of box records and removals to other ranks
   uint64_t pair_bytes_sent = 0;     ///< bytes of pairs delivered to other ranks
   uint64_t control_bytes_sent = 0;  ///< sizes, samples and balance figures sent
   bool recut = false;               ///< the slabs were cut (again) this frame
-  double imbalance = 1.0;    ///< fullest slab / mean slab (boxes; kCost: engine time), all ranks
-  double ms_cut = 0.0;       ///< sampling and agreeing on the cuts (re-cut frames only)
-  double ms_exchange = 0.0;  ///< deciding what to send, the exchange, merging what came
-  double ms_assemble = 0.0;  ///< building the slab's box set
-  double ms_engine = 0.0;    ///< the Broadphase on the slab
-  double ms_filter = 0.0;    ///< the ownership rule and the ids
-  double ms_deliver = 0.0;   ///< sending pairs to their owners or the root, and sorting
+  double imbalance = 1.0;      ///< fullest slab / mean slab (boxes; kCost: engine time), all ranks
+  double ms_cut = 0.0;         ///< sampling and agreeing on the cuts (re-cut frames only)
+  double ms_exchange = 0.0;    ///< deciding what to send, the exchange, merging what came
+  double ms_assemble = 0.0;    ///< building the border set
+  double ms_own_engine = 0.0;  ///< the Broadphase on the own boxes
+  double ms_border_engine = 0.0;  ///< the Broadphase on the border set
+  double ms_engine = 0.0;         ///< both
+  double ms_filter = 0.0;         ///< the ownership rule and the ids
+  double ms_deliver = 0.0;        ///< sending pairs to their owners or the root, and sorting
   double ms_total = 0.0;
-  FrameReport engine;  ///< the slab engine's own report
+  FrameReport engine;         ///< the own boxes' engine's report
+  FrameReport border_engine;  ///< the border set's engine's report
 };
 
 /// The distributed broad phase. Every rank of the communicator calls update() on every frame
 /// with the boxes of its own bodies (any count, zero included); box ids are unique over all
-/// ranks. Rank r computes slab r of the slab axis: it receives the boxes of other ranks that
-/// overlap its slab, runs a Broadphase on them and keeps each pair whose later-starting box
-/// (larger min on the slab axis) starts in slab r, so each pair is found by exactly one rank.
+/// ranks. Each rank finds the pairs among its own boxes with a Broadphase on them as given
+/// (so coherence across frames works as in one process). Pairs of boxes of two owners: rank r
+/// computes slab r of the slab axis; it receives the other ranks' boxes that overlap its slab,
+/// runs a second Broadphase on them and the own boxes they reach, and keeps each pair whose
+/// later-starting box (larger min on the slab axis) starts in slab r, so each pair is found by
+/// exactly one rank.
 /// The input is trusted: validate() each rank's boxes at the edge first. Ranks keep the boxes
 /// they received; a box is sent again only when its bounds, group or mask changed or it newly
 /// overlaps a slab.
