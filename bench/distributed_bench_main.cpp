@@ -3,7 +3,7 @@
 // holds it: each rank owns the bodies whose centre lies in its slab, moves them, and after
 // the first frame, and every --migrate-every frames, hands the bodies that left its slab to
 // their new rank (the simulation's own migration, timed apart). Prints one RESULT line
-// (rank 0) with the averages over the frames after the first two.
+// (rank 0) with the averages over the frames after the first three.
 //
 // usage: mpirun -np R sap_bench_distributed --n N [--frames F] [--threads T]
 //                         [--motion EDGES] [--density D] [--seed S] [--migrate-every M]
@@ -33,13 +33,14 @@ using distributed::PairDelivery;
 /// the unit of "bytes exchanged per frame, as a share of the frame's boxes".
 constexpr double kBoxBytes = 4 + 6 * 8;
 
-/// Frames before the steady state: the cold start (the cut, every ghost sent) and the frame
-/// after the bodies first migrated to the slabs the cut chose.
-constexpr int kWarmupFrames = 2;
+/// Frames before the steady state: the cold start (the cut, every ghost sent), the frame after
+/// the bodies first migrated to the slabs the cut chose (new ids on every rank: the own
+/// engine sweeps afresh), and the frame where the own engine builds its kept candidates.
+constexpr int kWarmupFrames = 3;
 
 struct Options {
   uint64_t n = 1u << 20;
-  int frames = 5;  ///< frames in all, kWarmupFrames of them before the steady state
+  int frames = 6;  ///< frames in all, kWarmupFrames of them before the steady state
   int threads = 1;
   double motion = 0.01;  ///< distance a frame, in mean box edges (the mean edge is 1)
   double density = 0.05;
@@ -184,7 +185,8 @@ void migrate(Bodies& ioBodies, const DistributedBroadphase& inBroadphase, MPI_Co
 /// Sums and maxima over the steady frames.
 struct Totals {
   int frames = 0;
-  double ms_frame = 0, ms_exchange = 0, ms_engine = 0, ms_other = 0, ms_migrate = 0;
+  double ms_frame = 0, ms_exchange = 0, ms_engine = 0, ms_own = 0, ms_border = 0, ms_other = 0;
+  double ms_migrate = 0;
   double box_bytes = 0, pair_bytes = 0, control_bytes = 0, boxes_sent = 0, imbalance = 0;
   double slab_boxes_max = 0, slab_boxes_sum = 0, border_boxes_max = 0, pairs = 0, recuts = 0;
 };
@@ -238,7 +240,7 @@ int main(int argc, char** argv) {
   if (!parse(argc, argv, options)) {
     if (rank == 0)
       std::fprintf(stderr,
-                   "usage: mpirun -np R sap_bench_distributed --n N [--frames F>=3] "
+                   "usage: mpirun -np R sap_bench_distributed --n N [--frames F>=4] "
                    "[--threads T] [--motion EDGES] [--density D] [--seed S] [--migrate-every M]\n");
     MPI_Finalize();
     return 2;
@@ -251,7 +253,7 @@ int main(int argc, char** argv) {
   config.engine.threads = options.threads;
   DistributedBroadphase broadphase(MPI_COMM_WORLD, config);
   Totals steady;
-  double firstFrameBoxBytes = 0, firstFrameMs = 0;
+  double firstFrameBoxBytes = 0, firstFrameMs = 0, firstEngineMs = 0, afterMigrationMs = 0;
   for (int frame = 0; frame < options.frames; ++frame) {
     MPI_Barrier(MPI_COMM_WORLD);
     broadphase.update(bodies.boxes, PairDelivery::kToOwners);
@@ -261,12 +263,16 @@ int main(int argc, char** argv) {
     if (frame == 0) {
       firstFrameBoxBytes = boxBytes;
       firstFrameMs = msFrame;
+      firstEngineMs = maxOver(report.ms_engine, MPI_COMM_WORLD);
     }
+    if (frame == 1) afterMigrationMs = msFrame;
     if (frame >= kWarmupFrames) {
       ++steady.frames;
       steady.ms_frame += msFrame;
       steady.ms_exchange += maxOver(report.ms_cut + report.ms_exchange, MPI_COMM_WORLD);
       steady.ms_engine += maxOver(report.ms_engine, MPI_COMM_WORLD);
+      steady.ms_own += maxOver(report.ms_own_engine, MPI_COMM_WORLD);
+      steady.ms_border += maxOver(report.ms_border_engine, MPI_COMM_WORLD);
       steady.ms_other +=
           maxOver(report.ms_assemble + report.ms_filter + report.ms_deliver, MPI_COMM_WORLD);
       steady.box_bytes += boxBytes;
@@ -296,24 +302,46 @@ int main(int argc, char** argv) {
   if (rank == 0) {
     const double f = steady.frames;
     const double frameBytes = static_cast<double>(options.n) * kBoxBytes;
-    std::printf(
-        "RESULT n=%llu ranks=%d threads=%d frames=%d motion=%g ms_frame=%.3f ms_exchange=%.3f "
-        "ms_engine=%.3f ms_other=%.3f ms_migrate=%.3f box_bytes=%.0f pair_bytes=%.0f "
-        "control_bytes=%.0f boxes_sent=%.0f bytes_per_box=%.4f box_bytes_share=%.5f "
-        "all_bytes_share=%.5f imbalance=%.4f slab_boxes_max=%.0f slab_boxes_mean=%.0f "
-        "pairs_returned=%.0f recuts=%.0f first_ms=%.3f first_box_bytes=%.0f own_path=%s "
-        "own_skin=%s border_boxes_max=%.0f\n",
-        static_cast<unsigned long long>(options.n), ranks, options.threads, steady.frames,
-        options.motion, steady.ms_frame / f, steady.ms_exchange / f, steady.ms_engine / f,
-        steady.ms_other / f, steady.ms_migrate / f, steady.box_bytes / f, steady.pair_bytes / f,
-        steady.control_bytes / f, steady.boxes_sent / f,
-        (steady.box_bytes + steady.pair_bytes + steady.control_bytes) / f / options.n,
-        steady.box_bytes / f / frameBytes,
-        (steady.box_bytes + steady.pair_bytes + steady.control_bytes) / f / frameBytes,
-        steady.imbalance / f, steady.slab_boxes_max / f, steady.slab_boxes_sum / f / ranks,
-        steady.pairs / f, steady.recuts, firstFrameMs, firstFrameBoxBytes,
-        framePathName(broadphase.stats().engine.path),
-        skinChoiceName(broadphase.stats().engine.skin_choice), steady.border_boxes_max / f);
+    const double allBytes = steady.box_bytes + steady.pair_bytes + steady.control_bytes;
+    std::string line = "RESULT";
+    const auto field = [&line](const char* inName, double inValue) {
+      char text[96];
+      std::snprintf(text, sizeof text, " %s=%.6g", inName, inValue);
+      line += text;
+    };
+    field("n", static_cast<double>(options.n));
+    field("ranks", ranks);
+    field("threads", options.threads);
+    field("frames", f);
+    field("motion", options.motion);
+    field("world", world);
+    field("ms_frame", steady.ms_frame / f);
+    field("ms_exchange", steady.ms_exchange / f);
+    field("ms_engine", steady.ms_engine / f);
+    field("ms_own", steady.ms_own / f);
+    field("ms_border", steady.ms_border / f);
+    field("ms_other", steady.ms_other / f);
+    field("ms_migrate", steady.ms_migrate / f);
+    field("box_bytes", steady.box_bytes / f);
+    field("pair_bytes", steady.pair_bytes / f);
+    field("control_bytes", steady.control_bytes / f);
+    field("boxes_sent", steady.boxes_sent / f);
+    field("bytes_per_box", allBytes / f / options.n);
+    field("box_bytes_share", steady.box_bytes / f / frameBytes);
+    field("all_bytes_share", allBytes / f / frameBytes);
+    field("imbalance", steady.imbalance / f);
+    field("slab_boxes_max", steady.slab_boxes_max / f);
+    field("slab_boxes_mean", steady.slab_boxes_sum / f / ranks);
+    field("border_boxes_max", steady.border_boxes_max / f);
+    field("pairs_returned", steady.pairs / f);
+    field("recuts", steady.recuts);
+    field("first_ms", firstFrameMs);
+    field("first_engine_ms", firstEngineMs);
+    field("first_box_bytes", firstFrameBoxBytes);
+    field("after_migration_ms", afterMigrationMs);
+    const FrameReport& engine = broadphase.stats().engine;
+    std::printf("%s own_path=%s own_skin=%s\n", line.c_str(), framePathName(engine.path),
+                skinChoiceName(engine.skin_choice));
   }
   MPI_Finalize();
   return 0;

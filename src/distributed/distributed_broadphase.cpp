@@ -608,7 +608,11 @@ const PairList& DistributedBroadphase::update(const BoxSet& inLocalBoxes, PairDe
   self.report.own_pairs = ownPairs.size();
   self.report.engine = self.own_engine.stats();
   start = Clock::now();
-  const PairList& borderPairs = self.border_engine.update(self.border);
+  // Nothing received: no pair across owners can be this slab's (one process, or a slab no
+  // other rank's box reaches), and the engine is not even asked.
+  static const PairList kNoPairs;
+  const PairList& borderPairs =
+      self.border.size() == 0 ? kNoPairs : self.border_engine.update(self.border);
   self.report.ms_border_engine = msSince(start);
   self.report.border_engine = self.border_engine.stats();
   self.report.ms_engine = self.report.ms_own_engine + self.report.ms_border_engine;
