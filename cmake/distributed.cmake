@@ -28,7 +28,6 @@ target_compile_definitions(sap_bench PRIVATE
   SAP_BENCH_DISTRIBUTED_WORKER="$<TARGET_FILE:sap_bench_distributed>"
   SAP_MPIEXEC="${MPIEXEC_EXECUTABLE}")
 
-install(TARGETS ${PROJECT_NAME}_distributed sap_pairs_mpi
-  ARCHIVE DESTINATION ${SAP_LIB_DESTINATION}
-  LIBRARY DESTINATION ${SAP_LIB_DESTINATION}
-  RUNTIME DESTINATION ${SAP_BIN_DESTINATION})
+# The tool is installed; the library stays in the build tree (its headers are not part of the
+# installed engine package, which is MPI-free).
+install(TARGETS sap_pairs_mpi RUNTIME DESTINATION ${SAP_BIN_DESTINATION})

@@ -614,7 +614,7 @@ const PairList& DistributedBroadphase::update(const BoxSet& inLocalBoxes, PairDe
   const PairList& borderPairs =
       self.border.size() == 0 ? kNoPairs : self.border_engine.update(self.border);
   self.report.ms_border_engine = msSince(start);
-  self.report.border_engine = self.border_engine.stats();
+  if (self.border.size() > 0) self.report.border_engine = self.border_engine.stats();
   self.report.ms_engine = self.report.ms_own_engine + self.report.ms_border_engine;
   self.last_engine_ms = self.report.ms_engine;
 
