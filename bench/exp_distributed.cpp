@@ -94,6 +94,40 @@ struct ModelInputs {
   std::size_t measured_n = 0;
 };
 
+/// The model's inputs from the size sweep. The own engine: the 1-rank run at the largest
+/// size (its per-box cost grows slowly with n). The border: the 2-rank runs, one border with
+/// each rank on its own core; its per-box cost is the lowest over the sizes (the run least
+/// disturbed by the machine's other load), its box count and bytes those of the largest size.
+ModelInputs modelInputs(const std::vector<Result>& inResults) {
+  ModelInputs inputs;
+  double largestOne = 0, largestTwo = 0;
+  inputs.border_ns_per_box = 1e300;
+  for (const Result& result : inResults) {
+    const double n = result.at("n");
+    const double ranks = result.at("ranks");
+    if (ranks == 1 && n >= largestOne) {
+      largestOne = n;
+      inputs.own_ns_per_box_steady = result.at("ms_own") * 1e6 / n;
+      inputs.own_ns_per_box_cold = result.at("first_engine_ms") * 1e6 / n;
+      inputs.measured_n = static_cast<std::size_t>(n);
+    }
+    if (ranks != 2) continue;
+    const double borderBoxes = std::max(result.at("border_boxes_max"), 1.0);
+    inputs.border_ns_per_box =
+        std::min(inputs.border_ns_per_box, result.at("ms_border") * 1e6 / borderBoxes);
+    if (n >= largestTwo) {
+      largestTwo = n;
+      const double straddling = n / result.at("world");
+      inputs.border_boxes_per_border = borderBoxes / straddling;
+      inputs.bytes_per_border_box =
+          (result.at("box_bytes") + result.at("pair_bytes") + result.at("control_bytes")) /
+          straddling;
+    }
+  }
+  if (largestTwo == 0) inputs.border_ns_per_box = 0;
+  return inputs;
+}
+
 /// A modelled frame of inBoxes on inRanks ranks (one core each) over inGbits.
 struct ModelRow {
   double boxes_per_rank, slab_edges, border_boxes, engine_ms, engine_cold_ms, exchange_ms;
@@ -119,9 +153,9 @@ ModelRow model(const ModelInputs& inInputs, double inBoxes, int inRanks, double 
   const double bytesPerRank = inInputs.bytes_per_border_box * straddling;
   const double wireMs = bytesPerRank * 8.0 / (inGbits * 1e9) * 1e3;
   // Latency: four all-to-all collectives a frame (sizes and data, for boxes and for pairs)
-  // that each touch every other rank, and two small allreduces (log2 P steps).
+  // that each touch every other rank, and one allgather of the balance figure (log2 P steps).
   const double latencyMs =
-      (4.0 * (inRanks - 1) + 2.0 * std::log2(static_cast<double>(inRanks))) * inLatencyUs * 1e-3;
+      (4.0 * (inRanks - 1) + std::log2(static_cast<double>(inRanks))) * inLatencyUs * 1e-3;
   row.exchange_ms = wireMs + latencyMs;
   return row;
 }
@@ -173,30 +207,16 @@ void runDistributed(const Options& inOptions) {
                      bestRanks <= 1.3 * bestThreads ? "yes" : "no"});
   }
 
-  ModelInputs inputs;
+  std::vector<Result> bySize;
   for (std::size_t n : sizes) {
     for (int ranks : {1, 2, 4}) {
       const Result result = runJob(ranks, 1, n, frames);
       if (result.empty()) continue;
       addMeasuredRow(measured, result);
-      // The model's inputs: the largest size measured, 1 rank for the own engine's cost,
-      // 4 ranks for the border engine and the bytes (3 borders).
-      if (ranks == 1) {
-        inputs.own_ns_per_box_steady = result.at("ms_own") * 1e6 / n;
-        inputs.own_ns_per_box_cold = result.at("first_engine_ms") * 1e6 / n;
-        inputs.measured_n = n;
-      } else if (ranks == 4) {
-        const double straddling = n / result.at("world");
-        inputs.border_ns_per_box =
-            result.at("ms_border") * 1e6 / std::max(result.at("border_boxes_max"), 1.0);
-        inputs.border_boxes_per_border = result.at("border_boxes_max") / (2.0 * straddling);
-        // Box and pair bytes of all ranks over the 3 borders, per straddling box.
-        inputs.bytes_per_border_box =
-            (result.at("box_bytes") + result.at("pair_bytes") + result.at("control_bytes")) /
-            (3.0 * straddling);
-      }
+      bySize.push_back(result);
     }
   }
+  const ModelInputs inputs = modelInputs(bySize);
   for (const Result& result : smallest) addMeasuredRow(measured, result);
   publish(inOptions, measured, "distributed_measured");
   publish(inOptions, target, "distributed_target");
