@@ -93,7 +93,9 @@ void FrameWorker::run() {
     const ros::Time now = ros::Time::now();
     if (now + period < next_tick) next_tick = now + period;  // the clock went back (a bag loop)
     const bool tick = now >= next_tick;
-    if (tick) next_tick = std::max(next_tick + period, now);
+    // A late tick (a slow frame, or /clock jumping ahead) is not made up for: the next one
+    // is a period from now.
+    if (tick) next_tick = std::max(next_tick + period, now + period);
     if (fixed_rate && !tick) continue;  // woken for settings only
 
     const bool scenery_changed = takeScenery();

@@ -49,3 +49,6 @@ add_rostest(test/ros/reconfigure.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJEC
 # Two robots on one topic recorded with rosbag record and played back with rosbag play (one
 # caller id) give the live node's pairs frame by frame: sources are told apart by frame id.
 add_rostest(test/ros/replay.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# use_sim_time: ~rate ticks, source time-outs and diagnostics follow the /clock the test drives.
+add_rostest(test/ros/clock.test DEPENDENCIES ${PROJECT_NAME}_node)
