@@ -52,3 +52,7 @@ add_rostest(test/ros/replay.test DEPENDENCIES ${PROJECT_NAME}_node)
 
 # use_sim_time: ~rate ticks, source time-outs and diagnostics follow the /clock the test drives.
 add_rostest(test/ros/clock.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# tf2 without stalls: a source without its transform never holds up the others; a scenery
+# stamped long ago is placed with the latest transform of a moving frame.
+add_rostest(test/ros/tf.test DEPENDENCIES ${PROJECT_NAME}_node)
