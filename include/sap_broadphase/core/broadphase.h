@@ -8,54 +8,10 @@
 #include <string>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/config.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
-
-/// Which algorithm computes a frame.
-enum class Method : uint8_t {
-  kAuto,  ///< sequential below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
-  kParallel,    ///< Algorithms 2, 3 and 4 of the paper
-  kSequential,  ///< Algorithm 1 of the paper
-  kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
-};
-
-/// The one vocabulary of method names: "auto", "parallel", "sequential", "brute".
-const char* methodName(Method inMethod);
-/// Parses a method name; "sap" is accepted for "auto" (the CLI's name for it). Nothing when
-/// the name is unknown.
-std::optional<Method> parseMethod(const std::string& inName);
-
-/// What a caller may tune. Defaults are the exact, adaptive engine.
-struct BroadphaseConfig {
-  int threads = 0;                    ///< worker threads; 0 = all cores (omp_get_max_threads)
-  Method method = Method::kAuto;      ///< algorithm choice
-  int primary_axis = 0;               ///< first sweep axis (0 = x, 1 = y, 2 = z)
-  int secondary_axis = 1;             ///< second sweep axis; must differ from primary_axis
-  bool axis_swapping = true;          ///< swap a clustered sweep axis with the unused one (§5)
-  double axis_swap_threshold = 0.25;  ///< dispersion D above which an axis is swapped
-  std::size_t parallel_min_boxes = 12288;  ///< kAuto runs sequentially below this many boxes
-                                           ///< (measured crossover on 2 cores: sap_bench -e skips)
-  int third_axis_slabs = 0;                ///< active lists per slab of the unused axis: 0 = auto,
-                                           ///< 1 = the paper's single list, k = k slabs (max 64)
-  bool reuse_unchanged_frames = true;      ///< a frame bit for bit equal to the previous one
-                                           ///< (ids, bounds, groups, masks) returns its pairs; the
-                                           ///< comparison is the frame history's, done anyway
-  bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
-                                    ///< and whose groups/masks forbid pairs among them in an
-                                    ///< index (static_split.h); sweep only the others
-  /// Skin reuse (kept candidates): sweep boxes grown by skin / 2 a side, then test only those
-  /// candidates until a box leaves its grown box. Nothing (the default) = automatic: chosen
-  /// each sweep from the measured motion and costs, off when it does not pay; 0 = off;
-  /// > 0 = this fixed skin.
-  std::optional<double> skin;
-  bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
-                                 ///< may report extra pairs; never misses one)
-};
-
-/// What is wrong with inConfig, in words a user can act on, or nothing when it is valid. The
-/// one check of a configuration (the engine's constructor and the node both use it).
-std::optional<std::string> configProblem(const BroadphaseConfig& inConfig);
 
 /// Which path computed a frame.
 enum class FramePath : uint8_t {
