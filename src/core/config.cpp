@@ -2,6 +2,9 @@
 // comparisons that walk it.
 #include "sap_broadphase/core/config.h"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -56,7 +59,7 @@ std::optional<int> parseAxis(const std::string& inText) {
   return std::nullopt;
 }
 
-std::string skinText(const std::optional<double>& inSkin) {
+std::string skinToText(const std::optional<double>& inSkin) {
   if (!inSkin) return "auto";
   if (*inSkin == 0.0) return "off";
   for (int digits = 6; digits < 17; ++digits) {
@@ -71,7 +74,7 @@ std::string skinText(const std::optional<double>& inSkin) {
   return text.str();
 }
 
-bool parseSkin(const std::string& inText, std::optional<double>& outSkin) {
+bool skinFromText(const std::string& inText, std::optional<double>& outSkin) {
   if (inText.empty() || inText == "auto") {
     outSkin.reset();
     return true;
@@ -143,7 +146,7 @@ std::optional<int> asAxis(const ConfigValue& inValue) {
 std::optional<std::optional<double>> asSkin(const ConfigValue& inValue) {
   std::optional<double> skin;
   if (const auto text = asText(inValue)) {
-    if (!parseSkin(*text, skin)) return std::nullopt;
+    if (!skinFromText(*text, skin)) return std::nullopt;
   } else if (const auto number = asNumber(inValue)) {
     skin = *number;
   } else {
@@ -236,7 +239,7 @@ std::optional<std::string> setMethod(BroadphaseConfig& ioConfig, const ConfigVal
 }
 
 ConfigValue getSkin(const BroadphaseConfig& inConfig) {
-  return skinText(inConfig.skin);
+  return skinToText(inConfig.skin);
 }
 std::optional<std::string> setSkin(BroadphaseConfig& ioConfig, const ConfigValue& inValue) {
   const auto skin = asSkin(inValue);
@@ -321,6 +324,10 @@ bool sameConfig(const BroadphaseConfig& inA, const BroadphaseConfig& inB) {
   for (const ConfigField& field : configFields())
     if (field.get(inA) != field.get(inB)) return false;
   return true;
+}
+
+int resolveThreadCount(int inRequested) {
+  return inRequested > 0 ? inRequested : std::max(1, omp_get_max_threads());
 }
 
 std::optional<std::string> configProblem(const BroadphaseConfig& inConfig) {

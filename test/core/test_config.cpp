@@ -175,15 +175,15 @@ TEST(AxisNames, ReadAsLettersOrDigits) {
 TEST(SkinText, ReadsBackAsTheSameSkin) {
   for (double skin : {0.1, 1.0 / 3.0, 2.5e-7, 123456.789, 0.0}) {
     std::optional<double> read;
-    ASSERT_TRUE(parseSkin(skinText(skin), read)) << skin;
+    ASSERT_TRUE(skinFromText(skinToText(skin), read)) << skin;
     EXPECT_EQ(read, skin);
   }
-  EXPECT_EQ(skinText(std::nullopt), "auto");
-  EXPECT_EQ(skinText(0.0), "off");
+  EXPECT_EQ(skinToText(std::nullopt), "auto");
+  EXPECT_EQ(skinToText(0.0), "off");
   std::optional<double> read = 1.0;
-  EXPECT_TRUE(parseSkin("", read));
+  EXPECT_TRUE(skinFromText("", read));
   EXPECT_EQ(read, std::nullopt);
-  EXPECT_FALSE(parseSkin("1.5m", read));
+  EXPECT_FALSE(skinFromText("1.5m", read));
 }
 
 TEST(GiveBackWatch, GivesBackOnlyAfterManySmallFramesInABigBuffer) {

@@ -47,10 +47,10 @@ std::optional<int> parseAxis(const std::string& inText);
 
 /// The skin as text: "auto" (nothing), "off" (0) or the shortest decimal that reads back as
 /// the same double (so that a skin written to a parameter server and read back is the same).
-std::string skinText(const std::optional<double>& inSkin);
+std::string skinToText(const std::optional<double>& inSkin);
 /// Parses "auto" (or empty), "off" or a number (strtod, whole text) into outSkin. The range is
 /// configProblem's to check.
-bool parseSkin(const std::string& inText, std::optional<double>& outSkin);
+bool skinFromText(const std::string& inText, std::optional<double>& outSkin);
 
 /// What a caller may tune. Defaults are the exact, adaptive engine.
 struct BroadphaseConfig {
@@ -90,7 +90,7 @@ enum class ConfigFieldType : uint8_t {
 };
 
 /// A field's value as front ends carry it: kBool as bool, kInteger as int64_t, kNumber as
-/// double, kMethod, kAxis and kSkin as their text (methodName, axisName, skinText).
+/// double, kMethod, kAxis and kSkin as their text (methodName, axisName, skinToText).
 using ConfigValue = std::variant<bool, int64_t, double, std::string>;
 
 /// One row of the table: everything a front end needs to load, offer, log or check a field.
@@ -120,6 +120,10 @@ std::string valueText(const ConfigValue& inValue);
 std::string describeConfig(const BroadphaseConfig& inConfig);
 /// True when every field of inA equals the same field of inB.
 bool sameConfig(const BroadphaseConfig& inA, const BroadphaseConfig& inB);
+
+/// Number of threads that `inRequested` (0 = all cores, as BroadphaseConfig::threads)
+/// resolves to.
+int resolveThreadCount(int inRequested);
 
 /// What is wrong with inConfig, in words a user can act on, or nothing when it is valid: every
 /// field against its row of the table, then the rules between fields (distinct axes). The one
