@@ -28,6 +28,9 @@ target_compile_definitions(sap_bench PRIVATE
   SAP_BENCH_DISTRIBUTED_WORKER="$<TARGET_FILE:sap_bench_distributed>"
   SAP_MPIEXEC="${MPIEXEC_EXECUTABLE}")
 
-# The tool is installed; the library stays in the build tree (its headers are not part of the
-# installed engine package, which is MPI-free).
-install(TARGETS sap_pairs_mpi RUNTIME DESTINATION ${SAP_BIN_DESTINATION})
+# The tool and the library it links (shared under catkin) are installed; the headers are not
+# part of the installed engine package (include/sap_broadphase/core), which is MPI-free.
+install(TARGETS ${PROJECT_NAME}_distributed sap_pairs_mpi
+  ARCHIVE DESTINATION ${SAP_LIB_DESTINATION}
+  LIBRARY DESTINATION ${SAP_LIB_DESTINATION}
+  RUNTIME DESTINATION ${SAP_BIN_DESTINATION})
