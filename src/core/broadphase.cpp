@@ -112,7 +112,13 @@ FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
   inputs.kept_covers =
       planConsidersKeptCandidates(inputs) && skin.coversFrame(inSwept, inThreads, report);
   PhaseTimer timer(report.ms_plan);
-  return planFrame(inputs);
+  const FramePlan plan = planFrame(inputs);
+  SAP_ASSERT(plan.work != FrameWork::kKeptCandidates || inputs.kept_covers,
+             "the plan answers from kept candidates that do not cover the frame");
+  SAP_ASSERT(plan.sweep_skin == 0.0 || plan.work == FrameWork::kSweep,
+             "a skin to grow boxes by on a frame that is not swept");
+  SAP_ASSERT(plan.threads >= 1 && plan.threads <= inThreads, "the plan's threads out of range");
+  return plan;
 }
 
 // Runs the plan's strategy: this frame's pairs of inSwept (or of inBoxes for brute force) go
