@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/assert.h"
 #include "core/sort_keys.h"
 
 namespace sap_broadphase {
@@ -123,7 +124,11 @@ double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, ui
   if (!ioBounds.from_previous_frame ||
       ioBounds.bounds.size() != static_cast<std::size_t>(partitions - 1))
     initialiseBoundsFromSpan(ioPacked, inCount, partitions, inThreads, ioBounds);
+  SAP_ASSERT(std::is_sorted(ioBounds.bounds.begin(), ioBounds.bounds.end()),
+             "partition bounds B out of order");
   scatterIntoPartitions(ioPacked, ioScratch, inCount, ioBounds, inThreads);
+  SAP_ASSERT(partition_begin_.back() == inCount,
+             "the partitions do not cover every rank exactly once");
   sortPartitionsAndExtract(ioScratch, ioPacked, inCount, inThreads, outIndex);
   // Algorithm 2, lines 6-7: next frame's bounds are this frame's keys at ranks p * floor(2n/m).
   std::copy(bound_samples_.begin(), bound_samples_.end(), ioBounds.bounds.begin());

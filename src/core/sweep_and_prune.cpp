@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/axis_policy.h"
+#include "core/assert.h"
 #include "core/axis_spread.h"
 #include "core/buffers.h"
 #include "core/phase_timer.h"
@@ -192,6 +193,8 @@ void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, int inThreads) {
       keys.lo[axis] = origin.low(axis, inBoxes.lo[axis][i]);
       keys.hi[axis] = origin.high(axis, inBoxes.hi[axis][i]);
     }
+    SAP_ASSERT(keys.lo[0] <= keys.hi[0] && keys.lo[1] <= keys.hi[1] && keys.lo[2] <= keys.hi[2],
+               "a key record with lo > hi (keys must round outward)");
     if (slabbed)
       ranked_slabs_[rank] = {static_cast<uint8_t>(slab_grid_.slabOf(third_low[i])),
                              static_cast<uint8_t>(slab_grid_.slabOf(third_high[i]))};
