@@ -88,12 +88,12 @@ void SweepAndPrune::forgetCoherence() {
 }
 
 void SweepAndPrune::releaseBuffers() {
-  std::vector<uint64_t>().swap(endpoint_words_);
+  Buffer<uint64_t>().swap(endpoint_words_);
   std::vector<uint32_t>().swap(sweep_order_);
   ranges_ = CandidateRanges();
-  std::vector<RankedKeys>().swap(ranked_keys_);
-  std::vector<RankedFilter>().swap(ranked_filters_);
-  std::vector<RankedSlabs>().swap(ranked_slabs_);
+  Buffer<RankedKeys>().swap(ranked_keys_);
+  Buffer<RankedFilter>().swap(ranked_filters_);
+  Buffer<RankedSlabs>().swap(ranked_slabs_);
   workspace_ = SweepWorkspace();
   sequential_tree_ = SuccTree();
   pairs_per_thread_.clear();
