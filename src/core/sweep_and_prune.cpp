@@ -261,7 +261,7 @@ void SweepAndPrune::run(const BoxSet& inBoxes, FramePath inPath, int inThreads,
     // Each thread's pairs are disjoint from the others': merging them is the whole set. The
     // sweep order is dead by now: the sort borrows its memory for its histogram.
     std::swap(sweep_order_, pair_scratch_.offsets);
-    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_);
+    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_, threads);
     std::swap(sweep_order_, pair_scratch_.offsets);
   }
   decideAxes(warm && axis_swapping_ && 2 * std::size_t{n} >= tuning::kMinPartitionedEndpoints,
