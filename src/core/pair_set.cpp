@@ -133,8 +133,9 @@ uint32_t largestA(const Pairs& inPairs) {
   return largest;
 }
 
-// Below this many pairs one thread merges the parts: a team's barriers would cost more.
-constexpr std::size_t kParallelMergePairs = 16384;
+// Below this many pairs one thread merges the parts: a team's barriers and the second row of
+// counts cost more (measured: 26k pairs of 2^17 boxes, 0.19 ms on one thread, 0.30 on two).
+constexpr std::size_t kParallelMergePairs = 65536;
 
 bool denseEnough(uint32_t inLargestA, std::size_t inCount) {
   return inLargestA < 4 * inCount + 65536;
