@@ -10,7 +10,7 @@
 // Prints per engine: a fresh engine's first frame (median over runs), the steady frame
 // (median and minimum over the later frames of all runs), the process CPU time of a steady
 // frame, the steady phases, the time no phase reports, and whether every engine found the
-// same number of pairs on every frame.
+// same number of pairs on every frame; then the first frame's phases.
 #include <dlfcn.h>
 
 #include <algorithm>
@@ -179,6 +179,13 @@ int main(int argc, char** argv) {
       std::printf(" %8.2f", phase);
     }
     std::printf(" %8.2f %11.2f\n", steady - phases, first - first_phases);
+  }
+  std::printf("first frame's phases:\n");
+  for (Engine& engine : engines) {
+    std::printf("%-14s %3d", engine.label.c_str(), engine.threads);
+    for (int t = 0; t < kTimes - 1; ++t)
+      std::printf(" %s %.2f", kTimeNames[t], medianOf(engine.first[t]));
+    std::printf("\n");
   }
   std::printf("pairs: %s\n", same_pairs ? "every engine the same count on every frame"
                                         : "MISMATCH between engines");
