@@ -69,3 +69,6 @@ sap_add_gtest(test_frame_flow
 )
 target_include_directories(test_frame_flow PRIVATE test/core)
 target_link_libraries(test_frame_flow ${PROJECT_NAME}_core_internal)
+
+# The distributed broad phase over MPI, run under mpirun (plain CMake build, MPI found).
+include(test/distributed/distributed_tests.cmake)

@@ -45,3 +45,14 @@ add_dependencies(test_sources ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_mess
 # dynamic_reconfigure of the node and of BroadphaseNodelet (python client): threads and skin
 # changed at run time show in stats, pairs equal the oracle's, invalid values are refused.
 add_rostest(test/ros/reconfigure.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)
+
+# Two robots on one topic recorded with rosbag record and played back with rosbag play (one
+# caller id) give the live node's pairs frame by frame: sources are told apart by frame id.
+add_rostest(test/ros/replay.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# use_sim_time: ~rate ticks, source time-outs and diagnostics follow the /clock the test drives.
+add_rostest(test/ros/clock.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# tf2 without stalls: a source without its transform never holds up the others; a scenery
+# stamped long ago is placed with the latest transform of a moving frame.
+add_rostest(test/ros/tf.test DEPENDENCIES ${PROJECT_NAME}_node)
