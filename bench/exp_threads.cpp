@@ -29,7 +29,9 @@ const PhaseColumn kPhases[] = {{"keys", &FrameReport::ms_keys},
                                {"pairing", &FrameReport::ms_pairing},
                                {"output", &FrameReport::ms_output},
                                {"history", &FrameReport::ms_history},
-                               {"static", &FrameReport::ms_static}};
+                               {"skin", &FrameReport::ms_skin},
+                               {"static", &FrameReport::ms_static},
+                               {"plan", &FrameReport::ms_plan}};
 
 // ms_total less every phase: what the engine spends where no phase timer runs.
 double unreportedMs(const FrameSample& inSample) {
