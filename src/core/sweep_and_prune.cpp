@@ -89,12 +89,12 @@ void SweepAndPrune::forgetCoherence() {
 }
 
 void SweepAndPrune::releaseBuffers() {
-  std::vector<uint64_t>().swap(endpoint_words_);
+  Buffer<uint64_t>().swap(endpoint_words_);
   std::vector<uint32_t>().swap(sweep_order_);
   ranges_ = CandidateRanges();
-  std::vector<RankedKeys>().swap(ranked_keys_);
-  std::vector<RankedFilter>().swap(ranked_filters_);
-  std::vector<RankedSlabs>().swap(ranked_slabs_);
+  Buffer<RankedKeys>().swap(ranked_keys_);
+  Buffer<RankedFilter>().swap(ranked_filters_);
+  Buffer<RankedSlabs>().swap(ranked_slabs_);
   workspace_ = SweepWorkspace();
   sequential_tree_ = SuccTree();
   pairs_per_thread_.clear();
@@ -264,7 +264,7 @@ void SweepAndPrune::run(const BoxSet& inBoxes, FramePath inPath, int inThreads,
     // Each thread's pairs are disjoint from the others': merging them is the whole set. The
     // sweep order is dead by now: the sort borrows its memory for its histogram.
     std::swap(sweep_order_, pair_scratch_.offsets);
-    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_);
+    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_, threads);
     std::swap(sweep_order_, pair_scratch_.offsets);
   }
   decideAxes(warm && axis_swapping_ && 2 * std::size_t{n} >= tuning::kMinPartitionedEndpoints,
