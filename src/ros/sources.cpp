@@ -106,16 +106,6 @@ void shrinkBoxSet(BoxSet& ioBoxes) {
   ioBoxes.masks.shrink_to_fit();
 }
 
-bool CapacityWatch::shouldShrink(std::size_t inUsed, std::size_t inCapacity) {
-  if (inCapacity <= kMinCapacity || inCapacity <= 4 * inUsed) {
-    frames_small_ = 0;
-    return false;
-  }
-  if (++frames_small_ < kPatience) return false;
-  frames_small_ = 0;
-  return true;
-}
-
 void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::Header& inHeader,
                       const ros::Time& inReceived) {
   auto [it, joined] = sources_.try_emplace(inKey);
@@ -125,7 +115,7 @@ void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::H
   source.header = inHeader;
   source.received = inReceived;
   source.sorted_ids.clear();
-  if (source.watch.shouldShrink(source.boxes.size(), source.boxes.ids.capacity())) {
+  if (source.watch.shouldGiveBack(source.boxes.size(), source.boxes.ids.capacity())) {
     shrinkBoxSet(source.boxes);
     source.sorted_ids.shrink_to_fit();
   }

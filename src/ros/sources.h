@@ -12,6 +12,7 @@
 #include <std_msgs/Header.h>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/memory_policy.h"
 
 namespace sap_broadphase {
 
@@ -43,21 +44,6 @@ constexpr const char* kStaticSourceName = "'static_boxes'";
 /// rotated boxes are a superset of the exact ones). A bound that is not finite after the move
 /// becomes -inf / +inf.
 void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes);
-
-/// Gives capacity back once a buffer has stayed much larger than what it holds for a while:
-/// a frame of 2^21 boxes must not keep its memory for days of small frames.
-class CapacityWatch {
- public:
-  /// Records a frame of inUsed boxes held in a buffer of inCapacity; true when the buffer should
-  /// be shrunk now (capacity above 4 x the use of each of the last kPatience frames and above
-  /// kMinCapacity boxes).
-  bool shouldShrink(std::size_t inUsed, std::size_t inCapacity);
-
- private:
-  static constexpr std::size_t kPatience = 100;       // frames of small use before giving back
-  static constexpr std::size_t kMinCapacity = 65536;  // boxes: below this, keep (~3.4 MB)
-  std::size_t frames_small_ = 0;
-};
 
 /// What one merge left out, and why (one refusal per source left out).
 struct WorldAssembly {
@@ -96,7 +82,7 @@ class SourceSet {
     ros::Time received;
     uint64_t joined = 0;  // order in which sources appeared: the older one keeps a shared id
     std::vector<uint32_t> sorted_ids;  // ids of boxes, sorted; built only when compared
-    CapacityWatch watch;
+    GiveBackWatch watch;
   };
   using SourceIt = std::map<SourceKey, Source>::iterator;
   /// The source's ids, sorted (cached until its next frame).

@@ -10,7 +10,7 @@ target_include_directories(test_node PRIVATE test/ros)
 target_link_libraries(test_node ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_node ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)
 
-# `pairs` keeps the rate of scene_publisher (10 Hz, 10^4 boxes), checked by rostest's hztest.
+# scene_publisher (10 Hz, 10^4 boxes) into the node: pairs and stats are published (no rate).
 add_rostest(test/ros/hz.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_scene_publisher)
 
 # rviz in Xvfb with rviz/demo.rviz: the screenshot shows the colliding-box colour.
