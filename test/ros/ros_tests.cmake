@@ -45,3 +45,15 @@ add_dependencies(test_sources ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_mess
 # dynamic_reconfigure of the node and of BroadphaseNodelet (python client): threads and skin
 # changed at run time show in stats, pairs equal the oracle's, invalid values are refused.
 add_rostest(test/ros/reconfigure.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)
+
+# Input adapters without a roscore: embedded definitions against genmsg's MD5, the vision_msgs
+# and jsk wire decoders, MarkerArray state (DELETE, DELETEALL, CUBE_LIST), validation, ~sources.
+catkin_add_gtest(test_adapters_units test/ros/test_adapters_units.cpp test/ros/test_units_main.cpp)
+target_include_directories(test_adapters_units PRIVATE src/ros ${SAP_ADAPTERS_GENERATED})
+target_include_directories(test_adapters_units SYSTEM PRIVATE
+  ${topic_tools_INCLUDE_DIRS} ${sensor_msgs_INCLUDE_DIRS})
+target_compile_definitions(test_adapters_units PRIVATE
+  SAP_TEST_ROS_DIR="${CMAKE_CURRENT_SOURCE_DIR}/test/ros")
+target_link_libraries(test_adapters_units ${PROJECT_NAME}_ros ${catkin_LIBRARIES}
+  ${topic_tools_LIBRARIES})
+add_dependencies(test_adapters_units ${PROJECT_NAME}_generate_messages_cpp)
