@@ -73,3 +73,8 @@ target_include_directories(${PROJECT_NAME}_ros PRIVATE ${SAP_ADAPTERS_GENERATED}
 target_include_directories(${PROJECT_NAME}_ros SYSTEM PRIVATE
   ${topic_tools_INCLUDE_DIRS} ${sensor_msgs_INCLUDE_DIRS})
 target_link_libraries(${PROJECT_NAME}_ros ${topic_tools_LIBRARIES})
+
+# The example system (launch/example_robots.launch) and the Python client example, installed
+# with the launch files so that `roslaunch sap_broadphase example_robots.launch` runs as is.
+catkin_install_python(PROGRAMS examples/ros/example_robot.py examples/ros/example_map.py
+  examples/ros/pairs_client.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

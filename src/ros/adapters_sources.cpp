@@ -1,8 +1,10 @@
 // ~sources: topic names and {topic, type, id_offset, group, mask, timeout} entries.
 #include "adapters_sources.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <set>
 
 namespace sap_broadphase {
@@ -27,13 +29,31 @@ bool readNumber(const XmlRpcValue& inValue, double& outNumber) {
   return false;
 }
 
-/// Reads key inKey of the entry as a whole number in [0, 2^32 - 1].
+/// Reads text such as "0xFFFFFFFD" or "4294967293" (decimal, 0x hexadecimal or 0 octal).
+bool readNumberText(const std::string& inText, double& outNumber) {
+  if (inText.empty() || inText[0] == '-') return false;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long value = std::strtoull(inText.c_str(), &end, 0);
+  if (errno != 0 || *end != '\0') return false;
+  outNumber = static_cast<double>(value);
+  return value <= 4294967295ull;
+}
+
+/// Reads key inKey of the entry as a whole number in [0, 2^32 - 1]. XML-RPC integers stop at
+/// 2^31 - 1, so larger values (a mask such as 0xFFFFFFFD) come as a double (4294967293.0) or
+/// as text ('0xFFFFFFFD').
 std::string readUint32(const XmlRpcValue& inEntry, const char* inKey, const std::string& inWhere,
                        uint32_t& outValue) {
+  XmlRpcValue& value = const_cast<XmlRpcValue&>(inEntry)[inKey];
   double number = 0.0;
-  if (!readNumber(const_cast<XmlRpcValue&>(inEntry)[inKey], number) || !(number >= 0.0) ||
-      number > 4294967295.0 || std::floor(number) != number) {
-    return inWhere + "." + inKey + " must be a whole number from 0 to 4294967295";
+  const bool read = value.getType() == XmlRpcValue::TypeString
+                        ? readNumberText(static_cast<std::string>(value), number)
+                        : readNumber(value, number);
+  if (!read || !(number >= 0.0) || number > 4294967295.0 || std::floor(number) != number) {
+    return inWhere + "." + inKey +
+           " must be a whole number from 0 to 4294967295 (past 2147483647 as a float or as "
+           "text, e.g. 4294967293.0 or '0xFFFFFFFD')";
   }
   outValue = static_cast<uint32_t>(number);
   return "";

@@ -57,3 +57,16 @@ target_compile_definitions(test_adapters_units PRIVATE
 target_link_libraries(test_adapters_units ${PROJECT_NAME}_ros ${catkin_LIBRARIES}
   ${topic_tools_LIBRARIES})
 add_dependencies(test_adapters_units ${PROJECT_NAME}_generate_messages_cpp)
+
+# ~sources of other types sent by publishers of exactly those types (genpy classes built from
+# the embedded definitions): pairs equal the oracle's for rotated and axis-aligned boxes,
+# MarkerArray DELETE, ~id_names, another definition refused by its MD5 sum.
+add_rostest(test/ros/adapters.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# The example system as installed, rviz off: both robots (MarkerArray and BoxArray, moving tf)
+# pair with the map, id_names names robot_a's markers, the Python client example answers; every
+# parameter of config/default.yaml is an argument of both launch files.
+add_rostest(test/ros/example_robots.test DEPENDENCIES ${PROJECT_NAME}_node)
+# roslaunch's own check of every launch file: arguments, included files, packages of nodes.
+find_package(roslaunch REQUIRED)
+roslaunch_add_file_check(launch)

@@ -519,7 +519,7 @@ TEST(SourceSpecs, TopicsAndDictsAreRead) {
   list[2] = entry("jsk");
   list[2]["type"] = std::string("jsk_recognition_msgs/BoundingBoxArray");
   list[2]["mask"] = 4294967295.0;  // YAML reads 0xFFFFFFFF as a double: past int32
-  list[2]["group"] = 2;
+  list[2]["group"] = std::string("0x2");
   std::vector<SourceSpec> specs;
   ASSERT_EQ(parseSourceSpecs(list, specs), "");
   ASSERT_EQ(specs.size(), 3u);
@@ -558,7 +558,12 @@ TEST(SourceSpecs, ProblemsNameTheEntryAndKey) {
   negative[0] = entry("a");
   negative[0]["id_offset"] = -1;
   EXPECT_EQ(parseSourceSpecs(negative, specs),
-            "~sources[0].id_offset must be a whole number from 0 to 4294967295");
+            "~sources[0].id_offset must be a whole number from 0 to 4294967295 (past 2147483647 "
+            "as a float or as text, e.g. 4294967293.0 or '0xFFFFFFFD')");
+  XmlRpc::XmlRpcValue bad_text;
+  bad_text[0] = entry("a");
+  bad_text[0]["mask"] = std::string("0x1FFFFFFFF");
+  EXPECT_NE(parseSourceSpecs(bad_text, specs).find("~sources[0].mask must be"), std::string::npos);
   XmlRpc::XmlRpcValue twice;
   twice[0] = std::string("a");
   twice[1] = entry("a");
