@@ -84,11 +84,6 @@ bool parseAxisName(const std::string& inText, int& outAxis) {
   return true;
 }
 
-const char* axisName(int inAxis) {
-  static const char* const kNames[3] = {"x", "y", "z"};
-  return inAxis >= 0 && inAxis < 3 ? kNames[inAxis] : "?";
-}
-
 int reportUsageError(const char* inProgram, const std::string& inMessage, const char* inUsage) {
   std::fprintf(stderr, "%s: %s\n\n%s", inProgram, inMessage.c_str(), inUsage);
   return kExitBadInput;

@@ -46,8 +46,6 @@ bool parseUnsigned64(const std::string& inText, uint64_t& outValue);
 bool parseFiniteDouble(const std::string& inText, double& outValue);
 /// Parses "x", "y" or "z" into 0, 1 or 2.
 bool parseAxisName(const std::string& inText, int& outAxis);
-/// Name of an axis: "x", "y" or "z".
-const char* axisName(int inAxis);
 
 /// Prints "PROGRAM: MESSAGE" and the usage text to stderr; returns kExitBadInput.
 int reportUsageError(const char* inProgram, const std::string& inMessage, const char* inUsage);

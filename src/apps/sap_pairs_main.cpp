@@ -8,6 +8,7 @@
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <string>
 
 #include "cli_args.h"
@@ -54,11 +55,23 @@ struct PairsOptions {
   std::string path = "-";
 };
 
-/// Parses a --method name: the CLI's three names (sap is the engine's "auto").
+/// The methods the CLI offers, by the engine's names (methodName), except that Method::kAuto
+/// is spelled "sap" here, as it was before the engine named it.
+const Method kCliMethods[] = {Method::kAuto, Method::kSequential, Method::kBruteForce};
+
+const char* cliMethodName(Method inMethod) {
+  return inMethod == Method::kAuto ? "sap" : methodName(inMethod);
+}
+
+/// Parses a --method name: one of kCliMethods by its CLI name.
 bool parseMethodName(const std::string& inName, Method& outMethod) {
-  if (inName != "sap" && inName != "sequential" && inName != "brute") return false;
-  outMethod = *parseMethod(inName);
-  return true;
+  for (Method method : kCliMethods) {
+    if (inName == cliMethodName(method)) {
+      outMethod = method;
+      return true;
+    }
+  }
+  return false;
 }
 
 /// Fills outOptions from argv; returns an error message, empty on success.
@@ -85,7 +98,8 @@ std::string parseOptions(int inArgc, char** inArgv, PairsOptions& outOptions) {
     } else if (arg == "--method") {
       if (!cursor.takeValue(arg, value, error)) return error;
       if (!parseMethodName(value, outOptions.method))
-        return "bad --method value '" + value + "' (sap, sequential or brute)";
+        return "bad --method value '" + value + "' (" +
+               methodList({std::begin(kCliMethods), std::end(kCliMethods)}, cliMethodName) + ")";
     } else if (arg == "--count" || arg == "--stats" || arg == "--help" || arg == "-h") {
       if (cursor.hasAttachedValue()) return arg + " takes no value";
       if (arg == "--count")
@@ -133,7 +147,7 @@ void printStats(const FrameReport& inStats, double inReadMs) {
                "ms read %.3f keys %.3f sort %.3f candidates %.3f pairing %.3f output %.3f "
                "total %.3f\n",
                inStats.boxes, inStats.pairs, framePathName(inStats.path), inStats.threads,
-               cli::axisName(inStats.primary_axis), cli::axisName(inStats.secondary_axis),
+               axisName(inStats.primary_axis), axisName(inStats.secondary_axis),
                inStats.axes_swapped ? "yes" : "no", inStats.slabs, inStats.dispersion_primary,
                inStats.dispersion_secondary, inReadMs, inStats.ms_keys, inStats.ms_sort,
                inStats.ms_candidates, inStats.ms_pairing, inStats.ms_output, inStats.ms_total);

@@ -27,96 +27,9 @@
 #include "core/sweep_and_prune.h"
 #include "core/tuning.h"
 #include "sap_broadphase/core/brute_force.h"
+#include "sap_broadphase/core/memory_policy.h"
 
 namespace sap_broadphase {
-
-const char* methodName(Method inMethod) {
-  switch (inMethod) {
-    case Method::kAuto:
-      return "auto";
-    case Method::kParallel:
-      return "parallel";
-    case Method::kSequential:
-      return "sequential";
-    case Method::kBruteForce:
-      return "brute";
-  }
-  return "unknown";
-}
-
-std::optional<Method> parseMethod(const std::string& inName) {
-  for (Method method : {Method::kAuto, Method::kParallel, Method::kSequential, Method::kBruteForce})
-    if (inName == methodName(method)) return method;
-  if (inName == "sap") return Method::kAuto;
-  return std::nullopt;
-}
-
-std::optional<std::string> configProblem(const BroadphaseConfig& inConfig) {
-  const auto valid_axis = [](int axis) { return axis >= 0 && axis <= 2; };
-  if (!valid_axis(inConfig.primary_axis) || !valid_axis(inConfig.secondary_axis) ||
-      inConfig.primary_axis == inConfig.secondary_axis)
-    return "primary and secondary axes must be distinct values in 0..2, not " +
-           std::to_string(inConfig.primary_axis) + " and " +
-           std::to_string(inConfig.secondary_axis);
-  if (inConfig.threads < 0)
-    return "threads must be >= 0 (0 = all cores), not " + std::to_string(inConfig.threads);
-  if (inConfig.skin && !(*inConfig.skin >= 0.0 && std::isfinite(*inConfig.skin)))
-    return "skin must be a finite value >= 0 (or automatic), not " + std::to_string(*inConfig.skin);
-  if (inConfig.third_axis_slabs < 0 || inConfig.third_axis_slabs > kMaxSlabs)
-    return "third_axis_slabs must be in 0.." + std::to_string(kMaxSlabs) + ", not " +
-           std::to_string(inConfig.third_axis_slabs);
-  if (!(inConfig.axis_swap_threshold >= 0.0))
-    return "axis_swap_threshold must be >= 0, not " + std::to_string(inConfig.axis_swap_threshold);
-  return std::nullopt;
-}
-
-const char* skinChoiceName(SkinChoice inChoice) {
-  switch (inChoice) {
-    case SkinChoice::kOff:
-      return "off";
-    case SkinChoice::kFixed:
-      return "fixed";
-    case SkinChoice::kFirstFrame:
-      return "first_frame";
-    case SkinChoice::kIdsChanged:
-      return "ids_changed";
-    case SkinChoice::kKept:
-      return "kept";
-    case SkinChoice::kChosen:
-      return "chosen";
-    case SkinChoice::kTooFast:
-      return "too_fast";
-    case SkinChoice::kNotWorthIt:
-      return "not_worth_it";
-  }
-  return "unknown";
-}
-
-const char* framePathName(FramePath inPath) {
-  switch (inPath) {
-    case FramePath::kEmpty:
-      return "empty";
-    case FramePath::kSequential:
-      return "sequential";
-    case FramePath::kParallel:
-      return "parallel";
-    case FramePath::kBruteForce:
-      return "brute";
-    case FramePath::kReused:
-      return "reused";
-    case FramePath::kSkin:
-      return "skin";
-    case FramePath::kStatic:
-      return "static";
-    case FramePath::kSmallFrame:
-      return "small";
-  }
-  return "unknown";
-}
-
-int resolveThreadCount(int inRequested) {
-  return inRequested > 0 ? inRequested : std::max(1, omp_get_max_threads());
-}
 
 namespace {
 
@@ -164,7 +77,7 @@ struct Broadphase::Impl {
   } kept_times;
   double recent_motion[tuning::kMotionWindow] = {};
   int motion_slot = 0;
-  int small_frames = 0;
+  GiveBackWatch give_back;
 
   const BoxSet& dropBoxesThatPairWithNothing(const BoxSet& inBoxes);
   const BoxSet& setAsideRestingBoxes(const BoxSet& inBoxes, const FrameDelta& inDelta,
@@ -378,10 +291,7 @@ double Broadphase::Impl::recentMotion() const {
 // Buffers sized for a burst of large frames are given back once frames have stayed much
 // smaller for a while; the next frame sizes them again.
 void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
-  const bool small = inBoxes * tuning::kShrinkRatio < sweep.capacityBoxes();
-  small_frames = small ? small_frames + 1 : 0;
-  if (small_frames < tuning::kShrinkAfterSmallFrames) return;
-  small_frames = 0;
+  if (!give_back.shouldGiveBack(inBoxes, sweep.capacityBoxes())) return;
   sweep.releaseBuffers();
   history.shrinkToFit();
   kept = SkinList();  // the next grown sweep keeps candidates of the frame's size again

@@ -7,7 +7,8 @@
 #include <cstdint>
 
 #include "core/frame_history.h"
-#include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/config.h"
+#include "sap_broadphase/core/frame_report.h"
 
 namespace sap_broadphase {
 

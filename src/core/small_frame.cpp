@@ -1,7 +1,7 @@
 // Single-axis sort-and-sweep for small frames (small_frame.h).
 //
 // Candidates are tested on float32 bounds rounded outward (sort_keys.h), measured from the
-// frame's key origin (sweep_and_prune.h) as the sweep's keys are, so a float test never
+// frame's key origin (key_origin.h) as the sweep's keys are, so a float test never
 // misses a true overlap; each float hit is confirmed on the float64 input by boxesOverlap, so
 // the result is exact. Floats halve the bytes a block reads and double the lanes of a vector.
 #include "core/small_frame.h"
@@ -11,9 +11,9 @@
 
 #include "core/axis_spread.h"
 #include "core/buffers.h"
+#include "core/key_origin.h"
 #include "core/radix_sort.h"
 #include "core/sort_keys.h"
-#include "core/sweep_and_prune.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1

@@ -32,7 +32,7 @@ struct SmallFrameWorkspace {
   std::vector<uint64_t> order;    ///< (low key << 32 | box) on the sweep axis, then sorted
   std::vector<uint64_t> scratch;  ///< the radix sort's second buffer
   /// Float32 bounds rounded outward (sort_keys.h) relative to the frame's key origin
-  /// (sweep_and_prune.h), in sweep order, structure of arrays: axis
+  /// (key_origin.h), in sweep order, structure of arrays: axis
   /// 0 is the sweep axis. Low arrays are padded with NaN so a block of candidates may read
   /// past the last box: NaN compares false, so padding never overlaps anything.
   std::vector<float> lo[3];

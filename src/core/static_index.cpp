@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "core/radix_sort.h"
-#include "sap_broadphase/core/broadphase.h"  // resolveThreadCount
+#include "sap_broadphase/core/config.h"  // resolveThreadCount
 
 #include "core/tuning.h"
 

@@ -10,29 +10,16 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/key_origin.h"
 #include "core/radix_sort.h"
 #include "core/slab_grid.h"
 #include "core/succ_tree.h"
 #include "core/sweep.h"
-#include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/config.h"
+#include "sap_broadphase/core/frame_report.h"
+#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
-
-/// Where the sort keys of one axis are measured from. Keys are float32 images of
-/// (coordinate - origin), rounded outward exactly (the float64 difference is rounded to
-/// nearest, and its rounding error, recovered exactly by TwoSum, decides whether the key must
-/// step one further out). Near the origin float32 resolves far finer than at 4e6 m (UTM,
-/// ECEF), where boxes of a few centimetres would all share keys and become mutual candidates.
-struct KeyOrigin {
-  double origin[3] = {0.0, 0.0, 0.0};
-  uint32_t low(int inAxis, double inValue) const;
-  uint32_t high(int inAxis, double inValue) const;
-};
-
-/// The key origin a sweep of inBoxes starts from: per axis 0, or the centre of the finite
-/// bounds when the frame lies far from 0 (tuning::kFarFromOriginInSpans). Later frames keep
-/// an origin while the frame stays near it.
-KeyOrigin keyOriginOf(const BoxSet& inBoxes, int inThreads);
 
 class SweepAndPrune {
  public:

@@ -54,12 +54,7 @@ constexpr double kOriginDriftInSpans = 0.125;
 
 // ---- Frame history and the plan ----
 
-/// Frames that must each be at most a quarter of the largest recent frame before the
-/// per-frame buffers are given back (a burst of large frames should not keep its memory
-/// for a node that runs for days; an occasional large frame should not trash the buffers).
-constexpr int kShrinkAfterSmallFrames = 64;
-/// A frame this many times smaller than the buffers' capacity counts as small.
-constexpr std::size_t kShrinkRatio = 4;
+// When buffers are given back after a burst of large frames: memory_policy.h.
 
 // ---- Automatic skin (kept candidates, skin_list.h) ----
 

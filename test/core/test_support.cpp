@@ -222,11 +222,7 @@ void expectAllConfigsMatch(const BoxSet& inBoxes, const std::string& inLabel) {
 }
 
 std::string describe(const BroadphaseConfig& inConfig) {
-  std::ostringstream text;
-  text << "method " << methodName(inConfig.method) << ", threads " << inConfig.threads << ", axes "
-       << inConfig.primary_axis << "/" << inConfig.secondary_axis << ", slabs "
-       << inConfig.third_axis_slabs << (inConfig.axis_swapping ? "" : ", no swapping");
-  return text.str();
+  return describeConfig(inConfig);
 }
 
 }  // namespace sap_broadphase::test_support

@@ -120,14 +120,6 @@ std::vector<BroadphaseConfig> stressConfigs(Coverage inCoverage) {
   return configs;
 }
 
-std::string describeConfig(const BroadphaseConfig& inConfig) {
-  std::ostringstream text;
-  text << methodName(inConfig.method) << " threads=" << inConfig.threads
-       << " slabs=" << inConfig.third_axis_slabs << " axes=(" << inConfig.primary_axis << ","
-       << inConfig.secondary_axis << ")" << (inConfig.exact_final_test ? " exact" : " keys-only");
-  return text.str();
-}
-
 ::testing::AssertionResult samePairList(const PairList& inExpected, const PairList& inActual) {
   if (inExpected == inActual) return ::testing::AssertionSuccess();
   std::size_t missing_count = 0;

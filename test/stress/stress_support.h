@@ -29,8 +29,6 @@ enum class Coverage {
 /// threads 1, 2, 3, third_axis_slabs 0, 1, 7 (all 27 combinations, or the 9 of an orthogonal
 /// array), the six ordered axis pairs taken in turn.
 std::vector<BroadphaseConfig> stressConfigs(Coverage inCoverage = Coverage::kFull);
-/// "parallel threads=2 slabs=7 axes=(2,0) exact" for failure messages.
-std::string describeConfig(const BroadphaseConfig& inConfig);
 
 /// Equal pair lists, or a message with sizes and the first differences (missing and extra).
 ::testing::AssertionResult samePairList(const PairList& inExpected, const PairList& inActual);

@@ -8,115 +8,11 @@
 #include <string>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/config.h"
+#include "sap_broadphase/core/frame_report.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
-
-/// Which algorithm computes a frame.
-enum class Method : uint8_t {
-  kAuto,  ///< sequential below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
-  kParallel,    ///< Algorithms 2, 3 and 4 of the paper
-  kSequential,  ///< Algorithm 1 of the paper
-  kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
-};
-
-/// The one vocabulary of method names: "auto", "parallel", "sequential", "brute".
-const char* methodName(Method inMethod);
-/// Parses a method name; "sap" is accepted for "auto" (the CLI's name for it). Nothing when
-/// the name is unknown.
-std::optional<Method> parseMethod(const std::string& inName);
-
-/// What a caller may tune. Defaults are the exact, adaptive engine.
-struct BroadphaseConfig {
-  int threads = 0;                    ///< worker threads; 0 = all cores (omp_get_max_threads)
-  Method method = Method::kAuto;      ///< algorithm choice
-  int primary_axis = 0;               ///< first sweep axis (0 = x, 1 = y, 2 = z)
-  int secondary_axis = 1;             ///< second sweep axis; must differ from primary_axis
-  bool axis_swapping = true;          ///< swap a clustered sweep axis with the unused one (§5)
-  double axis_swap_threshold = 0.25;  ///< dispersion D above which an axis is swapped
-  std::size_t parallel_min_boxes = 12288;  ///< kAuto runs sequentially below this many boxes
-                                           ///< (measured crossover on 2 cores: sap_bench -e skips)
-  int third_axis_slabs = 0;                ///< active lists per slab of the unused axis: 0 = auto,
-                                           ///< 1 = the paper's single list, k = k slabs (max 64)
-  bool reuse_unchanged_frames = true;      ///< a frame bit for bit equal to the previous one
-                                           ///< (ids, bounds, groups, masks) returns its pairs; the
-                                           ///< comparison is the frame history's, done anyway
-  bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
-                                    ///< and whose groups/masks forbid pairs among them in an
-                                    ///< index (static_split.h); sweep only the others
-  /// Skin reuse (kept candidates): sweep boxes grown by skin / 2 a side, then test only those
-  /// candidates until a box leaves its grown box. Nothing (the default) = automatic: chosen
-  /// each sweep from the measured motion and costs, off when it does not pay; 0 = off;
-  /// > 0 = this fixed skin.
-  std::optional<double> skin;
-  bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
-                                 ///< may report extra pairs; never misses one)
-};
-
-/// What is wrong with inConfig, in words a user can act on, or nothing when it is valid. The
-/// one check of a configuration (the engine's constructor and the node both use it).
-std::optional<std::string> configProblem(const BroadphaseConfig& inConfig);
-
-/// Which path computed a frame.
-enum class FramePath : uint8_t {
-  kEmpty,       ///< fewer than two boxes take part
-  kSequential,  ///< Algorithm 1
-  kParallel,    ///< Algorithms 2, 3, 4
-  kBruteForce,  ///< the oracle
-  kReused,      ///< same boxes as the previous frame: its pairs returned without a sweep
-  kSkin,        ///< every box inside its skin: the kept candidates tested, no sweep
-  kStatic,      ///< resting boxes answered by the static index, only the rest swept
-  kSmallFrame,  ///< a small frame: one-axis sort and sweep in blocks (small_frame.h), one thread
-};
-
-/// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused", "skin",
-/// "static", "small".
-const char* framePathName(FramePath inPath);
-
-/// Why the skin in force for a frame is what it is.
-enum class SkinChoice : uint8_t {
-  kOff,         ///< configured off (skin = 0)
-  kFixed,       ///< the configured fixed skin
-  kFirstFrame,  ///< automatic: no previous frame to measure motion against, plain sweep
-  kIdsChanged,  ///< automatic: ids or their order changed, motion unknown, plain sweep
-  kKept,        ///< automatic: every box still inside the skin of the last sweep
-  kChosen,      ///< automatic: a new skin chosen from the measured motion and costs
-  kTooFast,     ///< automatic: at the measured motion no skin beats a plain sweep
-  kNotWorthIt,  ///< automatic: frame too small or too static for a skin to pay
-};
-
-/// Name of a skin choice: "off", "fixed", "first_frame", "ids_changed", "kept", "chosen",
-/// "too_fast", "not_worth_it".
-const char* skinChoiceName(SkinChoice inChoice);
-
-/// What one frame cost and how it was computed. Times are milliseconds of wall clock.
-struct FrameReport {
-  std::size_t boxes = 0;
-  std::size_t boxes_filtered_out = 0;  ///< boxes with group 0 or mask 0: never swept
-  std::size_t pairs = 0;
-  int primary_axis = 0;
-  int secondary_axis = 1;
-  double dispersion_primary = 0.0;    ///< D of eq. (1) for the primary-axis sort
-  double dispersion_secondary = 0.0;  ///< D of eq. (1) for the secondary-axis sort
-  bool axes_swapped = false;          ///< an axis swap happened after this frame's sort
-  int threads = 1;
-  int slabs = 1;                    ///< third-axis slabs used by pairing
-  std::size_t skin_candidates = 0;  ///< candidate pairs kept by skin reuse
-  std::size_t static_boxes = 0;     ///< boxes answered by a static index (declared or resting)
-  double skin = 0.0;                ///< skin of the kept candidates used this frame (0: none)
-  SkinChoice skin_choice = SkinChoice::kOff;  ///< why that skin
-  std::size_t moved_boxes = 0;                ///< boxes whose bounds changed since the last frame
-  double max_displacement = 0.0;  ///< largest bound change of one box since the last frame
-  FramePath path = FramePath::kEmpty;
-  double ms_history = 0.0;     ///< comparing with the last frame and remembering this one
-  double ms_keys = 0.0;        ///< float64 -> sortable keys
-  double ms_sort = 0.0;        ///< both axes' radix index sorts (keys excluded)
-  double ms_candidates = 0.0;  ///< ranks and candidate ranges on the primary axis
-  double ms_pairing = 0.0;     ///< secondary sweep and exact overlap tests
-  double ms_static = 0.0;      ///< queries of the static indexes (declared and resting boxes)
-  double ms_output = 0.0;      ///< ids and canonical pair order
-  double ms_total = 0.0;
-};
 
 /// The stateful broad phase: keeps partition bounds B and the sweep axes across frames, owns
 /// every buffer (no allocation per frame once sizes are stable). Not thread-safe: one frame at
@@ -152,8 +48,5 @@ class Broadphase {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// Number of threads that `inRequested` (0 = all cores) resolves to.
-int resolveThreadCount(int inRequested);
 
 }  // namespace sap_broadphase

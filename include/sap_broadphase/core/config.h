@@ -1,0 +1,133 @@
+// What a caller may tune, and the one description of it: every field of BroadphaseConfig with
+// its name, type, default, allowed values and meaning, in one table (configFields()). The
+// engine checks a configuration against the table (configProblem); front ends (the ROS node's
+// parameters, dynamic_reconfigure, its start-up log) walk the same table, so adding a field is
+// one row here and one member in the struct.
+//
+// The lowest floor of the public headers: it includes nothing of the engine.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sap_broadphase {
+
+/// Which algorithm computes a frame.
+enum class Method : uint8_t {
+  kAuto,  ///< sequential below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
+  kParallel,    ///< Algorithms 2, 3 and 4 of the paper
+  kSequential,  ///< Algorithm 1 of the paper
+  kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
+};
+
+/// Every method, in the order of the vocabulary below.
+inline constexpr Method kMethods[] = {Method::kAuto, Method::kParallel, Method::kSequential,
+                                      Method::kBruteForce};
+
+/// The one vocabulary of method names: "auto", "parallel", "sequential", "brute".
+const char* methodName(Method inMethod);
+/// Parses a method name; "sap" is accepted for "auto" (the CLI's name for it). Nothing when
+/// the name is unknown.
+std::optional<Method> parseMethod(const std::string& inName);
+/// The names of inMethods as a list for messages: "auto, parallel, sequential or brute";
+/// inName spells each one (a front end with names of its own passes its speller).
+std::string methodList(const std::vector<Method>& inMethods = {std::begin(kMethods),
+                                                               std::end(kMethods)},
+                       const char* (*inName)(Method) = methodName);
+
+/// Name of a sweep axis: "x", "y" or "z" ("?" out of range).
+const char* axisName(int inAxis);
+/// Parses an axis given as x, y, z (either case) or 0, 1, 2. Nothing otherwise.
+std::optional<int> parseAxis(const std::string& inText);
+
+/// The skin as text: "auto" (nothing), "off" (0) or the shortest decimal that reads back as
+/// the same double (so that a skin written to a parameter server and read back is the same).
+std::string skinToText(const std::optional<double>& inSkin);
+/// Parses "auto" (or empty), "off" or a number (strtod, whole text) into outSkin. The range is
+/// configProblem's to check.
+bool skinFromText(const std::string& inText, std::optional<double>& outSkin);
+
+/// What a caller may tune. Defaults are the exact, adaptive engine.
+struct BroadphaseConfig {
+  int threads = 0;                    ///< worker threads; 0 = all cores (omp_get_max_threads)
+  Method method = Method::kAuto;      ///< algorithm choice
+  int primary_axis = 0;               ///< first sweep axis (0 = x, 1 = y, 2 = z)
+  int secondary_axis = 1;             ///< second sweep axis; must differ from primary_axis
+  bool axis_swapping = true;          ///< swap a clustered sweep axis with the unused one (§5)
+  double axis_swap_threshold = 0.25;  ///< dispersion D above which an axis is swapped
+  std::size_t parallel_min_boxes = 12288;  ///< kAuto runs sequentially below this many boxes
+                                           ///< (measured crossover on 2 cores: sap_bench -e skips)
+  int third_axis_slabs = 0;                ///< active lists per slab of the unused axis: 0 = auto,
+                                           ///< 1 = the paper's single list, k = k slabs (max 64)
+  bool reuse_unchanged_frames = true;      ///< a frame bit for bit equal to the previous one
+                                           ///< (ids, bounds, groups, masks) returns its pairs; the
+                                           ///< comparison is the frame history's, done anyway
+  bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
+                                    ///< and whose groups/masks forbid pairs among them in an
+                                    ///< index (static_split.h); sweep only the others
+  /// Skin reuse (kept candidates): sweep boxes grown by skin / 2 a side, then test only those
+  /// candidates until a box leaves its grown box. Nothing (the default) = automatic: chosen
+  /// each sweep from the measured motion and costs, off when it does not pay; 0 = off;
+  /// > 0 = this fixed skin.
+  std::optional<double> skin;
+  bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
+                                 ///< may report extra pairs; never misses one)
+};
+
+/// The kinds of value a configuration field holds.
+enum class ConfigFieldType : uint8_t {
+  kBool,     ///< true / false
+  kInteger,  ///< a whole number in [min, max]
+  kNumber,   ///< a real number in [min, max]
+  kMethod,   ///< a method name (methodName)
+  kAxis,     ///< an axis: x, y, z (or 0, 1, 2)
+  kSkin,     ///< auto, off (or 0) or a finite skin >= 0
+};
+
+/// A field's value as front ends carry it: kBool as bool, kInteger as int64_t, kNumber as
+/// double, kMethod, kAxis and kSkin as their text (methodName, axisName, skinToText).
+using ConfigValue = std::variant<bool, int64_t, double, std::string>;
+
+/// One row of the table: everything a front end needs to load, offer, log or check a field.
+struct ConfigField {
+  const char* name;  ///< the member's name, also the ROS parameter's
+  ConfigFieldType type;
+  const char* default_text;  ///< the default, as valueText() writes it
+  double min;                ///< kInteger, kNumber: smallest allowed value
+  double max;                ///< kInteger, kNumber: largest allowed value (may be +inf)
+  const char* allowed;       ///< what may be given, for messages: "an integer >= 0 (0 = all cores)"
+  const char* doc;           ///< one line on what it does
+  /// The field's value in inConfig.
+  ConfigValue (*get)(const BroadphaseConfig& inConfig);
+  /// Stores inValue into ioConfig when it is of an accepted kind and in range (an integer is
+  /// accepted for a number, an integral number for an integer, a number or an integer for an
+  /// axis or a skin); otherwise leaves ioConfig alone and says what is wrong.
+  std::optional<std::string> (*set)(BroadphaseConfig& ioConfig, const ConfigValue& inValue);
+};
+
+/// The table: one row per field of BroadphaseConfig, in declaration order.
+const std::vector<ConfigField>& configFields();
+/// The row named inName, or nullptr.
+const ConfigField* findConfigField(const std::string& inName);
+/// A value as text: "true", "12288", "0.25", "x", "auto".
+std::string valueText(const ConfigValue& inValue);
+/// Every field as "name value", comma-separated (a start-up log line).
+std::string describeConfig(const BroadphaseConfig& inConfig);
+/// True when every field of inA equals the same field of inB.
+bool sameConfig(const BroadphaseConfig& inA, const BroadphaseConfig& inB);
+
+/// Number of threads that `inRequested` (0 = all cores, as BroadphaseConfig::threads)
+/// resolves to.
+int resolveThreadCount(int inRequested);
+
+/// What is wrong with inConfig, in words a user can act on, or nothing when it is valid: every
+/// field against its row of the table, then the rules between fields (distinct axes). The one
+/// check of a configuration (the engine's constructor and the node both use it).
+std::optional<std::string> configProblem(const BroadphaseConfig& inConfig);
+
+}  // namespace sap_broadphase

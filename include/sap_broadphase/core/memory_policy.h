@@ -1,0 +1,37 @@
+// When buffers sized for a burst of large frames are given back: the one rule of the engine
+// and of the ROS node. A process that runs for days must not keep the memory of one frame of
+// 2^21 boxes; an occasional large frame among small ones must not make every buffer be
+// allocated again.
+#pragma once
+
+#include <cstddef>
+
+namespace sap_broadphase {
+
+/// Consecutive small frames after which a buffer is given back.
+constexpr std::size_t kGiveBackAfterSmallFrames = 64;
+/// A frame counts as small when its buffer holds more than this many times what it uses.
+constexpr std::size_t kGiveBackRatio = 4;
+/// Buffers of at most this many boxes are kept whatever their use (about 3.4 MB of boxes).
+constexpr std::size_t kGiveBackMinBoxes = 65536;
+
+/// Watches one buffer (or a group of buffers sized together) frame after frame.
+class GiveBackWatch {
+ public:
+  /// Records a frame of inUsed boxes held in a buffer of inCapacity boxes. True, once, when
+  /// the last kGiveBackAfterSmallFrames frames were all small and the buffer is larger than
+  /// kGiveBackMinBoxes: the caller gives the buffer back now. A frame that is not small
+  /// starts the wait again.
+  bool shouldGiveBack(std::size_t inUsed, std::size_t inCapacity) {
+    const bool small = inCapacity > kGiveBackMinBoxes && inCapacity > kGiveBackRatio * inUsed;
+    small_frames_ = small ? small_frames_ + 1 : 0;
+    if (small_frames_ < kGiveBackAfterSmallFrames) return false;
+    small_frames_ = 0;
+    return true;
+  }
+
+ private:
+  std::size_t small_frames_ = 0;
+};
+
+}  // namespace sap_broadphase
