@@ -174,10 +174,6 @@ std::string inputTypeNames() {
   return names;
 }
 
-bool SourceSpec::takesBoxArrayAsIs() const {
-  return type == InputType::kBoxArray && id_offset == 0 && !group && !mask;
-}
-
 std::optional<std::string> decodeWireBoxes(InputType inType, const uint8_t* inData, uint32_t inSize,
                                            DecodedBoxes& outDecoded) {
   outDecoded.header = std_msgs::Header();

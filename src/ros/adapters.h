@@ -24,17 +24,9 @@
 
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/ros/source_spec.h"
 
 namespace sap_broadphase {
-
-/// The message types a ~sources entry can name.
-enum class InputType {
-  kBoxArray,             ///< sap_broadphase/BoxArray: axis-aligned bounds, ids, groups, masks
-  kMarkerArray,          ///< visualization_msgs/MarkerArray: CUBE and CUBE_LIST markers
-  kBoundingBox3DArray,   ///< vision_msgs/BoundingBox3DArray: centre pose and size
-  kDetection3DArray,     ///< vision_msgs/Detection3DArray: the bbox of each detection
-  kJskBoundingBoxArray,  ///< jsk_recognition_msgs/BoundingBoxArray: pose, dimensions, label
-};
 
 /// What the node knows of a type: its ROS name, MD5 sum and full definition (as gencpp writes
 /// it: the type's own text, then each dependency after a line of '=' and "MSG: pkg/Type").
@@ -51,20 +43,6 @@ const InputTypeInfo& inputTypeInfo(InputType inType);
 std::optional<InputType> inputTypeByName(const std::string& inName);
 /// "sap_broadphase/BoxArray, visualization_msgs/MarkerArray, ...": for refusals.
 std::string inputTypeNames();
-
-/// A ~sources entry: a topic, the type published on it, and what the node adds to its boxes.
-struct SourceSpec {
-  std::string topic;
-  InputType type = InputType::kBoxArray;
-  uint32_t id_offset = 0;         ///< added to every id the adapter gives
-  std::optional<uint32_t> group;  ///< collision group bits of every box (else the message's)
-  std::optional<uint32_t> mask;   ///< groups every box collides with (else the message's)
-  std::optional<double> timeout;  ///< seconds of silence before the source drops out (else
-                                  ///< ~source_timeout); 0 = never
-  /// True when the node can take the topic's BoxArray messages as they are (no copy): a
-  /// BoxArray source with no id_offset, group or mask.
-  bool takesBoxArrayAsIs() const;
-};
 
 /// A box as the messages give it: a box of `size` centred on `centre`, in the frame that `pose`
 /// places in the message's frame.
