@@ -250,14 +250,14 @@ std::optional<std::string> SourceAdapter::convert(const topic_tools::ShapeShifte
                                                   const std::string& inPublisher,
                                                   BoxArray& outBoxes) {
   const InputTypeInfo& expected = inputTypeInfo(spec_.type);
+  // The node names the source (topic and publisher) in front of these refusals.
   if (inMsg.getDataType() != expected.name) {
-    return "'" + spec_.topic + "' is a " + expected.name + " source but " + inPublisher +
-           " publishes " + inMsg.getDataType() + " on it: set the entry's type (" +
-           inputTypeNames() + ")";
+    return "a " + inMsg.getDataType() + " message, but the entry's type is " + expected.name +
+           ": set the type the topic carries (" + inputTypeNames() + ")";
   }
   if (inMsg.getMD5Sum() != expected.md5) {
-    return inPublisher + " publishes " + expected.name + " on '" + spec_.topic + "' with MD5 sum " +
-           inMsg.getMD5Sum() + ", not " + expected.md5 +
+    return std::string(expected.name) + " with MD5 sum " + inMsg.getMD5Sum() + ", not " +
+           expected.md5 +
            " (the ROS 1 definition the node decodes): another version of the message";
   }
   if (spec_.type == InputType::kMarkerArray)

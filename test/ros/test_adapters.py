@@ -31,7 +31,7 @@ SEED = 20261124
 BOXES_PER_SOURCE = 30
 FRAME = "map"
 # id_offset, group and mask of each source, as adapters.test gives them to the node.
-OFFSETS = {"markers": 1000, "vision_boxes": 2000, "detections": 3000, "jsk_boxes": 4000}
+OFFSETS = {"robot_markers": 1000, "vision_boxes": 2000, "detections": 3000, "jsk_boxes": 4000}
 JSK_GROUP, JSK_MASK = 0x2, 0xFFFFFFFD  # jsk boxes never pair among themselves
 DEFAULT_GROUP, DEFAULT_MASK = 0x1, 0xFFFFFFFF
 
@@ -133,7 +133,7 @@ class Scene:
         """{id: (aabb, group, mask)} as the node should hold it. Marker ids follow the
         adapter's naming: (ns, id) in order, "cubes" before "list"."""
         world = {}
-        base = OFFSETS["markers"]
+        base = OFFSETS["robot_markers"]
         for k, box in enumerate(self.cubes):
             if k not in self.deleted_cubes:
                 world[base + k] = (box.aabb(), DEFAULT_GROUP, DEFAULT_MASK)
@@ -194,7 +194,7 @@ class AdaptersTest(unittest.TestCase):
         """One latched message per source: delivered to the node whenever it connects."""
         scene = cls.scene
         header = rospy.Header(frame_id=FRAME, stamp=rospy.Time(5))
-        cls.markers_pub = rospy.Publisher("markers", MarkerArray, queue_size=10, latch=True)
+        cls.markers_pub = rospy.Publisher("robot_markers", MarkerArray, queue_size=10, latch=True)
         cls.markers_pub.publish(scene.marker_array())
 
         vision = foreign_classes("vision_msgs/BoundingBox3DArray")
@@ -243,18 +243,23 @@ class AdaptersTest(unittest.TestCase):
         expected = oracle_pairs(self.scene.world())
         self.assertGreater(len(expected), 20, "the scene should have pairs of every kind")
         self.wait_for_pairs(expected, "all four sources")
-        # DELETE two cubes: the marker set of the source is kept, the rest stays.
-        self.scene.deleted_cubes = {0, 3}
+        # DELETE the first two cubes that have pairs: the source's other markers stay.
+        base = OFFSETS["robot_markers"]
+        paired_cubes = sorted({i - base for pair in expected for i in pair
+                               if base <= i < base + BOXES_PER_SOURCE})
+        self.scene.deleted_cubes = set(paired_cubes[:2])
         self.markers_pub.publish(MarkerArray(markers=[
             Marker(ns="cubes", id=k, action=Marker.DELETE) for k in sorted(self.scene.deleted_cubes)]))
         after_delete = oracle_pairs(self.scene.world())
         self.assertNotEqual(after_delete, expected, "the deleted cubes should have had pairs")
-        self.wait_for_pairs(after_delete, "after DELETE of cubes/0 and cubes/3")
+        self.wait_for_pairs(after_delete, "after DELETE of cubes %s" % sorted(self.scene.deleted_cubes))
 
     def test_id_names_name_every_box(self):
-        expected = {OFFSETS["markers"] + k: "markers: cubes/%d" % k for k in range(BOXES_PER_SOURCE)}
+        expected = {OFFSETS["robot_markers"] + k: "robot_markers: cubes/%d" % k
+                    for k in range(BOXES_PER_SOURCE)}
         for j in range(5):
-            expected[OFFSETS["markers"] + BOXES_PER_SOURCE + j] = "markers: list/0[%d]" % j
+            expected[OFFSETS["robot_markers"] + BOXES_PER_SOURCE + j] = \
+                "robot_markers: list/0[%d]" % j
         for k in range(BOXES_PER_SOURCE):
             expected[OFFSETS["vision_boxes"] + k] = "vision_boxes: box %d" % k
             expected[OFFSETS["detections"] + k] = "detections: detection %d" % k

@@ -318,7 +318,9 @@ TEST(ShapeShifterCheck, TheTypeNameAndMd5MustMatch) {
                                    inputTypeInfo(InputType::kDetection3DArray).md5, bytes),
                       "/robot", out);
   ASSERT_TRUE(other_type);
-  EXPECT_NE(other_type->find("publishes vision_msgs/Detection3DArray on it"), std::string::npos)
+  EXPECT_NE(other_type->find("a vision_msgs/Detection3DArray message, but the entry's type is "
+                             "vision_msgs/BoundingBox3DArray"),
+            std::string::npos)
       << *other_type;
 }
 
