@@ -18,7 +18,9 @@ from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
 BODY = (1.2, 0.8, 0.6)  # metres, centred on the robot's frame
-LOAD = [(-0.35, 0.0, 0.5), (0.0, 0.0, 0.5), (0.35, 0.0, 0.5)]  # cubes of LOAD_EDGE on its back
+# Cubes of LOAD_EDGE on its back, far enough apart that their axis-aligned boxes in `map` (a
+# turned cube's is up to sqrt(2) x wider) do not touch.
+LOAD = [(-0.45, 0.0, 0.5), (0.0, 0.0, 0.5), (0.45, 0.0, 0.5)]
 LOAD_EDGE = 0.3
 
 

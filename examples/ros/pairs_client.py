@@ -57,15 +57,18 @@ class PairPrinter:
     def on_pairs(self, msg):
         ids = msg.pairs
         with self.lock:
+            if self.done.is_set():
+                return  # ~frames printed; frames arriving before the exit are not
             pairs = ["(%s | %s)" % (self.name(ids[k]), self.name(ids[k + 1]))
                      for k in range(0, len(ids), 2)]
-        print("pairs at %.3f in '%s': %d%s" % (msg.header.stamp.to_sec(), msg.header.frame_id,
-                                               len(pairs), (": " + ", ".join(pairs)) if pairs else ""))
-        sys.stdout.flush()
-        if self.frames_left > 0:
-            self.frames_left -= 1
-            if self.frames_left == 0:
-                self.done.set()
+            print("pairs at %.3f in '%s': %d%s" % (msg.header.stamp.to_sec(),
+                                                   msg.header.frame_id, len(pairs),
+                                                   (": " + ", ".join(pairs)) if pairs else ""))
+            sys.stdout.flush()
+            if self.frames_left > 0:
+                self.frames_left -= 1
+                if self.frames_left == 0:
+                    self.done.set()
 
 
 def main():
