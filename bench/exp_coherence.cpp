@@ -13,6 +13,7 @@
 #include "bench_progress.h"
 #include "bench_scenes.h"
 #include "bench_stats.h"
+#include "core/random.h"
 #include "experiments.h"
 #include "peers/peer.h"
 #include "sap_broadphase/core/broadphase.h"
@@ -50,16 +51,12 @@ struct ContenderRun {
   std::string note;  ///< the engine's skin choice on the last frame
 };
 
-/// Order-sensitive 64-bit hash of a canonical pair list (splitmix64 steps).
+/// Order-sensitive 64-bit hash of a canonical pair list: each pair folded into the state of
+/// one splitmix64 step.
 uint64_t hashPairs(const PairList& inPairs) {
   uint64_t hash = inPairs.size();
-  for (const sap_broadphase::IdPair& pair : inPairs) {
-    uint64_t word = hash ^ ((uint64_t{pair.a} << 32) | pair.b);
-    word += 0x9e3779b97f4a7c15ull;
-    word = (word ^ (word >> 30)) * 0xbf58476d1ce4e5b9ull;
-    word = (word ^ (word >> 27)) * 0x94d049bb133111ebull;
-    hash = word ^ (word >> 31);
-  }
+  for (const sap_broadphase::IdPair& pair : inPairs)
+    hash = sap_broadphase::SplitMix64(hash ^ ((uint64_t{pair.a} << 32) | pair.b)).bits();
   return hash;
 }
 

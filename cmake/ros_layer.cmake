@@ -1,15 +1,23 @@
 # ROS layer: conversions, sources (merge, tf2), node, markers, scene_publisher.
 include_directories(include ${catkin_INCLUDE_DIRS})
 
+# The node's parts (src/ros/*.h) are private: only conversions.h is installed.
+include_directories(src/ros)
 add_library(${PROJECT_NAME}_ros
   src/ros/conversions.cpp
+  src/ros/frame_outputs.cpp
+  src/ros/frame_worker.cpp
   src/ros/markers.cpp
   src/ros/node.cpp
   src/ros/node_params.cpp
+  src/ros/node_reconfigure.cpp
+  src/ros/node_status.cpp
+  src/ros/pairs_service.cpp
+  src/ros/source_ingest.cpp
   src/ros/sources.cpp
 )
 target_link_libraries(${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
-# node.cpp includes the header generated from cfg/BroadphaseNode.cfg.
+# node_reconfigure.cpp and node_params.cpp include the header generated from cfg/BroadphaseNode.cfg.
 add_dependencies(${PROJECT_NAME}_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 
 add_executable(${PROJECT_NAME}_node src/apps/node_main.cpp)

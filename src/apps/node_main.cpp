@@ -3,8 +3,8 @@
 
 #include <ros/ros.h>
 
-#include "sap_broadphase/ros/node.h"
-#include "sap_broadphase/ros/node_params.h"
+#include "node.h"
+#include "node_params.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <ros/ros.h>
 
-#include "sap_broadphase/ros/scene_publisher.h"
+#include "scene_publisher.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "scene_publisher");

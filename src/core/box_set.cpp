@@ -18,18 +18,30 @@ std::string formatNumber(double inValue) {
   return text.str();
 }
 
-// Why box i cannot be used, or an empty string: NaN anywhere, or min > max on some axis.
-std::string coordinateProblem(const BoxSet& inBoxes, std::size_t i) {
+// Why box i cannot be used: NaN in a bound (in field order min_x .. max_z), or min > max on
+// some axis. Called only for a box that is not usable.
+ValidationError coordinateProblem(const BoxSet& inBoxes, std::size_t i) {
+  ValidationError error{i, inBoxes.ids[i], ""};
+  for (int coordinate = 0; coordinate < 6; ++coordinate) {
+    const int axis = coordinate % 3;
+    const bool is_max = coordinate >= 3;
+    if (!std::isnan(is_max ? inBoxes.hi[axis][i] : inBoxes.lo[axis][i])) continue;
+    error.problem = BoxProblem::kNaN;
+    error.coordinate = coordinate;
+    error.reason = std::string(is_max ? "max_" : "min_") + kAxisNames[axis] + " is NaN";
+    return error;
+  }
   for (int axis = 0; axis < 3; ++axis) {
     const double low = inBoxes.lo[axis][i];
     const double high = inBoxes.hi[axis][i];
-    if (std::isnan(low)) return std::string("min_") + kAxisNames[axis] + " is NaN";
-    if (std::isnan(high)) return std::string("max_") + kAxisNames[axis] + " is NaN";
-    if (low > high)
-      return std::string("min_") + kAxisNames[axis] + " (" + formatNumber(low) + ") > max_" +
-             kAxisNames[axis] + " (" + formatNumber(high) + ")";
+    if (!(low > high)) continue;
+    error.problem = BoxProblem::kMinAboveMax;
+    error.coordinate = axis;
+    error.reason = std::string("min_") + kAxisNames[axis] + " (" + formatNumber(low) + ") > max_" +
+                   kAxisNames[axis] + " (" + formatNumber(high) + ")";
+    return error;
   }
-  return std::string();
+  return error;  // unreachable for a box that is not usable
 }
 
 // First box with an unusable coordinate. `low <= high` is false exactly when either is NaN or
@@ -39,14 +51,17 @@ std::optional<ValidationError> findBadCoordinate(const BoxSet& inBoxes) {
   for (std::size_t i = 0; i < n; ++i) {
     bool usable = true;
     for (int axis = 0; axis < 3; ++axis) usable &= inBoxes.lo[axis][i] <= inBoxes.hi[axis][i];
-    if (!usable) return ValidationError{i, inBoxes.ids[i], coordinateProblem(inBoxes, i)};
+    if (!usable) return coordinateProblem(inBoxes, i);
   }
   return std::nullopt;
 }
 
 ValidationError duplicateAt(const BoxSet& inBoxes, std::size_t inIndex, std::size_t inEarlier) {
-  return ValidationError{inIndex, inBoxes.ids[inIndex],
-                         "duplicate id (also box " + std::to_string(inEarlier) + ")"};
+  ValidationError error{inIndex, inBoxes.ids[inIndex],
+                        "duplicate id (also box " + std::to_string(inEarlier) + ")"};
+  error.problem = BoxProblem::kDuplicateId;
+  error.earlier = inEarlier;
+  return error;
 }
 
 // First repeated id (the smallest index whose id an earlier box has). Ids are usually dense
@@ -152,8 +167,10 @@ std::optional<ValidationError> validate(const BoxSet& inBoxes) {
     return ValidationError{
         0, 0,
         std::to_string(n) + " boxes exceed the engine's limit of " + std::to_string(kMaxBoxes)};
-  if (auto bad = findBadCoordinate(inBoxes)) return bad;
-  return findDuplicateId(inBoxes);
+  std::optional<ValidationError> bad = findBadCoordinate(inBoxes);
+  std::optional<ValidationError> repeated = findDuplicateId(inBoxes);
+  if (bad && repeated) return repeated->index < bad->index ? repeated : bad;
+  return bad ? bad : repeated;
 }
 
 }  // namespace sap_broadphase

@@ -1,13 +1,13 @@
 // The per-frame flow (docs/ARCHITECTURE.md walks through it step by step):
 //
 //   boxes -> drop boxes that pair with nothing -> frame history: delta since the last frame
-//         -> resting boxes into their index (optional) -> plan -> one strategy:
-//            reuse | kept candidates | sweep (grown by a skin or plain) | brute force
-//         -> declared scenery queried -> pairs in canonical order -> remember the frame,
-//            learn the costs, give back memory a burst of large frames left behind
+//         -> resting boxes into their index (optional) -> do the kept candidates still cover
+//            the boxes to sweep? -> plan, once -> one strategy:
+//            reuse | kept candidates | sweep (grown by a skin or plain) | small frame | brute
+//         -> learn the costs -> resting and scenery pairs appended to the same list, which
+//            is put in canonical order once -> remember the frame, give back memory a burst of
+//            large frames left behind
 #include "sap_broadphase/core/broadphase.h"
-
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,12 +15,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/axis_spread.h"
+#include "core/assert.h"
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/phase_timer.h"
-#include "core/skin_list.h"
-#include "core/slab_grid.h"
+#include "core/skin_reuse.h"
 #include "core/small_frame.h"
 #include "core/static_index.h"
 #include "core/static_split.h"
@@ -31,68 +30,34 @@
 
 namespace sap_broadphase {
 
-namespace {
-
-// Mean finite box extent and the span of the finite bounds on each axis (the skin cost
-// model's picture of the frame).
-void measureExtents(const BoxSet& inBoxes, int inThreads, SkinCosts& ioCosts) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
-    ioCosts.mean_extent[axis] = spread.meanExtent();
-    ioCosts.span[axis] = spread.span();
-  }
-}
-
-double smoothed(double inAverage, double inSample) {
-  return inAverage > 0.0 ? inAverage + tuning::kCostSmoothing * (inSample - inAverage) : inSample;
-}
-
-}  // namespace
-
 struct Broadphase::Impl {
   explicit Impl(const BroadphaseConfig& inConfig) : config(inConfig), sweep(inConfig) {}
 
-  BroadphaseConfig config;
+  const BroadphaseConfig config;  // as the user set it
   FrameReport report;
-  FrameHistory history;
-  SweepAndPrune sweep;
-  SkinList kept;                    // kept candidates of the last grown sweep (skin_list.h)
+  FrameHistory history;             // the last frame, and what changed since
+  SweepAndPrune sweep;              // the paper's sweep, with its partition bounds and axes
+  SkinReuse skin;                   // kept candidates, motion and learnt costs
   SmallFrameWorkspace small_frame;  // buffers of the small-frame path
-  double kept_skin = 0.0;
   StaticSplit resting;              // boxes guessed static (index_static_boxes)
   StaticIndex scenery;              // boxes declared static (setStaticBoxes)
-  std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
   BoxSet collidable;                // the frame without boxes that can pair with nothing
-  PairList pairs;
-  PairSortScratch pair_scratch;
-  bool pairs_valid = false;  // pairs hold the last frame's whole answer
-  SkinCosts costs;
-  // This frame's share of the kept-candidate work, for learnCosts: growing the boxes, keeping
-  // the grown sweep's candidates, every pass tried, and the last pass (the one that answered).
-  struct KeptWorkTimes {
-    double ms_grow = 0.0;
-    double ms_keep = 0.0;
-    double ms_passes = 0.0;
-    double ms_last_pass = 0.0;
-  } kept_times;
-  double recent_motion[tuning::kMotionWindow] = {};
-  int motion_slot = 0;
+  PairList pairs;                   // the frame's one canonical pair list
+  bool pairs_valid = false;         // pairs hold the last frame's whole answer
+  struct Scratch {
+    std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
+    PairSortScratch pair_sort;
+  } scratch;
   GiveBackWatch give_back;
 
   const BoxSet& dropBoxesThatPairWithNothing(const BoxSet& inBoxes);
   const BoxSet& setAsideRestingBoxes(const BoxSet& inBoxes, const FrameDelta& inDelta,
                                      int inThreads);
-  PlanInputs planInputs(const BoxSet& inBoxes, const BoxSet& inSwept, const FrameDelta& inDelta,
-                        int inThreads);
-  bool execute(const FramePlan& inPlan, const BoxSet& inBoxes, const BoxSet& inSwept);
-  bool testKeptCandidates(const BoxSet& inSwept, int inThreads);
-  void sweepGrown(const BoxSet& inSwept, const FramePlan& inPlan);
-  void addRestingPairs(const BoxSet& inBoxes, int inThreads);
-  void addSceneryPairs(const BoxSet& inBoxes, int inThreads);
-  void learnCosts(const FramePlan& inPlan, const BoxSet& inSwept, std::size_t inSweepPairs);
-  void learnPassCosts(double inMilliseconds, double inBoxes);
-  void rememberMotion(const FrameDelta& inDelta);
-  double recentMotion() const;
+  FramePlan plan(const BoxSet& inBoxes, const BoxSet& inSwept, const FrameDelta& inDelta,
+                 int inThreads);
+  void execute(const FramePlan& inPlan, const BoxSet& inBoxes, const BoxSet& inSwept);
+  void addStaticPairs(const BoxSet& inBoxes, int inThreads);
+  void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
 };
 
@@ -129,8 +94,10 @@ const BoxSet& Broadphase::Impl::setAsideRestingBoxes(const BoxSet& inBoxes,
   return resting.prepare(inBoxes, *inDelta.unchanged, inThreads) ? resting.moving() : inBoxes;
 }
 
-PlanInputs Broadphase::Impl::planInputs(const BoxSet& inBoxes, const BoxSet& inSwept,
-                                        const FrameDelta& inDelta, int inThreads) {
+// The plan, made once: whether the kept candidates still cover the boxes about to be swept is
+// known before it (SkinReuse::coversFrame), so the plan cannot be wrong about them.
+FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
+                                 const FrameDelta& inDelta, int inThreads) {
   PlanInputs inputs;
   inputs.config = &config;
   inputs.delta = inDelta;
@@ -138,49 +105,19 @@ PlanInputs Broadphase::Impl::planInputs(const BoxSet& inBoxes, const BoxSet& inS
   inputs.swept = inSwept.size();
   inputs.threads = inThreads;
   inputs.last_pairs_valid = pairs_valid;
-  inputs.kept_candidates = kept.valid();
-  inputs.kept_skin = kept_skin;
-  // Whether every box is still inside its skin is found out by the pass itself (one read of
-  // the frame): until then the candidates may cover it when nothing but bounds changed.
-  inputs.kept_covers = inputs.kept_candidates && inDelta.sameIds() && !inDelta.filters_changed;
-  inputs.motion = recentMotion();
-  inputs.costs = costs;
-  return inputs;
+  inputs.kept_candidates = skin.hasCandidates();
+  inputs.kept_skin = skin.skin();
+  inputs.motion = skin.recentMotion();
+  inputs.costs = skin.costs();
+  inputs.kept_covers =
+      planConsidersKeptCandidates(inputs) && skin.coversFrame(inSwept, inThreads, report);
+  PhaseTimer timer(report.ms_plan);
+  return planFrame(inputs);
 }
 
-// The kept-candidate pass: false (pairs untouched) when some box left its skin.
-bool Broadphase::Impl::testKeptCandidates(const BoxSet& inSwept, int inThreads) {
-  report.skin_candidates = kept.candidates();
-  const Clock::time_point start = Clock::now();
-  const bool covered = kept.collect(inSwept, inThreads, pairs);
-  kept_times.ms_last_pass = millisecondsSince(start);
-  kept_times.ms_passes += kept_times.ms_last_pass;
-  report.ms_pairing += kept_times.ms_last_pass;
-  return covered;
-}
-
-// Sweeps the boxes grown by the plan's skin; its pairs become the kept candidates, and the
-// exact pairs are those of them that overlap now.
-void Broadphase::Impl::sweepGrown(const BoxSet& inSwept, const FramePlan& inPlan) {
-  const BoxSet* grown = nullptr;
-  {
-    PhaseTimer timer(report.ms_keys);
-    PhaseTimer grow_timer(kept_times.ms_grow);
-    grown = &kept.inflate(inSwept, inPlan.sweep_skin, inPlan.threads);
-  }
-  sweep.run(*grown, inPlan.sweep_path, inPlan.threads, report, pairs);
-  {
-    PhaseTimer timer(report.ms_pairing);
-    PhaseTimer keep_timer(kept_times.ms_keep);
-    kept.adopt(inSwept, pairs);
-  }
-  kept_skin = inPlan.sweep_skin;
-  testKeptCandidates(inSwept, inPlan.threads);
-}
-
-// Runs the plan's strategy; false when the kept candidates turned out not to cover the
-// frame (then nothing was computed and the frame must be planned again).
-bool Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
+// Runs the plan's strategy: this frame's pairs of inSwept (or of inBoxes for brute force) go
+// into pairs, in canonical order.
+void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
                                const BoxSet& inSwept) {
   switch (inPlan.work) {
     case FrameWork::kEmpty:
@@ -194,110 +131,72 @@ bool Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
       break;
     }
     case FrameWork::kKeptCandidates:
-      return testKeptCandidates(inSwept, inPlan.threads);
+      skin.answerFromCandidates(inPlan.threads, report, pairs);
+      break;
     case FrameWork::kSmallFrame: {
       PhaseTimer timer(report.ms_pairing);
-      kept.clear();
+      skin.forget();
       pairSmallFrame(inSwept, small_frame, pairs);
       break;
     }
     case FrameWork::kSweep:
       if (inPlan.sweep_skin > 0.0) {
-        sweepGrown(inSwept, inPlan);
+        const BoxSet& grown = skin.grow(inSwept, inPlan.sweep_skin, inPlan.threads, report);
+        sweep.run(grown, inPlan.sweep_path, inPlan.threads, report, pairs);
+        skin.keepAndAnswer(inSwept, inPlan.threads, report, pairs);
       } else {
-        kept.clear();
+        skin.forget();
         sweep.run(inSwept, inPlan.sweep_path, inPlan.threads, report, pairs);
       }
       break;
   }
-  return true;
 }
 
-void Broadphase::Impl::addRestingPairs(const BoxSet& inBoxes, int inThreads) {
-  if (resting.indexedBoxes() == 0) return;
-  PhaseTimer timer(report.ms_static);
-  resting.crossPairs(inBoxes, inThreads, pairs);
-  sortPairsCanonical(pairs, pair_scratch);
-  report.static_boxes += resting.indexedBoxes();
-}
-
-// Pairs between this frame's boxes and the declared scenery, merged into canonical order.
-void Broadphase::Impl::addSceneryPairs(const BoxSet& inBoxes, int inThreads) {
-  if (scenery.size() == 0) return;
-  PhaseTimer timer(report.ms_static);
-  report.static_boxes += scenery.size();
-  if (inBoxes.size() == 0) return;
-  every_box.resize(inBoxes.size());
-  std::iota(every_box.begin(), every_box.end(), 0u);
-  const std::size_t before = pairs.size();
-  scenery.queryAll(inBoxes, every_box, inThreads, pairs);
-  if (pairs.size() != before) sortPairsCanonical(pairs, pair_scratch);
-}
-
-// What this frame's work cost, for the automatic skin's next choice. A grown sweep's frame
-// holds four kinds of work: growing the boxes, the sweep itself, keeping its candidates and
-// the pass that answers the frame; each is learnt as its own cost (SkinCosts).
-void Broadphase::Impl::learnCosts(const FramePlan& inPlan, const BoxSet& inSwept,
-                                  std::size_t inSweepPairs) {
-  const double boxes = static_cast<double>(inSwept.size());
-  if (inPlan.work == FrameWork::kSweep && inSwept.size() >= tuning::kMinSkinBoxes) {
-    const bool grown_sweep = inPlan.sweep_skin > 0.0;
-    const double candidates = static_cast<double>(grown_sweep ? kept.candidates() : inSweepPairs);
-    const double ms_sweep_per_box =
-        report.ms_keys + report.ms_sort + report.ms_candidates - kept_times.ms_grow;
-    const double ms_sweep_per_item =
-        report.ms_pairing + report.ms_output - kept_times.ms_keep - kept_times.ms_passes;
-    costs.sweep_ns_per_box = std::max(0.0, ms_sweep_per_box) * 1e6 / boxes;
-    costs.pairing_ns_per_item = std::max(0.0, ms_sweep_per_item) * 1e6 / (boxes + candidates);
-    costs.reference_boxes = inSwept.size();
-    costs.reference_candidates = candidates;
-    costs.reference_skin = inPlan.sweep_skin;
-    measureExtents(inSwept, inPlan.threads, costs);
-    if (grown_sweep) {
-      costs.grow_ns_per_box = smoothed(costs.grow_ns_per_box, kept_times.ms_grow * 1e6 / boxes);
-      costs.keep_ns_per_candidate = smoothed(costs.keep_ns_per_candidate,
-                                             kept_times.ms_keep * 1e6 / std::max(1.0, candidates));
+// The pairs of the resting boxes and of the declared scenery join the strategy's pairs in the
+// one list, which is then put in canonical order once.
+void Broadphase::Impl::addStaticPairs(const BoxSet& inBoxes, int inThreads) {
+  const std::size_t strategy_pairs = pairs.size();
+  {
+    PhaseTimer timer(report.ms_static);
+    if (resting.indexedBoxes() > 0) resting.crossPairs(inBoxes, inThreads, pairs);
+    if (scenery.size() > 0 && inBoxes.size() > 0) {
+      scratch.every_box.resize(inBoxes.size());
+      std::iota(scratch.every_box.begin(), scratch.every_box.end(), 0u);
+      scenery.queryAll(inBoxes, scratch.every_box, inThreads, pairs);
     }
   }
-  const bool answered_by_pass = inPlan.work == FrameWork::kKeptCandidates ||
-                                (inPlan.work == FrameWork::kSweep && inPlan.sweep_skin > 0.0);
-  if (answered_by_pass && kept.candidates() > 0) learnPassCosts(kept_times.ms_last_pass, boxes);
+  if (pairs.size() == strategy_pairs) return;
+  PhaseTimer timer(report.ms_output);
+  sortPairsCanonical(pairs, scratch.pair_sort);
 }
 
-// The whole pass is charged to its candidates and boxes in the proportion of the initial
-// estimates; what matters to the model is the pass's total at this size.
-void Broadphase::Impl::learnPassCosts(double inMilliseconds, double inBoxes) {
-  const double estimate = tuning::kInitialNsPerBox * inBoxes +
-                          tuning::kInitialNsPerCandidate * static_cast<double>(kept.candidates());
-  const double scale = inMilliseconds * 1e6 / estimate;
-  costs.pass_ns_per_box = smoothed(costs.pass_ns_per_box, tuning::kInitialNsPerBox * scale);
-  costs.pass_ns_per_candidate =
-      smoothed(costs.pass_ns_per_candidate, tuning::kInitialNsPerCandidate * scale);
-}
-
-void Broadphase::Impl::rememberMotion(const FrameDelta& inDelta) {
-  if (!inDelta.sameIds()) {
-    for (double& motion : recent_motion) motion = 0.0;
-    return;
+// The report's rows that describe the frame as a whole (the phases and the sweep's rows were
+// filled as the work ran).
+void Broadphase::Impl::describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta) {
+  report.path = framePathOf(inPlan, resting.indexedBoxes() > 0);
+  report.threads = inPlan.threads;
+  report.skin = inPlan.skin;
+  report.skin_choice = inPlan.skin_choice;
+  report.moved_boxes = inDelta.moved_boxes;
+  report.max_displacement = inDelta.max_displacement;
+  report.static_boxes = scenery.size() + resting.indexedBoxes();
+  report.pairs = pairs.size();
+  if (inPlan.work != FrameWork::kSweep) {
+    report.primary_axis = sweep.primaryAxis();
+    report.secondary_axis = sweep.secondaryAxis();
   }
-  recent_motion[motion_slot] = inDelta.max_displacement;
-  motion_slot = (motion_slot + 1) % tuning::kMotionWindow;
-}
-
-double Broadphase::Impl::recentMotion() const {
-  return *std::max_element(std::begin(recent_motion), std::end(recent_motion));
 }
 
 // Buffers sized for a burst of large frames are given back once frames have stayed much
-// smaller for a while; the next frame sizes them again.
+// smaller for a while (memory_policy.h); the next frame sizes them again.
 void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
   if (!give_back.shouldGiveBack(inBoxes, sweep.capacityBoxes())) return;
   sweep.releaseBuffers();
   history.shrinkToFit();
-  kept = SkinList();  // the next grown sweep keeps candidates of the frame's size again
+  skin.releaseMemory();  // the next grown sweep keeps candidates of the frame's size again
   collidable = BoxSet();
   pairs.shrink_to_fit();
-  pair_scratch = PairSortScratch();
+  scratch = Scratch();
 }
 
 Broadphase::Broadphase(const BroadphaseConfig& inConfig) {
@@ -311,59 +210,39 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 
 const PairList& Broadphase::update(const BoxSet& inBoxes) {
   Impl& impl = *impl_;
-  const FrameReport last_report = impl.report;
   FrameReport& report = impl.report;
   report = FrameReport();
-  impl.kept_times = Impl::KeptWorkTimes();
   {
     PhaseTimer total(report.ms_total);
     report.boxes = inBoxes.size();
     const int threads = resolveThreadCount(impl.config.threads);
-    const BoxSet& boxes = impl.dropBoxesThatPairWithNothing(inBoxes);
+    const BoxSet& boxes = [&]() -> const BoxSet& {
+      PhaseTimer timer(report.ms_plan);
+      return impl.dropBoxesThatPairWithNothing(inBoxes);
+    }();
     const FrameDelta delta = [&] {
       PhaseTimer timer(report.ms_history);
       return impl.history.compare(boxes, threads);
     }();
-    impl.rememberMotion(delta);
+    impl.skin.startFrame(delta);
     const BoxSet& swept = impl.setAsideRestingBoxes(boxes, delta, threads);
-    PlanInputs inputs = impl.planInputs(boxes, swept, delta, threads);
-    FramePlan plan = planFrame(inputs);
-    if (!impl.execute(plan, boxes, swept)) {
-      inputs.kept_covers = false;  // a box left its skin: plan again, knowing it
-      plan = planFrame(inputs);
-      impl.execute(plan, boxes, swept);
+    const FramePlan plan = impl.plan(boxes, swept, delta, threads);
+    impl.execute(plan, boxes, swept);
+    {
+      PhaseTimer timer(report.ms_plan);
+      impl.skin.learn(plan, swept, impl.pairs.size(), report);
     }
-    const std::size_t sweep_pairs = impl.pairs.size();
-    if (plan.work != FrameWork::kReuse) {
-      impl.addRestingPairs(boxes, threads);
-      impl.addSceneryPairs(boxes, threads);
-    }
+    if (plan.work != FrameWork::kReuse) impl.addStaticPairs(boxes, threads);
     {
       PhaseTimer timer(report.ms_history);
       impl.history.remember(boxes);
     }
     impl.pairs_valid = true;
-    impl.learnCosts(plan, swept, sweep_pairs);
+    PhaseTimer timer(report.ms_plan);
     impl.giveBackMemoryAfterBursts(boxes.size());
-    report.path = framePathOf(plan, impl.resting.indexedBoxes() > 0);
-    report.threads = plan.threads;
-    report.skin = plan.skin;
-    report.skin_choice = plan.skin_choice;
-    report.moved_boxes = delta.moved_boxes;
-    report.max_displacement = delta.max_displacement;
-    report.pairs = impl.pairs.size();
-    if (plan.work != FrameWork::kSweep) {
-      // No sort ran: the sweep's measures of the last sorted frame still describe it.
-      report.dispersion_primary = last_report.dispersion_primary;
-      report.dispersion_secondary = last_report.dispersion_secondary;
-      report.slabs = last_report.slabs;
-      report.primary_axis = impl.sweep.primaryAxis();
-      report.secondary_axis = impl.sweep.secondaryAxis();
-      if (plan.work == FrameWork::kReuse) report.static_boxes = last_report.static_boxes;
-    }
-    impl.config.primary_axis = impl.sweep.primaryAxis();
-    impl.config.secondary_axis = impl.sweep.secondaryAxis();
+    impl.describeFrame(plan, delta);
   }
+  SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
   return impl.pairs;
 }
 
@@ -377,7 +256,7 @@ const BroadphaseConfig& Broadphase::config() const {
 void Broadphase::reset() {
   impl_->sweep.forgetCoherence();
   impl_->history.forget();
-  impl_->kept.clear();
+  impl_->skin.forget();
   impl_->resting.clear();
   impl_->pairs_valid = false;
 }

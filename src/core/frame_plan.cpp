@@ -145,6 +145,14 @@ bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta
          inLastPairsValid;
 }
 
+bool planConsidersKeptCandidates(const PlanInputs& inInputs) {
+  const BroadphaseConfig& config = *inInputs.config;
+  const bool skin_off = config.skin && *config.skin == 0.0;
+  return inInputs.boxes >= 2 && config.method != Method::kBruteForce &&
+         !reusesLastPairs(config, inInputs.delta, inInputs.last_pairs_valid) && !skin_off &&
+         inInputs.kept_candidates && inInputs.delta.sameIds() && !inInputs.delta.filters_changed;
+}
+
 FramePlan planFrame(const PlanInputs& inInputs) {
   const BroadphaseConfig& config = *inInputs.config;
   const FrameDelta& delta = inInputs.delta;
@@ -164,7 +172,7 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     return plan;
   }
   plan.threads = inInputs.threads;
-  if (!skin_off && inInputs.kept_candidates && inInputs.kept_covers) {
+  if (planConsidersKeptCandidates(inInputs) && inInputs.kept_covers) {
     plan.work = FrameWork::kKeptCandidates;
     plan.skin = inInputs.kept_skin;
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;

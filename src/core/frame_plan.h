@@ -53,7 +53,8 @@ struct PlanInputs {
   int threads = 1;
   bool last_pairs_valid = false;  ///< the output still holds the last frame's pairs
   bool kept_candidates = false;   ///< a kept-candidate list exists for these boxes
-  bool kept_covers = false;       ///< every box may be inside its grown box of that list
+  bool kept_covers = false;       ///< every box is inside its grown box of that list (asked
+                                  ///< only when planConsidersKeptCandidates)
   double kept_skin = 0.0;         ///< the skin of that list
   double motion = 0.0;            ///< per-frame motion: recent largest displacement
   SkinCosts costs;
@@ -80,6 +81,12 @@ bool isSmallFrame(std::size_t inBoxes, int inThreads);
 /// pairs still held.
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
                      bool inLastPairsValid);
+
+/// True when the plan would answer the frame from the kept candidates if they cover it: they
+/// exist, skin is not off, and no earlier rule (too few boxes, brute force, reuse of the last
+/// pairs) decides the frame; ids and filters are unchanged. Only then is coverage worth
+/// asking for (SkinReuse::coversFrame), before planFrame.
+bool planConsidersKeptCandidates(const PlanInputs& inInputs);
 
 /// Picks the work of a frame.
 FramePlan planFrame(const PlanInputs& inInputs);

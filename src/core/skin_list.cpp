@@ -11,6 +11,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "core/assert.h"
 #include "core/buffers.h"
 #include "core/radix_sort.h"
 #include "core/sort_keys.h"
@@ -158,6 +159,7 @@ const BoxSet& SkinList::inflate(const BoxSet& inBoxes, double inSkin, int inThre
     }
   }
   valid_ = false;  // until adopt() receives this sweep's candidates
+  frame_gathered_ = false;
   return reference_;
 }
 
@@ -242,10 +244,21 @@ void SkinList::keepSpatialCandidates() {
 }
 
 bool SkinList::collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs) {
-  if (!valid_ || !sameIdsAndFilters(inBoxes) || !gatherInside(inBoxes, inThreads)) return false;
+  if (!gather(inBoxes, inThreads)) return false;
+  collectGathered(inThreads, outPairs);
+  return true;
+}
+
+bool SkinList::gather(const BoxSet& inBoxes, int inThreads) {
+  frame_gathered_ = valid_ && sameIdsAndFilters(inBoxes) && gatherInside(inBoxes, inThreads);
+  return frame_gathered_;
+}
+
+void SkinList::collectGathered(int inThreads, PairList& outPairs) {
+  SAP_ASSERT(frame_gathered_, "kept candidates tested without a frame gathered inside their skin");
+  frame_gathered_ = false;
   testSpatialCandidates(inThreads);
   copyHits(inThreads, outPairs);
-  return true;
 }
 
 bool SkinList::sameIdsAndFilters(const BoxSet& inBoxes) const {

@@ -52,6 +52,13 @@ class SkinList {
   /// canonical order, and returns true. Otherwise returns false and leaves outPairs alone:
   /// the caller sweeps (inflate, sweep, adopt), after which collect() answers the frame.
   bool collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs);
+  /// The first half of collect(): true when every box of inBoxes lies inside its inflated box,
+  /// and then the frame's bounds are gathered for collectGathered(). One read of the frame, so
+  /// that the engine can know before planning whether the candidates answer the frame.
+  bool gather(const BoxSet& inBoxes, int inThreads);
+  /// The second half of collect(), after gather() returned true for this frame: the
+  /// candidates that overlap in the gathered bounds, in canonical order, into outPairs.
+  void collectGathered(int inThreads, PairList& outPairs);
   /// The containment test of collect() alone, without computing pairs.
   bool covers(const BoxSet& inBoxes, int inThreads) const;
   /// True while candidates are kept (after adopt(), until clear() or the next inflate()).
@@ -59,7 +66,7 @@ class SkinList {
   /// Number of candidate pairs kept.
   std::size_t candidates() const { return canonical_pairs_.size(); }
   /// Forgets the candidates (the next frame sweeps).
-  void clear() { valid_ = false; }
+  void clear() { valid_ = frame_gathered_ = false; }
 
  private:
   bool sameIdsAndFilters(const BoxSet& inBoxes) const;
@@ -99,6 +106,7 @@ class SkinList {
   std::vector<uint64_t> verdicts_;
   int verdict_rows_ = 1;  // the threads of the last test, each with its row
   bool valid_ = false;
+  bool frame_gathered_ = false;  // gather() succeeded and collectGathered() has not run since
 };
 
 }  // namespace sap_broadphase

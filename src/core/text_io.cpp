@@ -118,19 +118,9 @@ bool readNumber(std::string& ioLine, const Field& inField, double& outValue) {
   return parsedEnd == last;
 }
 
-/// Parses coordinate inIndex (0..5 = min_x..max_z); NaN and non-numbers set outReason.
-bool parseCoordinate(std::string& ioLine, const Field& inField, int inIndex, double& outValue,
-                     std::string& outReason) {
-  if (!readNumber(ioLine, inField, outValue)) {
-    outReason =
-        std::string(kCoordinateNames[inIndex]) + " is not a number: " + quoteField(ioLine, inField);
-    return false;
-  }
-  if (std::isnan(outValue)) {
-    outReason = std::string("NaN in ") + kCoordinateNames[inIndex];
-    return false;
-  }
-  return true;
+/// The text format's wording of a NaN in coordinate inIndex (0..5 = min_x..max_z).
+std::string nanReason(int inIndex) {
+  return std::string("NaN in ") + kCoordinateNames[inIndex];
 }
 
 /// Shortest text that reads back as exactly inValue ("inf", "-inf", "-0" included).
@@ -140,60 +130,53 @@ std::string formatDouble(double inValue) {
   return std::string(buffer, result.ptr);
 }
 
-/// Parses one non-blank line into a box; the reason is set on failure.
+/// Parses one non-blank line into a box, its values as written (NaN and min > max included:
+/// validate() judges them once the file is read); the reason is set on a syntax error. A NaN
+/// read before a field that is not a number on the same line is the line's first problem.
 bool parseBoxLine(std::string& ioLine, const Field inFields[kFieldCount], uint32_t& outId,
                   double outMin[3], double outMax[3], std::string& outReason) {
   if (!parseId(ioLine, inFields[0], outId, outReason)) return false;
-  double values[6];
+  int first_nan = -1;
   for (int k = 0; k < 6; ++k) {
-    if (!parseCoordinate(ioLine, inFields[k + 1], k, values[k], outReason)) return false;
-  }
-  for (int axis = 0; axis < 3; ++axis) {
-    outMin[axis] = values[axis];
-    outMax[axis] = values[axis + 3];
-    if (outMin[axis] > outMax[axis]) {
-      outReason = std::string("min_") + kAxisNames[axis] + " (" + formatDouble(outMin[axis]) +
-                  ") > max_" + kAxisNames[axis] + " (" + formatDouble(outMax[axis]) + ")";
+    double& value = k < 3 ? outMin[k] : outMax[k - 3];
+    if (!readNumber(ioLine, inFields[k + 1], value)) {
+      outReason = first_nan >= 0 ? nanReason(first_nan)
+                                 : std::string(kCoordinateNames[k]) +
+                                       " is not a number: " + quoteField(ioLine, inFields[k + 1]);
       return false;
     }
+    if (first_nan < 0 && std::isnan(value)) first_nan = k;
   }
   return true;
 }
 
-/// Finds the earliest line (in file order) whose id already appeared on an earlier line.
-/// inLines[i] is the line of box i; lines grow with i. Returns false when ids are unique.
-bool findFirstDuplicate(const std::vector<uint32_t>& inIds, const std::vector<std::size_t>& inLines,
-                        std::size_t& outLine, std::string& outReason) {
-  std::vector<uint64_t> keys(inIds.size());  // id << 32 | index: sorting groups equal ids
-  for (std::size_t i = 0; i < inIds.size(); ++i) keys[i] = (uint64_t{inIds[i]} << 32) | i;
-  std::sort(keys.begin(), keys.end());
-  // Within a group of equal ids the entries are in line order: the group's second entry is
-  // the id's first repetition.
-  std::size_t bestSecond = inIds.size();
-  std::size_t bestFirst = 0;
-  for (std::size_t k = 1; k < keys.size(); ++k) {
-    const bool sameId = (keys[k] >> 32) == (keys[k - 1] >> 32);
-    const bool groupSecond = sameId && (k == 1 || (keys[k - 2] >> 32) != (keys[k] >> 32));
-    const std::size_t second = keys[k] & 0xFFFFFFFFu;
-    if (groupSecond && second < bestSecond) {
-      bestSecond = second;
-      bestFirst = keys[k - 1] & 0xFFFFFFFFu;
+/// The first problem validate() finds among the boxes read so far, worded for the line it is
+/// on (inLines[i] is the line of box i); nothing when they are valid.
+std::optional<ParseError> problemOfBoxes(const BoxSet& inBoxes,
+                                         const std::vector<std::size_t>& inLines,
+                                         const std::string& inSource) {
+  const std::optional<ValidationError> error = validate(inBoxes);
+  if (!error) return std::nullopt;
+  const std::size_t i = error->index;
+  std::string reason = error->reason;
+  switch (error->problem) {
+    case BoxProblem::kNaN:
+      reason = nanReason(error->coordinate);
+      break;
+    case BoxProblem::kMinAboveMax: {
+      const int axis = error->coordinate;
+      reason = std::string("min_") + kAxisNames[axis] + " (" + formatDouble(inBoxes.lo[axis][i]) +
+               ") > max_" + kAxisNames[axis] + " (" + formatDouble(inBoxes.hi[axis][i]) + ")";
+      break;
     }
+    case BoxProblem::kDuplicateId:
+      reason = "duplicate id " + std::to_string(error->id) + " (first on line " +
+               std::to_string(inLines[error->earlier]) + ")";
+      break;
+    case BoxProblem::kShape:
+      break;
   }
-  if (bestSecond == inIds.size()) return false;
-  outLine = inLines[bestSecond];
-  outReason = "duplicate id " + std::to_string(inIds[bestSecond]) + " (first on line " +
-              std::to_string(inLines[bestFirst]) + ")";
-  return true;
-}
-
-/// Appends one box to ioBoxes (no groups or masks in the text format).
-void appendBox(BoxSet& ioBoxes, uint32_t inId, const double inMin[3], const double inMax[3]) {
-  ioBoxes.ids.push_back(inId);
-  for (int axis = 0; axis < 3; ++axis) {
-    ioBoxes.lo[axis].push_back(inMin[axis]);
-    ioBoxes.hi[axis].push_back(inMax[axis]);
-  }
+  return ParseError{inSource, i < inLines.size() ? inLines[i] : 0, reason};
 }
 
 /// Collects output text and hands it to the stream in large blocks.
@@ -228,21 +211,15 @@ std::string ParseError::message() const {
 std::optional<ParseError> readBoxText(std::istream& ioInput, const std::string& inSource,
                                       BoxSet& outBoxes) {
   outBoxes.clear();
-  outBoxes.groups.clear();
-  outBoxes.masks.clear();
-  std::vector<std::size_t> boxLines;  // line of each box, for duplicate-id messages
+  std::vector<std::size_t> boxLines;  // line of each box, for messages
   std::string line;
   std::size_t lineNumber = 0;
+  // The first problem in file order: one among the boxes read so far (validate()), which lie
+  // on earlier lines, else the one found on line inLine.
   auto fail = [&](std::size_t inLine, std::string inReason) {
-    // A duplicate id on an earlier line is the first problem in file order.
-    std::size_t duplicateLine = 0;
-    std::string duplicateReason;
-    if (findFirstDuplicate(outBoxes.ids, boxLines, duplicateLine, duplicateReason)) {
-      inLine = duplicateLine;
-      inReason = std::move(duplicateReason);
-    }
+    std::optional<ParseError> earlier = problemOfBoxes(outBoxes, boxLines, inSource);
     outBoxes.clear();
-    return ParseError{inSource, inLine, std::move(inReason)};
+    return earlier ? *earlier : ParseError{inSource, inLine, std::move(inReason)};
   };
   while (std::getline(ioInput, line)) {
     ++lineNumber;
@@ -261,15 +238,13 @@ std::optional<ParseError> readBoxText(std::istream& ioInput, const std::string& 
     double lo[3];
     double hi[3];
     if (!parseBoxLine(line, fields, id, lo, hi, reason)) return fail(lineNumber, reason);
-    appendBox(outBoxes, id, lo, hi);
+    outBoxes.add(id, lo, hi);
     boxLines.push_back(lineNumber);
   }
   if (ioInput.bad()) return fail(lineNumber + 1, "read error");
-  std::size_t duplicateLine = 0;
-  std::string duplicateReason;
-  if (findFirstDuplicate(outBoxes.ids, boxLines, duplicateLine, duplicateReason)) {
+  if (std::optional<ParseError> problem = problemOfBoxes(outBoxes, boxLines, inSource)) {
     outBoxes.clear();
-    return ParseError{inSource, duplicateLine, duplicateReason};
+    return problem;
   }
   return std::nullopt;
 }

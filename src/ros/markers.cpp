@@ -1,5 +1,5 @@
 // rviz wireframes of a frame's boxes.
-#include "sap_broadphase/ros/markers.h"
+#include "markers.h"
 
 #include <unordered_map>
 #include <vector>

@@ -1,5 +1,5 @@
 // The node's private parameters.
-#include "sap_broadphase/ros/node_params.h"
+#include "node_params.h"
 
 #include <algorithm>
 #include <cctype>

@@ -9,9 +9,9 @@
 #include <ros/ros.h>
 #include <pluginlib/class_list_macros.hpp>
 
-#include "sap_broadphase/ros/node.h"
-#include "sap_broadphase/ros/node_params.h"
-#include "sap_broadphase/ros/scene_publisher.h"
+#include "node.h"
+#include "node_params.h"
+#include "scene_publisher.h"
 
 namespace sap_broadphase {
 

@@ -1,5 +1,5 @@
 // ScenePublisher: parameters, the publishing thread and message reuse.
-#include "sap_broadphase/ros/scene_publisher.h"
+#include "scene_publisher.h"
 
 #include <algorithm>
 

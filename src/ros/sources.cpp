@@ -1,5 +1,5 @@
 // The world of a frame: the latest frame of every source, merged.
-#include "sap_broadphase/ros/sources.h"
+#include "sources.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -48,7 +48,9 @@ void appendFilter(const std::vector<uint32_t>& inAdd, std::size_t inAddCount,
 }  // namespace
 
 std::string sourceName(const SourceKey& inKey) {
-  return "'" + inKey.topic + "' from " + inKey.publisher;
+  std::string name = "'" + inKey.topic + "' from " + inKey.publisher;
+  if (!inKey.frame_id.empty()) name += " in '" + inKey.frame_id + "'";
+  return name;
 }
 
 void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes) {

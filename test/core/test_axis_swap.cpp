@@ -51,7 +51,9 @@ std::set<int> runPlaneScene(int inPlaneAxis, int inPrimary, int inSecondary,
     if (stats.axes_swapped) swapFrames.insert(frame);
     simulator.step();
   }
-  const BroadphaseConfig& after = engine.config();
+  // config() is what was set; the axes in force are the report's.
+  EXPECT_TRUE(sameConfig(engine.config(), config)) << describeConfig(engine.config());
+  const FrameReport& after = engine.stats();
   EXPECT_NE(after.primary_axis, after.secondary_axis);
   if (inSwapping && !swapFrames.empty()) {
     EXPECT_TRUE(after.primary_axis != inPlaneAxis && after.secondary_axis != inPlaneAxis)

@@ -91,6 +91,31 @@ TEST(Validate, ReportsTheLowestBadIndex) {
   EXPECT_EQ(error->index, 1u);
 }
 
+TEST(Validate, NamesTheProblemForCallersThatWordItTheirWay) {
+  BoxSet boxes = threeBoxes();
+  boxes.hi[2][1] = kNaN;
+  boxes.lo[1][1] = 5.0;  // min_y > max_y too, but the NaN of max_z comes first
+  auto error = validate(boxes);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->problem, BoxProblem::kNaN);
+  EXPECT_EQ(error->coordinate, 5);
+  EXPECT_EQ(error->reason, "max_z is NaN");
+  boxes.hi[2][1] = 1.0;
+  error = validate(boxes);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->problem, BoxProblem::kMinAboveMax);
+  EXPECT_EQ(error->coordinate, 1);
+  // A repeated id on a lower index than a bad coordinate is the first problem.
+  boxes = threeBoxes();
+  boxes.ids[1] = boxes.ids[0];
+  boxes.lo[0][2] = kNaN;
+  error = validate(boxes);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->problem, BoxProblem::kDuplicateId);
+  EXPECT_EQ(error->index, 1u);
+  EXPECT_EQ(error->earlier, 0u);
+}
+
 TEST(Validate, RefusesDuplicateIds) {
   BoxSet boxes = threeBoxes();
   boxes.ids[2] = 10;

@@ -22,9 +22,9 @@ using test_support::samePairs;
 
 // Every phase is >= 0 and together they are at most the frame's total.
 void expectPhasesAddUp(const FrameReport& inReport, const std::string& inLabel) {
-  const double phases[] = {inReport.ms_history,    inReport.ms_keys,    inReport.ms_sort,
-                           inReport.ms_candidates, inReport.ms_pairing, inReport.ms_static,
-                           inReport.ms_output};
+  const double phases[] = {inReport.ms_plan, inReport.ms_history,    inReport.ms_keys,
+                           inReport.ms_sort, inReport.ms_candidates, inReport.ms_pairing,
+                           inReport.ms_skin, inReport.ms_static,     inReport.ms_output};
   double sum = 0.0;
   for (double phase : phases) {
     EXPECT_GE(phase, 0.0) << inLabel;

@@ -104,6 +104,37 @@ TEST(FramePlan, SlowMotionChoosesASkinAndKeptCandidatesAnswerWhileCovered) {
   EXPECT_EQ(planFrame(inputs).work, FrameWork::kSweep);
 }
 
+TEST(FramePlan, KeptCandidatesAreConsideredOnlyWhereNoEarlierRuleDecides) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  EXPECT_FALSE(planConsidersKeptCandidates(inputs)) << "no kept list";
+  inputs.kept_candidates = true;
+  EXPECT_TRUE(planConsidersKeptCandidates(inputs));
+  PlanInputs changed = inputs;
+  changed.delta.relation = FrameRelation::kOtherIds;
+  EXPECT_FALSE(planConsidersKeptCandidates(changed)) << "other ids";
+  changed = inputs;
+  changed.delta.filters_changed = true;
+  EXPECT_FALSE(planConsidersKeptCandidates(changed)) << "filters changed";
+  changed = inputs;
+  changed.delta.relation = FrameRelation::kIdentical;
+  EXPECT_FALSE(planConsidersKeptCandidates(changed)) << "the last pairs are reused";
+  changed.last_pairs_valid = false;
+  EXPECT_TRUE(planConsidersKeptCandidates(changed)) << "identical, but no last pairs to reuse";
+  changed = inputs;
+  changed.boxes = 1;
+  EXPECT_FALSE(planConsidersKeptCandidates(changed)) << "one box";
+  BroadphaseConfig skin_off;
+  skin_off.skin = 0.0;
+  changed = inputs;
+  changed.config = &skin_off;
+  EXPECT_FALSE(planConsidersKeptCandidates(changed)) << "skin off";
+  BroadphaseConfig brute;
+  brute.method = Method::kBruteForce;
+  changed.config = &brute;
+  EXPECT_FALSE(planConsidersKeptCandidates(changed)) << "brute force";
+}
+
 TEST(FramePlan, FastMotionTurnsTheSkinOff) {
   BroadphaseConfig config;
   PlanInputs inputs = coherentFrame(config);

@@ -280,6 +280,14 @@ TEST(TextIo, ReportsTheFirstProblemInFileOrder) {
   expectRefused("1 0 0 0 1 1 1\n1 0 0 0 1 1 1\n2 nan 0 0 1 1 1\n", 2, "duplicate id 1");
   // The bad field count on line 2 comes before the duplicate on line 3.
   expectRefused("1 0 0 0 1 1 1\n2 0 0\n1 0 0 0 1 1 1\n", 2, "expected 7 fields");
+  // The NaN on line 2 comes before the duplicate on line 3 and the non-number on line 4.
+  expectRefused("1 0 0 0 1 1 1\n2 0 nan 0 1 1 1\n1 0 0 0 1 1 1\n3 x 0 0 1 1 1\n", 2,
+                "NaN in min_y");
+  // Within a line fields are read left to right: a NaN before a non-number is the problem,
+  // and a NaN comes before min > max.
+  expectRefused("1 nan 0 0 one 1 1\n", 1, "NaN in min_x");
+  expectRefused("1 0 0 0 one 1 nan\n", 1, "max_x is not a number: 'one'");
+  expectRefused("1 0 5 0 1 1 nan\n", 1, "NaN in max_z");
 }
 
 TEST(TextIo, LineNumbersCountEveryLine) {

@@ -46,6 +46,13 @@ add_dependencies(test_sources ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_mess
 # changed at run time show in stats, pairs equal the oracle's, invalid values are refused.
 add_rostest(test/ros/reconfigure.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)
 
+# Two robots on one topic recorded with rosbag record and played back with rosbag play (one
+# caller id) give the live node's pairs frame by frame: sources are told apart by frame id.
+add_rostest(test/ros/replay.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# use_sim_time: ~rate ticks, source time-outs and diagnostics follow the /clock the test drives.
+add_rostest(test/ros/clock.test DEPENDENCIES ${PROJECT_NAME}_node)
+
 # Input adapters without a roscore: embedded definitions against genmsg's MD5, the vision_msgs
 # and jsk wire decoders, MarkerArray state (DELETE, DELETEALL, CUBE_LIST), validation, ~sources.
 catkin_add_gtest(test_adapters_units test/ros/test_adapters_units.cpp test/ros/test_units_main.cpp)

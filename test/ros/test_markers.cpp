@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/ros/markers.h"
+#include "markers.h"
 #include "test_frames.h"
 
 namespace sap_broadphase {

@@ -6,12 +6,16 @@ brute-force oracle's; invalid values are refused, the settings in force stay and
 answering.
 
 No timing is asserted: every wait is for a condition (a connection, the answer to a frame),
-bounded by WAIT only so that a broken node fails the test instead of hanging it.
+bounded by WAIT only so that a broken node fails the test instead of hanging it. Frames come
+from fixed seeds (zlib.crc32 of a name, the same in every run, unlike Python's hash() of a
+string). Each case runs once per namespace as a test of its own (no subTest: rosunit's report
+drops a failed subTest's message).
 """
 import random
 import threading
 import time
 import unittest
+import zlib
 
 import rospy
 import rostest
@@ -22,6 +26,11 @@ PACKAGE = "sap_broadphase"
 NAMESPACES = ["node", "nodelet"]
 WAIT = 30.0  # seconds; a bound on waiting, never a speed check
 BOXES = 400
+
+
+def seed_of(*parts):
+    """A seed that names what it seeds and is the same in every run."""
+    return zlib.crc32("/".join(str(part) for part in parts).encode())
 
 
 def random_frame(seed):
@@ -104,7 +113,7 @@ class Endpoint:
         """Publishes count boxes with ids from 100000 as the (latched) scenery."""
         self.scenery.header.frame_id = "world"
         self.scenery.ids = [100000 + i for i in range(count)]
-        self.scenery.bounds = random_frame(hash((self.namespace, "scenery")) & 0xFFFF)[:6 * count]
+        self.scenery.bounds = random_frame(seed_of(self.namespace, "scenery"))[:6 * count]
         self.static_publisher.publish(self.scenery)
 
     def frame(self):
@@ -113,7 +122,7 @@ class Endpoint:
         msg = BoxArray()
         msg.header.frame_id = "world"
         msg.header.stamp = rospy.Time(1000 + self.frames, 0)  # the frame's key in the answers
-        msg.bounds = random_frame(hash((self.namespace, self.frames)) & 0xFFFF)
+        msg.bounds = random_frame(seed_of(self.namespace, "frame", self.frames))
         self.publisher.publish(msg)
         stamp = msg.header.stamp
         self.wait_for(lambda: stamp in self.pairs and stamp in self.stats,
@@ -125,94 +134,112 @@ class Endpoint:
 
 
 class ReconfigureTest(unittest.TestCase):
+    """Each case below runs as test_<n>_<case>_<namespace>, in that order (unittest sorts the
+    names): the first checks the launch values, the last declares a scenery that stays."""
+
+    endpoints = {}
+
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_reconfigure", anonymous=True)
-        cls.endpoints = [Endpoint(namespace) for namespace in NAMESPACES]
-        for endpoint in cls.endpoints:
-            endpoint.connect()
+        for namespace in NAMESPACES:
+            cls.endpoints[namespace] = Endpoint(namespace)
+            cls.endpoints[namespace].connect()
 
     def check_exact(self, endpoint, pairs, expected, stats):
         self.assertEqual(pairs, expected, "%s: pairs differ from the oracle" % endpoint.namespace)
         self.assertEqual(stats.pairs, len(expected))
         self.assertGreater(len(expected), 0, "the frames should have pairs to check")
 
-    def test_1_threads_and_skin_at_run_time(self):  # first: it checks the launch values
-        for endpoint in self.endpoints:
-            with self.subTest(namespace=endpoint.namespace):
-                start = endpoint.client.get_configuration(timeout=WAIT)
-                self.assertEqual(start["threads"], 1)  # the launch file's value
-                self.assertEqual(start["skin"], "auto")
+    def threads_and_skin_at_run_time(self, endpoint):
+        start = endpoint.client.get_configuration(timeout=WAIT)
+        self.assertEqual(start["threads"], 1)  # the launch file's value
+        self.assertEqual(start["skin"], "auto")
 
-                # A fixed skin makes every sweep run on all configured threads.
-                config = endpoint.client.update_configuration({"threads": 2, "skin": "0.5"})
-                self.assertEqual((config["threads"], config["skin"]), (2, "0.5"))
-                pairs, expected, stats = endpoint.frame()
-                self.check_exact(endpoint, pairs, expected, stats)
-                self.assertEqual(stats.threads, 2)
-                self.assertEqual(stats.skin_choice, "fixed")
-                self.assertEqual(stats.skin, 0.5)
+        # A fixed skin makes every sweep run on all configured threads.
+        config = endpoint.client.update_configuration({"threads": 2, "skin": "0.5"})
+        self.assertEqual((config["threads"], config["skin"]), (2, "0.5"))
+        pairs, expected, stats = endpoint.frame()
+        self.check_exact(endpoint, pairs, expected, stats)
+        self.assertEqual(stats.threads, 2)
+        self.assertEqual(stats.skin_choice, "fixed")
+        self.assertEqual(stats.skin, 0.5)
 
-                config = endpoint.client.update_configuration({"threads": 1, "skin": "0"})
-                self.assertEqual((config["threads"], config["skin"]), (1, "off"))
-                pairs, expected, stats = endpoint.frame()
-                self.check_exact(endpoint, pairs, expected, stats)
-                self.assertEqual(stats.threads, 1)
-                self.assertEqual(stats.skin_choice, "off")
-                self.assertEqual(stats.skin, 0.0)
+        config = endpoint.client.update_configuration({"threads": 1, "skin": "0"})
+        self.assertEqual((config["threads"], config["skin"]), (1, "off"))
+        pairs, expected, stats = endpoint.frame()
+        self.check_exact(endpoint, pairs, expected, stats)
+        self.assertEqual(stats.threads, 1)
+        self.assertEqual(stats.skin_choice, "off")
+        self.assertEqual(stats.skin, 0.0)
 
-                config = endpoint.client.update_configuration({"threads": 3, "skin": "0.25"})
-                pairs, expected, stats = endpoint.frame()
-                self.check_exact(endpoint, pairs, expected, stats)
-                self.assertEqual(stats.threads, 3)
-                self.assertEqual((stats.skin_choice, stats.skin), ("fixed", 0.25))
+        config = endpoint.client.update_configuration({"threads": 3, "skin": "0.25"})
+        pairs, expected, stats = endpoint.frame()
+        self.check_exact(endpoint, pairs, expected, stats)
+        self.assertEqual(stats.threads, 3)
+        self.assertEqual((stats.skin_choice, stats.skin), ("fixed", 0.25))
 
-                config = endpoint.client.update_configuration({"skin": "auto"})
-                self.assertEqual((config["threads"], config["skin"]), (3, "auto"))
-                pairs, expected, stats = endpoint.frame()
-                self.check_exact(endpoint, pairs, expected, stats)
-                self.assertNotIn(stats.skin_choice, ("off", "fixed"))
-                self.assertEqual(rospy.get_param("/%s/sap_broadphase/skin" % endpoint.namespace),
-                                 "auto")
+        config = endpoint.client.update_configuration({"skin": "auto"})
+        self.assertEqual((config["threads"], config["skin"]), (3, "auto"))
+        pairs, expected, stats = endpoint.frame()
+        self.check_exact(endpoint, pairs, expected, stats)
+        self.assertNotIn(stats.skin_choice, ("off", "fixed"))
+        self.assertEqual(rospy.get_param("/%s/sap_broadphase/skin" % endpoint.namespace), "auto")
 
-    def test_2_invalid_values_refused(self):
-        for endpoint in self.endpoints:
-            with self.subTest(namespace=endpoint.namespace):
-                before = endpoint.client.update_configuration({"threads": 2, "skin": "off"})
-                for change in ({"skin": "-1"}, {"skin": "banana"}, {"skin": "nan"},
-                               {"primary_axis": "y", "secondary_axis": "y"},
-                               {"method": "quantum"}, {"threads": 2, "skin": "-0.5"}):
-                    config = endpoint.client.update_configuration(change)
-                    for name in change:
-                        self.assertEqual(config[name], before[name],
-                                         "%s: %s was not refused" % (endpoint.namespace, change))
-                # Still up, still exact, still with the settings in force before.
-                pairs, expected, stats = endpoint.frame()
-                self.check_exact(endpoint, pairs, expected, stats)
-                self.assertEqual(stats.skin_choice, "off")
-                after = endpoint.client.get_configuration(timeout=WAIT)
-                self.assertEqual((after["primary_axis"], after["secondary_axis"]), ("x", "y"))
-                self.assertEqual((after["threads"], after["skin"]), (2, "off"))
+    def invalid_values_refused(self, endpoint):
+        before = endpoint.client.update_configuration({"threads": 2, "skin": "off"})
+        for change in ({"skin": "-1"}, {"skin": "banana"}, {"skin": "nan"},
+                       {"primary_axis": "y", "secondary_axis": "y"},
+                       {"method": "quantum"}, {"threads": 2, "skin": "-0.5"}):
+            config = endpoint.client.update_configuration(change)
+            for name in change:
+                self.assertEqual(config[name], before[name],
+                                 "%s: %s was not refused" % (endpoint.namespace, change))
+        # Still up, still exact, still with the settings in force before.
+        pairs, expected, stats = endpoint.frame()
+        self.check_exact(endpoint, pairs, expected, stats)
+        self.assertEqual(stats.skin_choice, "off")
+        after = endpoint.client.get_configuration(timeout=WAIT)
+        self.assertEqual((after["primary_axis"], after["secondary_axis"]), ("x", "y"))
+        self.assertEqual((after["threads"], after["skin"]), (2, "off"))
 
-    def test_3_scenery_kept_by_a_new_engine(self):  # last: the scenery stays
-        for endpoint in self.endpoints:
-            with self.subTest(namespace=endpoint.namespace):
-                endpoint.declare_scenery(300)
-                # The scenery takes effect between two frames: frames until one reports it.
-                for _ in range(100):
-                    pairs, expected, stats = endpoint.frame()
-                    if stats.static_world_boxes == 300:
-                        break
-                self.assertEqual(stats.static_world_boxes, 300)
-                self.check_exact(endpoint, pairs, expected, stats)
-                with_scenery = [pair for pair in expected if pair[1] >= 100000]
-                self.assertGreater(len(with_scenery), 0, "no pair with the scenery to check")
+    def scenery_kept_by_a_new_engine(self, endpoint):
+        endpoint.declare_scenery(300)
+        # The scenery takes effect between two frames: frames until one reports it. The node
+        # also computes the last frame's world again when the scenery lands, under the same
+        # stamp, and `pairs` and `stats` are two topics: the frame that reports the scenery may
+        # pair stats of the second computation with pairs of the first. Only a frame sent
+        # after the scenery is in force is checked.
+        for _ in range(100):
+            _, _, stats = endpoint.frame()
+            if stats.static_world_boxes == 300:
+                break
+        self.assertEqual(stats.static_world_boxes, 300)
+        pairs, expected, stats = endpoint.frame()
+        self.assertEqual(stats.static_world_boxes, 300)
+        self.check_exact(endpoint, pairs, expected, stats)
+        with_scenery = [pair for pair in expected if pair[1] >= 100000]
+        self.assertGreater(len(with_scenery), 0, "no pair with the scenery to check")
 
-                endpoint.client.update_configuration({"threads": 1, "skin": "0.5"})
-                pairs, expected, stats = endpoint.frame()
-                self.assertEqual((stats.threads, stats.skin_choice), (1, "fixed"))
-                self.assertEqual(stats.static_world_boxes, 300)
-                self.check_exact(endpoint, pairs, expected, stats)
+        endpoint.client.update_configuration({"threads": 1, "skin": "0.5"})
+        pairs, expected, stats = endpoint.frame()
+        self.assertEqual((stats.threads, stats.skin_choice), (1, "fixed"))
+        self.assertEqual(stats.static_world_boxes, 300)
+        self.check_exact(endpoint, pairs, expected, stats)
+
+
+def add_cases():
+    """One test per case and namespace, so that a failure names both and keeps its message."""
+    cases = ["threads_and_skin_at_run_time", "invalid_values_refused",
+             "scenery_kept_by_a_new_engine"]
+    for number, case in enumerate(cases, start=1):
+        for namespace in NAMESPACES:
+            def test(self, case=case, namespace=namespace):
+                getattr(self, case)(self.endpoints[namespace])
+            setattr(ReconfigureTest, "test_%d_%s_%s" % (number, case, namespace), test)
+
+
+add_cases()
 
 
 if __name__ == "__main__":

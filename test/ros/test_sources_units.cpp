@@ -7,7 +7,7 @@
 #include <tf2/LinearMath/Quaternion.h>
 
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/ros/sources.h"
+#include "sources.h"
 #include "test_frames.h"
 
 namespace sap_broadphase {
@@ -31,8 +31,8 @@ BoxSet oneBox(uint32_t inId, double inLo, double inHi) {
 TEST(SourceSet, UnionOfLatestFramesNewestStampAndCrossSourcePairs) {
   SourceSet sources;
   BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.5, 1.5), a_again = oneBox(1, 5.0, 6.0);
-  sources.store({"boxes", "/a"}, a, header("world", 10), ros::Time(100, 0));
-  sources.store({"boxes", "/b"}, b, header("world", 12), ros::Time(100, 0));
+  sources.store({"boxes", "/a", ""}, a, header("world", 10), ros::Time(100, 0));
+  sources.store({"boxes", "/b", ""}, b, header("world", 12), ros::Time(100, 0));
   BoxSet world;
   WorldAssembly assembly;
   EXPECT_EQ(bruteForcePairs(sources.assemble({}, "", world, assembly)), PairList({{1, 2}}));
@@ -41,7 +41,7 @@ TEST(SourceSet, UnionOfLatestFramesNewestStampAndCrossSourcePairs) {
   EXPECT_EQ(assembly.header.stamp, ros::Time(12, 0));
   EXPECT_EQ(assembly.header.frame_id, "world");
   // The latest frame of /a replaces its earlier one.
-  sources.store({"boxes", "/a"}, a_again, header("world", 11), ros::Time(101, 0));
+  sources.store({"boxes", "/a", ""}, a_again, header("world", 11), ros::Time(101, 0));
   EXPECT_TRUE(bruteForcePairs(sources.assemble({}, "", world, assembly)).empty());
   EXPECT_EQ(world.size(), 2u);
 }
@@ -49,11 +49,11 @@ TEST(SourceSet, UnionOfLatestFramesNewestStampAndCrossSourcePairs) {
 TEST(SourceSet, SharedIdLeavesTheNewerSourceOutNamingBoth) {
   SourceSet sources;
   BoxSet a = oneBox(7, 0.0, 1.0), b = oneBox(7, 0.0, 1.0), c = oneBox(8, 0.0, 1.0);
-  sources.store({"boxes", "/a"}, a, header("world", 1), ros::Time(1, 0));
-  sources.store({"boxes", "/b"}, b, header("world", 1), ros::Time(1, 0));
-  sources.store({"extra", "/c"}, c, header("world", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/a", ""}, a, header("world", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/b", ""}, b, header("world", 1), ros::Time(1, 0));
+  sources.store({"extra", "/c", ""}, c, header("world", 1), ros::Time(1, 0));
   BoxSet fresh_a = oneBox(7, 0.0, 1.0);  // /a publishes again: it still joined first
-  sources.store({"boxes", "/a"}, fresh_a, header("world", 2), ros::Time(2, 0));
+  sources.store({"boxes", "/a", ""}, fresh_a, header("world", 2), ros::Time(2, 0));
   BoxSet world;
   WorldAssembly assembly;
   const BoxSet& merged = sources.assemble({}, "", world, assembly);
@@ -73,8 +73,8 @@ TEST(SourceSet, SharedIdLeavesTheNewerSourceOutNamingBoth) {
 TEST(SourceSet, OtherFrameRefusedNamingBothFrames) {
   SourceSet sources;
   BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.0, 1.0);
-  sources.store({"boxes", "/a"}, a, header("robot_a", 1), ros::Time(1, 0));
-  sources.store({"boxes", "/b"}, b, header("robot_b", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/a", ""}, a, header("robot_a", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/b", ""}, b, header("robot_b", 1), ros::Time(1, 0));
   BoxSet world;
   WorldAssembly assembly;
   const BoxSet& merged = sources.assemble({}, "", world, assembly);
@@ -94,8 +94,8 @@ TEST(SourceSet, FiltersOfOneSourceCompletedWithDefaults) {
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
   filtered.add(2, lo, hi, 0x2u, 0x2u);  // collides only with group 0x2: not with box 1
   filtered.add(3, lo, hi, 0x1u, 0xFFFFFFFFu);
-  sources.store({"boxes", "/plain"}, plain, header("w", 1), ros::Time(1, 0));
-  sources.store({"boxes", "/filtered"}, filtered, header("w", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/plain", ""}, plain, header("w", 1), ros::Time(1, 0));
+  sources.store({"boxes", "/filtered", ""}, filtered, header("w", 1), ros::Time(1, 0));
   BoxSet world;
   WorldAssembly assembly;
   const BoxSet& merged = sources.assemble({}, "", world, assembly);
@@ -108,8 +108,8 @@ TEST(SourceSet, FiltersOfOneSourceCompletedWithDefaults) {
 TEST(SourceSet, SilentSourcesExpire) {
   SourceSet sources;
   BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.0, 1.0);
-  sources.store({"boxes", "/a"}, a, header("w", 1), ros::Time(10, 0));
-  sources.store({"boxes", "/b"}, b, header("w", 1), ros::Time(11, 0));
+  sources.store({"boxes", "/a", ""}, a, header("w", 1), ros::Time(10, 0));
+  sources.store({"boxes", "/b", ""}, b, header("w", 1), ros::Time(11, 0));
   EXPECT_TRUE(sources.expire(ros::Time(11, 500000000), 0.0).empty()) << "0 = never";
   EXPECT_EQ(sources.expire(ros::Time(11, 500000000), 1.0),
             std::vector<std::string>({"'boxes' from /a"}));

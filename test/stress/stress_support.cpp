@@ -31,7 +31,7 @@ std::string firstMissing(const PairList& inLeft, const PairList& inRight, std::s
 }
 
 // Canonical order, a < b, no repeats.
-::testing::AssertionResult isCanonical(const PairList& inPairs) {
+::testing::AssertionResult inCanonicalOrder(const PairList& inPairs) {
   for (std::size_t k = 0; k < inPairs.size(); ++k) {
     if (!(inPairs[k].a < inPairs[k].b))
       return ::testing::AssertionFailure()
@@ -134,7 +134,7 @@ std::vector<BroadphaseConfig> stressConfigs(Coverage inCoverage) {
 
 ::testing::AssertionResult supersetWithKeyOverlap(const BoxSet& inBoxes, const PairList& inExpected,
                                                   const PairList& inActual) {
-  if (auto canonical = isCanonical(inActual); !canonical) return canonical;
+  if (auto canonical = inCanonicalOrder(inActual); !canonical) return canonical;
   std::size_t missing_count = 0;
   const std::string missing = firstMissing(inExpected, inActual, missing_count);
   if (missing_count > 0)
@@ -171,7 +171,7 @@ void expectStressMatch(const BoxSet& inBoxes, const std::string& inLabel) {
 void expectStressMatch(const BoxSet& inBoxes, const PairList& inOracle,
                        const std::string& inLabel) {
   ASSERT_TRUE(isValidSet(inBoxes)) << inLabel;
-  ASSERT_TRUE(isCanonical(inOracle)) << inLabel << ": the oracle's own output";
+  ASSERT_TRUE(inCanonicalOrder(inOracle)) << inLabel << ": the oracle's own output";
   const Coverage coverage = inBoxes.size() > kPairwiseAbove ? Coverage::kPairwise : Coverage::kFull;
   const BoxSet reversed = reversedOrder(inBoxes);
   for (BroadphaseConfig config : stressConfigs(coverage)) {

@@ -45,18 +45,31 @@ struct BoxSet {
   bool hasFilters() const { return !groups.empty() || !masks.empty(); }
 };
 
+/// What is wrong, for callers that word the problem their own way (the text reader names
+/// lines rather than boxes).
+enum class BoxProblem : uint8_t {
+  kShape,        ///< array lengths disagree, or more than kMaxBoxes boxes
+  kNaN,          ///< a NaN bound: coordinate says which
+  kMinAboveMax,  ///< min > max on axis coordinate % 3
+  kDuplicateId,  ///< the id of an earlier box: earlier says which
+};
+
 /// Why a box set was refused: which box (its index and id) and what is wrong with it.
 struct ValidationError {
   std::size_t index = 0;  ///< position of the offending box in the set
   uint32_t id = 0;        ///< its id
-  std::string reason;     ///< e.g. "min_y (3) > max_y (2)" or "NaN in max_x"
+  std::string reason;     ///< e.g. "min_y (3) > max_y (2)" or "max_x is NaN"
+  BoxProblem problem = BoxProblem::kShape;
+  int coordinate = 0;       ///< kNaN, kMinAboveMax: 0..5 = min_x, min_y, min_z, max_x, ...
+  std::size_t earlier = 0;  ///< kDuplicateId: index of the earlier box with the same id
   /// "box 7 (id 42): min_y (3) > max_y (2)"
   std::string message() const;
 };
 
 /// Checks every box: no NaN, min <= max on every axis (infinities allowed), unique ids,
 /// groups/masks either empty or one per box, equal array lengths, at most kMaxBoxes boxes.
-/// Returns the first problem found (lowest box index for coordinate problems), or nothing.
+/// Returns the problem of the lowest box index (a box's NaN bounds in the order min_x, min_y,
+/// min_z, max_x, max_y, max_z first, then min > max by axis, then a repeated id), or nothing.
 std::optional<ValidationError> validate(const BoxSet& inBoxes);
 
 /// True when boxes a and b overlap on all three axes (closed intervals: touching overlaps).

@@ -46,25 +46,37 @@ struct FrameReport {
   std::size_t boxes = 0;
   std::size_t boxes_filtered_out = 0;  ///< boxes with group 0 or mask 0: never swept
   std::size_t pairs = 0;
+  /// The sweep axes in force: those this frame's sort used, or on a frame without a sort
+  /// those the next sort will use (the configured axes until section 5 swaps one).
   int primary_axis = 0;
   int secondary_axis = 1;
-  double dispersion_primary = 0.0;    ///< D of eq. (1) for the primary-axis sort
-  double dispersion_secondary = 0.0;  ///< D of eq. (1) for the secondary-axis sort
+  double dispersion_primary = 0.0;    ///< D of eq. (1) for this frame's primary-axis sort
+                                      ///< (0: no sort this frame)
+  double dispersion_secondary = 0.0;  ///< D of eq. (1) for this frame's secondary-axis sort
   bool axes_swapped = false;          ///< an axis swap happened after this frame's sort
   int threads = 1;
-  int slabs = 1;                    ///< third-axis slabs used by pairing
+  int slabs = 1;                    ///< third-axis slabs used by this frame's pairing (1: the
+                                    ///< single list, or no sweep this frame)
   std::size_t skin_candidates = 0;  ///< candidate pairs kept by skin reuse
-  std::size_t static_boxes = 0;     ///< boxes answered by a static index (declared or resting)
+  std::size_t static_boxes = 0;     ///< boxes of the static indexes in force: declared scenery,
+                                    ///< and resting boxes indexed this frame
   double skin = 0.0;                ///< skin of the kept candidates used this frame (0: none)
   SkinChoice skin_choice = SkinChoice::kOff;  ///< why that skin
   std::size_t moved_boxes = 0;                ///< boxes whose bounds changed since the last frame
   double max_displacement = 0.0;  ///< largest bound change of one box since the last frame
   FramePath path = FramePath::kEmpty;
+  // Phases, in milliseconds of wall clock. They are disjoint and add up to ms_total (up to the
+  // timers' own cost).
+  double ms_plan = 0.0;        ///< the flow itself: dropping boxes that pair with nothing, the
+                               ///< plan, learning the frame's costs, giving back memory
   double ms_history = 0.0;     ///< comparing with the last frame and remembering this one
-  double ms_keys = 0.0;        ///< float64 -> sortable keys
+  double ms_keys = 0.0;        ///< the sweep's float64 -> sortable keys
   double ms_sort = 0.0;        ///< both axes' radix index sorts (keys excluded)
   double ms_candidates = 0.0;  ///< ranks and candidate ranges on the primary axis
-  double ms_pairing = 0.0;     ///< secondary sweep and exact overlap tests
+  double ms_pairing = 0.0;     ///< secondary sweep and exact overlap tests (the whole work of a
+                               ///< small frame or a brute-force frame)
+  double ms_skin = 0.0;        ///< skin reuse: growing the boxes, keeping the grown sweep's
+                               ///< candidates, testing the kept candidates
   double ms_static = 0.0;      ///< queries of the static indexes (declared and resting boxes)
   double ms_output = 0.0;      ///< ids and canonical pair order
   double ms_total = 0.0;

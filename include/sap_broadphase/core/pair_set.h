@@ -64,6 +64,10 @@ inline IdPair makeIdPair(uint32_t x, uint32_t y) {
   return x < y ? IdPair{x, y} : IdPair{y, x};
 }
 
+/// True when inPairs are in canonical order: a < b in every pair, sorted by (a, b), none twice
+/// (what Broadphase::update() returns).
+bool isCanonical(const PairList& inPairs);
+
 /// Buffers reused by sortPairsCanonical between calls.
 struct PairSortScratch {
   PairList pairs;

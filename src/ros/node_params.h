@@ -7,8 +7,8 @@
 
 #include <ros/node_handle.h>
 
+#include "markers.h"
 #include "sap_broadphase/core/broadphase.h"
-#include "sap_broadphase/ros/markers.h"
 
 namespace sap_broadphase {
 

@@ -15,16 +15,23 @@
 
 namespace sap_broadphase {
 
-/// One input of the world: a topic of ~sources and one publisher (caller id) on it.
+/// One input of the world: a topic of ~sources, one publisher (caller id) on it and the
+/// header.frame_id of its frames. The frame id tells robots apart where the caller id cannot:
+/// `rosbag play` publishes every recorded topic under its own caller id, and the nodelets of
+/// one manager share the manager's.
 struct SourceKey {
   std::string topic;
   std::string publisher;
+  std::string frame_id;
   bool operator<(const SourceKey& inOther) const {
-    return topic != inOther.topic ? topic < inOther.topic : publisher < inOther.publisher;
+    if (topic != inOther.topic) return topic < inOther.topic;
+    if (publisher != inOther.publisher) return publisher < inOther.publisher;
+    return frame_id < inOther.frame_id;
   }
 };
 
-/// "'boxes' from /robot_a": how logs and refusals name a source.
+/// "'boxes' from /robot_a" (and " in 'robot_a/base'" with a frame id): how logs and refusals
+/// name a source.
 std::string sourceName(const SourceKey& inKey);
 
 /// Name of the latched scenery in refusals.

@@ -1,0 +1,118 @@
+#include "core/skin_reuse.h"
+
+#include <algorithm>
+#include <iterator>
+
+#include "core/assert.h"
+#include "core/axis_spread.h"
+#include "core/phase_timer.h"
+
+namespace sap_broadphase {
+namespace {
+
+double smoothed(double inAverage, double inSample) {
+  return inAverage > 0.0 ? inAverage + tuning::kCostSmoothing * (inSample - inAverage) : inSample;
+}
+
+// Mean finite box extent and the span of the finite bounds on each axis (the skin cost
+// model's picture of the frame).
+void measureExtents(const BoxSet& inBoxes, int inThreads, SkinCosts& ioCosts) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
+    ioCosts.mean_extent[axis] = spread.meanExtent();
+    ioCosts.span[axis] = spread.span();
+  }
+}
+
+}  // namespace
+
+void SkinReuse::startFrame(const FrameDelta& inDelta) {
+  times_ = WorkTimes();
+  if (!inDelta.sameIds()) {
+    std::fill(std::begin(recent_motion_), std::end(recent_motion_), 0.0);
+    return;
+  }
+  recent_motion_[motion_slot_] = inDelta.max_displacement;
+  motion_slot_ = (motion_slot_ + 1) % tuning::kMotionWindow;
+}
+
+double SkinReuse::recentMotion() const {
+  return *std::max_element(std::begin(recent_motion_), std::end(recent_motion_));
+}
+
+bool SkinReuse::coversFrame(const BoxSet& inSwept, int inThreads, FrameReport& ioReport) {
+  times_.ms_pass = 0.0;  // the pass that answers the frame starts with this gather
+  PhaseTimer timer(ioReport.ms_skin);
+  PhaseTimer pass_timer(times_.ms_pass);
+  return kept_.gather(inSwept, inThreads);
+}
+
+void SkinReuse::answerFromCandidates(int inThreads, FrameReport& ioReport, PairList& outPairs) {
+  PhaseTimer timer(ioReport.ms_skin);
+  PhaseTimer pass_timer(times_.ms_pass);
+  ioReport.skin_candidates = kept_.candidates();
+  kept_.collectGathered(inThreads, outPairs);
+}
+
+const BoxSet& SkinReuse::grow(const BoxSet& inSwept, double inSkin, int inThreads,
+                              FrameReport& ioReport) {
+  PhaseTimer timer(ioReport.ms_skin);
+  PhaseTimer grow_timer(times_.ms_grow);
+  skin_ = inSkin;
+  return kept_.inflate(inSwept, inSkin, inThreads);
+}
+
+void SkinReuse::keepAndAnswer(const BoxSet& inSwept, int inThreads, FrameReport& ioReport,
+                              PairList& ioPairs) {
+  {
+    PhaseTimer timer(ioReport.ms_skin);
+    PhaseTimer keep_timer(times_.ms_keep);
+    kept_.adopt(inSwept, ioPairs);
+  }
+  // Every box lies inside its own grown box: the pass that answers the frame always runs.
+  const bool covered = coversFrame(inSwept, inThreads, ioReport);
+  SAP_ASSERT(covered, "a box outside the skin it was just grown by");
+  static_cast<void>(covered);
+  answerFromCandidates(inThreads, ioReport, ioPairs);
+}
+
+// A grown sweep's frame holds four kinds of work: growing the boxes, the sweep itself, keeping
+// its candidates and the pass that answers the frame; each is learnt as its own cost
+// (SkinCosts). The sweep's own phases (keys, sorts, candidates, pairing, output) hold only the
+// sweep: the skin's work is in the report's ms_skin.
+void SkinReuse::learn(const FramePlan& inPlan, const BoxSet& inSwept, std::size_t inSweepPairs,
+                      const FrameReport& inReport) {
+  const double boxes = static_cast<double>(inSwept.size());
+  const bool grown_sweep = inPlan.work == FrameWork::kSweep && inPlan.sweep_skin > 0.0;
+  if (inPlan.work == FrameWork::kSweep && inSwept.size() >= tuning::kMinSkinBoxes) {
+    const double candidates = static_cast<double>(grown_sweep ? kept_.candidates() : inSweepPairs);
+    const double ms_sweep_per_box = inReport.ms_keys + inReport.ms_sort + inReport.ms_candidates;
+    const double ms_sweep_per_item = inReport.ms_pairing + inReport.ms_output;
+    costs_.sweep_ns_per_box = ms_sweep_per_box * 1e6 / boxes;
+    costs_.pairing_ns_per_item = ms_sweep_per_item * 1e6 / (boxes + candidates);
+    costs_.reference_boxes = inSwept.size();
+    costs_.reference_candidates = candidates;
+    costs_.reference_skin = inPlan.sweep_skin;
+    measureExtents(inSwept, inPlan.threads, costs_);
+    if (grown_sweep) {
+      costs_.grow_ns_per_box = smoothed(costs_.grow_ns_per_box, times_.ms_grow * 1e6 / boxes);
+      costs_.keep_ns_per_candidate =
+          smoothed(costs_.keep_ns_per_candidate, times_.ms_keep * 1e6 / std::max(1.0, candidates));
+    }
+  }
+  const bool answered_by_pass = inPlan.work == FrameWork::kKeptCandidates || grown_sweep;
+  if (answered_by_pass && kept_.candidates() > 0) learnPassCosts(times_.ms_pass, boxes);
+}
+
+// The whole pass is charged to its candidates and boxes in the proportion of the initial
+// estimates; what matters to the model is the pass's total at this size.
+void SkinReuse::learnPassCosts(double inMilliseconds, double inBoxes) {
+  const double estimate = tuning::kInitialNsPerBox * inBoxes +
+                          tuning::kInitialNsPerCandidate * static_cast<double>(kept_.candidates());
+  const double scale = inMilliseconds * 1e6 / estimate;
+  costs_.pass_ns_per_box = smoothed(costs_.pass_ns_per_box, tuning::kInitialNsPerBox * scale);
+  costs_.pass_ns_per_candidate =
+      smoothed(costs_.pass_ns_per_candidate, tuning::kInitialNsPerCandidate * scale);
+}
+
+}  // namespace sap_broadphase

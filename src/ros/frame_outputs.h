@@ -1,0 +1,43 @@
+// FrameOutputs: what a computed frame publishes besides its stats: `pairs`, `pair_events` (the
+// difference from the previous frame, kept only while someone listens) and `markers` (built
+// only while someone subscribes).
+#pragma once
+
+#include <ros/ros.h>
+#include <std_msgs/Header.h>
+
+#include "markers.h"
+#include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
+
+namespace sap_broadphase {
+
+/// The publishers of a frame's results (worker thread only).
+class FrameOutputs {
+ public:
+  /// Advertises `pairs`, `pair_events` and, with inPublishMarkers, `markers` on ioNode.
+  FrameOutputs(ros::NodeHandle& ioNode, int inPairsQueueSize, bool inPublishMarkers,
+               const MarkerOptions& inMarkers);
+
+  /// Publishes `pairs` and returns the milliseconds spent filling and sending the message.
+  double publishPairs(const PairList& inPairs, const std_msgs::Header& inHeader);
+  /// Publishes what changed since the previous frame, while someone listens.
+  void publishEvents(const PairList& inPairs, const std_msgs::Header& inHeader);
+  /// Publishes the markers of the world and its pairs, while someone listens.
+  MarkerCounts publishMarkers(const BoxSet& inWorld, const PairList& inPairs,
+                              const std_msgs::Header& inHeader);
+  /// Takes marker settings changed at run time: `markers` advertised or shut down.
+  void setMarkers(bool inPublishMarkers, const MarkerOptions& inMarkers);
+
+ private:
+  ros::NodeHandle node_;  // to advertise `markers` when they are switched on at run time
+  ros::Publisher pairs_pub_;
+  ros::Publisher events_pub_;
+  ros::Publisher markers_pub_;
+  bool publish_markers_;
+  MarkerOptions markers_;
+  PairList previous_pairs_;  // for pair_events, kept while someone listens
+  bool previous_pairs_valid_ = false;
+};
+
+}  // namespace sap_broadphase

@@ -1,0 +1,198 @@
+// FrameWorker: the worker thread, its engine and the world of a frame.
+#include "frame_worker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <utility>
+
+namespace sap_broadphase {
+
+namespace {
+
+/// How often (in ROS time) the worker wakes without deliveries: source time-outs, frames
+/// waiting for tf, /diagnostics.
+constexpr double kHousekeepingSeconds = 0.25;
+/// Under use_sim_time ROS time moves with /clock, which wakes no condition variable: the
+/// worker looks at the clock again after at most this many wall seconds.
+constexpr double kSimTimePollSeconds = 0.005;
+
+double millisecondsSince(std::chrono::steady_clock::time_point inStart) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - inStart)
+      .count();
+}
+
+}  // namespace
+
+FrameWorker::FrameWorker(const NodeParams& inParams, SourceIngest& ioIngest,
+                         FrameOutputs& ioOutputs, NodeStatus& ioStatus)
+    : params_(inParams),
+      ingest_(ioIngest),
+      outputs_(ioOutputs),
+      status_(ioStatus),
+      engine_(inParams.engine),
+      thread_(&FrameWorker::run, this) {}
+
+FrameWorker::~FrameWorker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void FrameWorker::wake() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    woken_ = true;
+  }
+  wake_.notify_one();
+}
+
+void FrameWorker::reconfigure(const NodeParams& inSettings) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_settings_ = inSettings;
+    woken_ = true;
+  }
+  wake_.notify_one();
+}
+
+bool FrameWorker::waitUntil(const ros::Time& inDeadline) {
+  // With a fixed ~rate, deliveries wait for the tick; only settings and stopping do not.
+  const bool fixed_rate = params_.rate > 0.0;
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    if (stopping_) return false;
+    if (woken_ && (!fixed_rate || pending_settings_)) break;
+    const ros::Time now = ros::Time::now();
+    if (now >= inDeadline) break;
+    double seconds = (inDeadline - now).toSec();
+    if (ros::Time::isSimTime()) seconds = std::min(seconds, kSimTimePollSeconds);
+    wake_.wait_for(lock, std::chrono::duration<double>(seconds));
+  }
+  if (!fixed_rate || pending_settings_) woken_ = false;
+  return true;
+}
+
+void FrameWorker::run() {
+  const bool fixed_rate = params_.rate > 0.0;
+  const ros::Duration period(fixed_rate ? 1.0 / params_.rate : kHousekeepingSeconds);
+  ros::Time next_tick = ros::Time::now() + period;
+  for (;;) {
+    if (!waitUntil(next_tick)) return;
+    std::optional<NodeParams> settings;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      std::swap(settings, pending_settings_);
+    }
+    // Between two frames, before this batch: every frame delivered after a reconfigure is
+    // computed with the new settings.
+    if (settings) applySettings(*settings);
+
+    const ros::Time now = ros::Time::now();
+    if (now + period < next_tick) next_tick = now + period;  // the clock went back (a bag loop)
+    const bool tick = now >= next_tick;
+    // A late tick (a slow frame, or /clock jumping ahead) is not made up for: the next one
+    // is a period from now.
+    if (tick) next_tick = std::max(next_tick + period, now + period);
+    if (fixed_rate && !tick) continue;  // woken for settings only
+
+    const bool scenery_changed = takeScenery();
+    const bool sources_changed = takeDeliveries();
+    expireSources();
+    if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
+      computeFrame();
+    status_.updateDiagnostics();
+  }
+}
+
+void FrameWorker::applySettings(const NodeParams& inSettings) {
+  const bool new_engine = !sameEngineConfig(inSettings.engine, params_.engine);
+  if (new_engine) {
+    // The engine takes its configuration once, at construction; the new one starts without
+    // temporal state (partition bounds, kept candidates, the last frame) and must be told
+    // the scenery again.
+    engine_ = Broadphase(inSettings.engine);
+    if (static_boxes_.size() > 0) engine_.setStaticBoxes(static_boxes_);
+    status_.setEngineConfig(inSettings.engine);
+  }
+  outputs_.setMarkers(inSettings.publish_markers, inSettings.markers);
+  params_.engine = inSettings.engine;
+  params_.publish_markers = inSettings.publish_markers;
+  params_.markers = inSettings.markers;
+  ROS_INFO("sap_broadphase: reconfigured%s: %s", new_engine ? " (new engine)" : "",
+           describeNodeParams(params_).c_str());
+}
+
+bool FrameWorker::takeScenery() {
+  BoxArrayConstPtr scenery_msg;
+  ingest_.take(deliveries_, scenery_msg);
+  if (!scenery_msg) return false;
+  BoxSet scenery;
+  if (!ingest_.convertScenery(*scenery_msg, scenery)) return false;
+  static_ids_ = scenery.ids;
+  std::sort(static_ids_.begin(), static_ids_.end());
+  static_ids_.shrink_to_fit();
+  static_frame_ =
+      ingest_.fixedFrame().empty() ? scenery_msg->header.frame_id : ingest_.fixedFrame();
+  if (scenery.size() == 0) static_frame_.clear();  // no scenery: no frame to agree with
+  engine_.setStaticBoxes(scenery);
+  status_.setStaticBoxes(scenery.size());
+  ROS_INFO("sap_broadphase: static_boxes: %zu boxes indexed (frame '%s')", scenery.size(),
+           scenery_msg->header.frame_id.c_str());
+  static_boxes_ = std::move(scenery);
+  return true;
+}
+
+bool FrameWorker::takeDeliveries() {
+  bool changed = false;
+  for (auto& [key, delivery] : deliveries_) {
+    if (!ingest_.convert(key, *delivery.msg, converted_)) continue;
+    std_msgs::Header header = delivery.msg->header;
+    if (!ingest_.fixedFrame().empty()) header.frame_id = ingest_.fixedFrame();  // moved there
+    sources_.store(key, converted_, header, delivery.received);
+    status_.countProcessed();
+    changed = true;
+  }
+  deliveries_.clear();
+  if (converted_watch_.shouldShrink(converted_.size(), converted_.ids.capacity()))
+    shrinkBoxSet(converted_);
+  return changed;
+}
+
+void FrameWorker::expireSources() {
+  for (const std::string& name : sources_.expire(ros::Time::now(), params_.source_timeout)) {
+    status_.timeOut(name + " silent for more than ~source_timeout (" +
+                    std::to_string(params_.source_timeout) + " s): dropped out");
+  }
+}
+
+void FrameWorker::computeFrame() {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string& fixed_frame = ingest_.fixedFrame();
+  WorldAssembly assembly;
+  const BoxSet& world = sources_.assemble(
+      static_ids_, fixed_frame.empty() ? static_frame_ : fixed_frame, world_, assembly);
+  if (!fixed_frame.empty()) assembly.header.frame_id = fixed_frame;
+  for (const std::string& refusal : assembly.refusals)
+    status_.refuse(assembly.header, world.size(), refusal);
+  if (world_watch_.shouldShrink(world_.size(), world_.ids.capacity())) shrinkBoxSet(world_);
+  if (assembly.sources_merged == 0) return;
+
+  FrameAccount frame;
+  frame.header = assembly.header;
+  frame.boxes = world.size();
+  frame.sources = assembly.sources_merged;
+  frame.ms_conversion = millisecondsSince(start);
+  const PairList& pairs = engine_.update(world);
+  frame.ms_message = outputs_.publishPairs(pairs, assembly.header);
+  frame.ms_total = millisecondsSince(start);
+  outputs_.publishEvents(pairs, assembly.header);
+  const MarkerCounts markers = outputs_.publishMarkers(world, pairs, assembly.header);
+  frame.marker_boxes = markers.drawn;
+  frame.marker_boxes_omitted = markers.colliding_omitted;
+  status_.frameComputed(frame, engine_.stats());
+}
+
+}  // namespace sap_broadphase

@@ -1,0 +1,84 @@
+// FrameWorker: the thread that turns the sources' latest frames into frames of the world. It
+// waits for deliveries (or the next ~rate tick, in ROS time), takes them into the world,
+// computes with its engine against the latched scenery, and publishes; between frames it takes
+// reconfigured settings into force, expires silent sources and reports diagnostics.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <ros/ros.h>
+
+#include "frame_outputs.h"
+#include "node_params.h"
+#include "node_status.h"
+#include "sap_broadphase/BoxArray.h"
+#include "sap_broadphase/core/broadphase.h"
+#include "source_ingest.h"
+#include "sources.h"
+
+namespace sap_broadphase {
+
+class FrameWorker {
+ public:
+  /// Starts the thread; ioIngest, ioOutputs and ioStatus must outlive the worker.
+  FrameWorker(const NodeParams& inParams, SourceIngest& ioIngest, FrameOutputs& ioOutputs,
+              NodeStatus& ioStatus);
+  /// Stops the thread (a frame in progress is finished first).
+  ~FrameWorker();
+  FrameWorker(const FrameWorker&) = delete;
+  FrameWorker& operator=(const FrameWorker&) = delete;
+
+  /// Something arrived: the worker looks at the ingest again (any thread).
+  void wake();
+  /// Reconfigured settings, taken into force before the next frame (any thread).
+  void reconfigure(const NodeParams& inSettings);
+
+ private:
+  /// Waits for work, takes it in, computes; until the destructor says stop.
+  void run();
+  /// Waits until woken or inDeadline (ROS time). False when the worker must stop.
+  bool waitUntil(const ros::Time& inDeadline);
+  /// A new engine (scenery declared again) when the engine settings changed; markers.
+  void applySettings(const NodeParams& inSettings);
+  /// Takes the deliveries into the sources. True when the world changed.
+  bool takeDeliveries();
+  /// Replaces the engine's scenery once tf2 can place it. True when the world changed.
+  bool takeScenery();
+  /// Drops silent sources, counts and logs each once.
+  void expireSources();
+  /// Merges the sources, computes and publishes one frame.
+  void computeFrame();
+
+  NodeParams params_;  // the settings in force (worker thread only)
+  SourceIngest& ingest_;
+  FrameOutputs& outputs_;
+  NodeStatus& status_;
+
+  std::mutex mutex_;  // guards the hand-off below
+  std::condition_variable wake_;
+  bool woken_ = false;
+  bool stopping_ = false;
+  std::optional<NodeParams> pending_settings_;
+
+  Broadphase engine_;
+  SourceSet sources_;
+  std::map<SourceKey, Delivery> deliveries_;
+  BoxArrayConstPtr scenery_msg_;      // the scenery waiting for its transform, if any
+  BoxSet static_boxes_;               // the scenery, declared again to a rebuilt engine
+  std::vector<uint32_t> static_ids_;  // sorted ids of the scenery, for the id check
+  std::string static_frame_;          // frame of the scenery without ~fixed_frame
+  BoxSet converted_;                  // conversion buffer, swapped into the sources
+  CapacityWatch converted_watch_;
+  BoxSet world_;  // union of the sources when there are several
+  CapacityWatch world_watch_;
+  std::thread thread_;
+};
+
+}  // namespace sap_broadphase

@@ -1,0 +1,88 @@
+// NodeStatus: what the node has done since start-up, told three ways: the `stats` topic (one
+// message per computed or refused frame), /diagnostics (rates and warnings since the last
+// report) and the log (refusals, skips, time-outs). Every thread of the node reports here.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+#include <std_msgs/Header.h>
+
+#include "sap_broadphase/FrameStats.h"
+#include "sap_broadphase/core/broadphase.h"
+
+namespace sap_broadphase {
+
+/// Times and counts of one computed frame that only the worker knows.
+struct FrameAccount {
+  std_msgs::Header header;
+  std::size_t boxes = 0;
+  std::size_t sources = 0;
+  double ms_conversion = 0.0;  ///< merging the sources into the world
+  double ms_message = 0.0;     ///< filling and publishing `pairs`
+  double ms_total = 0.0;       ///< from the merge to `pairs` published
+  uint32_t marker_boxes = 0;
+  uint32_t marker_boxes_omitted = 0;
+};
+
+/// Thread-safe counters of the node, published as `stats` and /diagnostics.
+class NodeStatus {
+ public:
+  /// Advertises `stats` on ioNode; /diagnostics is named after inPrivate's namespace.
+  NodeStatus(ros::NodeHandle& ioNode, const ros::NodeHandle& inPrivate,
+             const BroadphaseConfig& inEngine, int inLogPeriod);
+
+  void countReceived();
+  /// A source frame replaced by a newer one of the same source before the worker took it.
+  void countDropped();
+  void countProcessed();
+  void setStaticBoxes(std::size_t inBoxes);
+  /// The engine settings in force (axes and threads in every stats message).
+  void setEngineConfig(const BroadphaseConfig& inEngine);
+  /// Counts and logs a refused frame or source and publishes stats for it (any thread).
+  void refuse(const std_msgs::Header& inHeader, std::size_t inBoxes, const std::string& inReason);
+  /// Counts and logs a source frame that found no transform (any thread).
+  void skip(const std::string& inMessage);
+  /// Counts and logs a source gone silent (worker thread).
+  void timeOut(const std::string& inMessage);
+  /// Counts a computed frame and publishes its stats with the engine's report.
+  void frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine);
+  /// Publishes /diagnostics when its period has passed (worker thread).
+  void updateDiagnostics() { diagnostics_.update(); }
+
+ private:
+  struct Counters {
+    uint64_t received = 0;       // source frames received
+    uint64_t processed = 0;      // source frames taken into the world
+    uint64_t dropped = 0;        // source frames replaced before the worker took them
+    uint64_t refused = 0;        // invalid frames, and sources left out of a frame
+    uint64_t skipped = 0;        // source frames without a transform into ~fixed_frame
+    uint64_t timed_out = 0;      // sources dropped after ~source_timeout of silence
+    uint64_t computed = 0;       // frames computed
+    std::string last_refusal;    // why the last frame or source was refused
+    std::string last_error;      // the last refusal, skip or time-out, for /diagnostics
+    uint32_t live_sources = 0;   // sources of the last computed frame's world
+    uint32_t static_boxes = 0;   // boxes of the scenery in force
+    double last_ms_total = 0.0;  // latency of the last computed frame
+    double max_ms_total = 0.0;   // largest latency since the last diagnostics report
+  };
+  /// Stats of the counters as they are now (called with mutex_ held).
+  FrameStats makeStats(const std_msgs::Header& inHeader, std::size_t inBoxes) const;
+  /// The /diagnostics status: rate, latency, drops, refusals, skips, time-outs, last error.
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus);
+
+  ros::Publisher stats_pub_;
+  int log_period_;
+  std::mutex mutex_;
+  Counters counters_;
+  BroadphaseConfig engine_;  // settings in force: axes and threads of every stats message
+  Counters reported_;        // counters at the last /diagnostics report
+  ros::Time reported_at_;    // ROS time: the frame rate follows /clock under use_sim_time
+  diagnostic_updater::Updater diagnostics_;
+};
+
+}  // namespace sap_broadphase

@@ -1,0 +1,56 @@
+// PairsService: compute_pairs on its own thread and engine.
+#include "pairs_service.h"
+
+#include <utility>
+
+#include "sap_broadphase/ros/conversions.h"
+
+namespace sap_broadphase {
+
+PairsService::PairsService(ros::NodeHandle& ioNode, const BroadphaseConfig& inEngine,
+                           int inLogPeriod)
+    : log_period_(inLogPeriod), engine_(inEngine) {
+  ros::AdvertiseServiceOptions options;
+  options.init<ComputePairs::Request, ComputePairs::Response>(
+      ioNode.resolveName("compute_pairs"),
+      [this](ComputePairs::Request& inRequest, ComputePairs::Response& outResponse) {
+        return onComputePairs(inRequest, outResponse);
+      });
+  options.callback_queue = &queue_;
+  service_ = ioNode.advertiseService(options);
+  spinner_.emplace(1, &queue_);
+  spinner_->start();
+}
+
+PairsService::~PairsService() {
+  spinner_->stop();
+  service_.shutdown();
+}
+
+void PairsService::reconfigure(const BroadphaseConfig& inEngine) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  pending_config_ = inEngine;
+}
+
+bool PairsService::onComputePairs(ComputePairs::Request& inRequest,
+                                  ComputePairs::Response& outResponse) {
+  std::optional<BroadphaseConfig> config;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::swap(config, pending_config_);
+  }
+  if (config) engine_ = Broadphase(*config);
+  outResponse.pairs.header = inRequest.boxes.header;
+  if (auto reason = boxArrayToBoxSet(inRequest.boxes, boxes_)) {
+    ROS_ERROR_THROTTLE(log_period_, "compute_pairs refused: %s", reason->c_str());
+    outResponse.success = false;
+    outResponse.message = *reason;
+    return true;  // the call itself succeeded; the answer says why the boxes were refused
+  }
+  pairListToPairArray(engine_.update(boxes_), inRequest.boxes.header, outResponse.pairs);
+  outResponse.success = true;
+  if (watch_.shouldShrink(boxes_.size(), boxes_.ids.capacity())) shrinkBoxSet(boxes_);
+  return true;
+}
+
+}  // namespace sap_broadphase

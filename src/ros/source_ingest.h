@@ -1,0 +1,102 @@
+// SourceIngest: the node's inputs. Subscribes to every topic of ~sources and to static_boxes,
+// keeps the latest frame of each source until the worker takes it, and places frames in
+// ~fixed_frame with tf2. A frame whose transform has not arrived yet waits aside (the latest
+// of its source, as a tf2_ros::MessageFilter with a queue of one per source would keep it)
+// until tf2 can place it or ~transform_timeout passes, so a late source never holds up the
+// others.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "node_params.h"
+#include "node_status.h"
+#include "sap_broadphase/BoxArray.h"
+#include "sap_broadphase/core/box_set.h"
+#include "sources.h"
+
+namespace sap_broadphase {
+
+/// A source frame waiting for the worker: the latest of its source wins.
+struct Delivery {
+  BoxArrayConstPtr msg;
+  ros::Time received;  ///< ROS time of arrival: source time-outs follow /clock under sim time
+};
+
+class SourceIngest {
+ public:
+  /// Called after a frame or a scenery arrived (any thread), to wake the worker.
+  using Wake = std::function<void()>;
+
+  /// Subscribes on ioNode (callbacks on its queue) and, with a ~fixed_frame, listens to tf.
+  SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams, NodeStatus& ioStatus,
+               Wake inWake);
+  /// Calls stop().
+  ~SourceIngest();
+  /// Unsubscribes and stops listening to tf: no callback, and so no wake, after it returns.
+  void stop();
+  SourceIngest(const SourceIngest&) = delete;
+  SourceIngest& operator=(const SourceIngest&) = delete;
+
+  /// Hands a BoxArray of source topic inTopic to the worker: the shape is checked, the frame
+  /// waits for its transform (with a ~fixed_frame), then replaces any frame of its source the
+  /// worker has not taken yet. Subscriptions of other input types call this with the BoxArray
+  /// they built and the connection header of the message they received.
+  void deliver(const std::string& inTopic, const ros::MessageEvent<BoxArray const>& inEvent);
+
+  /// Moves the frames ready for the worker (latest per source, transformable) into
+  /// outDeliveries (replaced) and the newest scenery, once tf2 can place it, into ioScenery.
+  /// Frames still waiting for their transform stay, or are skipped after ~transform_timeout;
+  /// a scenery waits as long as it takes (it is latched: nothing replaces it).
+  void take(std::map<SourceKey, Delivery>& outDeliveries, BoxArrayConstPtr& ioScenery);
+
+  /// Converts and validates a source frame into outBoxes, moved into ~fixed_frame with the
+  /// transform at its stamp. False, with the refusal or skip counted, when it cannot join.
+  bool convert(const SourceKey& inKey, const BoxArray& inMsg, BoxSet& outBoxes);
+  /// The same for the latched scenery, placed with the latest transform: scenery stays put, and
+  /// a latched message may be older than tf2's cache.
+  bool convertScenery(const BoxArray& inMsg, BoxSet& outBoxes);
+
+  /// The frame every source is moved into, or empty without a ~fixed_frame.
+  const std::string& fixedFrame() const { return fixed_frame_; }
+
+ private:
+  /// Keeps a checked frame for the worker, or aside while its transform is missing.
+  void store(const SourceKey& inKey, const Delivery& inDelivery);
+  /// Moves the waiting frames that tf2 can now place to pending_, skips those that waited too
+  /// long (called with mutex_ held).
+  void releaseWaiting(const ros::Time& inNow);
+  /// True when tf2 can move frame inFrame into the fixed frame at inStamp now (no waiting).
+  bool transformable(const std::string& inFrame, const ros::Time& inStamp) const;
+  /// Moves ioBoxes from inFrame into the fixed frame at inStamp (time 0: latest). False, with
+  /// outError, when tf2 has no such transform.
+  bool moveIntoFixedFrame(const std::string& inFrame, const ros::Time& inStamp, BoxSet& ioBoxes,
+                          std::string& outError);
+
+  NodeStatus& status_;
+  Wake wake_;
+  std::string fixed_frame_;
+  double transform_timeout_;
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  boost::signals2::connection tf_changed_;  // wakes the worker while frames wait for tf
+  std::vector<ros::Subscriber> subscribers_;
+
+  std::mutex mutex_;                       // guards what the worker takes
+  std::map<SourceKey, Delivery> pending_;  // ready for the worker
+  std::map<SourceKey, Delivery> waiting_;  // waiting for their transform
+  std::atomic<bool> any_waiting_{false};
+  BoxArrayConstPtr pending_scenery_;  // until tf2 can place it
+  bool scenery_wait_logged_ = false;
+};
+
+}  // namespace sap_broadphase
