@@ -11,7 +11,7 @@
 #include <ros/serialization.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include "sap_broadphase/ros/sources.h"
+#include "sources.h"
 // kVisionBoundingBox3DArrayDefinition, ...: src/ros/adapters_msgs/*.msg, embedded by CMake.
 #include "sap_broadphase_adapters_msgs.h"
 

@@ -24,7 +24,7 @@
 
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/core/box_set.h"
-#include "sap_broadphase/ros/source_spec.h"
+#include "source_spec.h"
 
 namespace sap_broadphase {
 
