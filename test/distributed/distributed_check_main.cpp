@@ -295,16 +295,31 @@ std::string compare(const PairList& inExpected, const PairList& inGot) {
   return text;
 }
 
+/// A scenario's frames and the oracle's pairs of each, made once for all its runs.
+struct ScenarioFrames {
+  std::vector<BoxSet> frames;
+  std::vector<PairList> expected;
+};
+
+ScenarioFrames makeFrames(const Scenario& inScenario) {
+  ScenarioFrames made;
+  for (int frame = 0; frame < inScenario.frames; ++frame) {
+    made.frames.push_back(inScenario.frame(frame));
+    made.expected.push_back(oraclePairs(made.frames.back()));
+  }
+  return made;
+}
+
 /// Runs one scenario under one distribution and configuration; returns this rank's failures.
-int checkScenario(const Scenario& inScenario, Distribution inRule,
+int checkScenario(const Scenario& inScenario, const ScenarioFrames& inFrames, Distribution inRule,
                   const DistributedConfig& inConfig, const std::string& inConfigName, int inRank,
                   int inRanks) {
   DistributedBroadphase broadphase(MPI_COMM_WORLD, inConfig);
   int failures = 0;
   for (int frame = 0; frame < inScenario.frames; ++frame) {
-    const BoxSet all = inScenario.frame(frame);
+    const BoxSet& all = inFrames.frames[frame];
     const BoxSet mine = myShare(all, inRule, inRank, inRanks);
-    const PairList expected = oraclePairs(all);
+    const PairList& expected = inFrames.expected[frame];
     // Alternate the deliveries, so that both see moving frames.
     const bool gather = frame % 2 == 1;
     const PairList got = broadphase.update(
@@ -361,13 +376,14 @@ int main(int argc, char** argv) {
   int failures = 0;
   int runs = 0;
   for (const Scenario& scenario : scenarios()) {
+    const ScenarioFrames frames = makeFrames(scenario);
     for (const NamedConfig& named : configs) {
       for (Distribution rule : rules) {
         // Every distribution on the plain configuration; the others on two of them.
         if (named.name != "count-balanced" && rule != Distribution::kRoundRobin &&
             rule != Distribution::kSpatial)
           continue;
-        failures += checkScenario(scenario, rule, named.config, named.name, rank, ranks);
+        failures += checkScenario(scenario, frames, rule, named.config, named.name, rank, ranks);
         ++runs;
       }
     }
