@@ -23,6 +23,12 @@ set -e
 echo "$summary" | tail -n 40
 read -r total failed skipped < <(python3 "$ROOT/scripts/junit_summary.py" "$WS/build/test_results")
 if [ "$total" -eq 0 ]; then echo "no test ran"; exit 1; fi
+# The count and catkin_test_results (the exit status) must agree: a failure the count missed
+# (a result file it could not read as a failure) is still one.
+if [ "$status" -ne 0 ] && [ "$failed" -eq 0 ]; then
+  echo "catkin_test_results reports a failure that the count missed, see its output above"
+  failed=1
+fi
 echo "tests (catkin): $((total - failed - skipped)) passed, $failed failed, $skipped skipped"
 
 # The same engine, CLI tools, benchmarks and ROS-free tests with plain CMake, no catkin.
@@ -42,4 +48,5 @@ total=$((total + no_ros_total))
 failed=$((failed + no_ros_failed))
 skipped=$((skipped + no_ros_skipped))
 echo "tests: $((total - failed - skipped)) passed, $failed failed, $skipped skipped"
-[ "$status" -eq 0 ] && [ "$no_ros_status" -eq 0 ]
+# The last line and the exit status say the same: non-zero exactly when a failure is counted.
+[ "$failed" -eq 0 ] && [ "$status" -eq 0 ] && [ "$no_ros_status" -eq 0 ]

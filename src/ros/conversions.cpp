@@ -2,6 +2,8 @@
 #include "sap_broadphase/ros/conversions.h"
 
 #include <cstddef>
+#include <cstring>
+#include <type_traits>
 
 namespace sap_broadphase {
 
@@ -80,12 +82,14 @@ std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBo
 void pairListToPairArray(const PairList& inPairs, const std_msgs::Header& inHeader,
                          PairArray& outMsg) {
   outMsg.header = inHeader;
+  // IdPair is two uint32 (a, b) without padding, the message's layout: one block copy of the
+  // engine's buffer (millions of pairs at 2^20 boxes).
+  static_assert(sizeof(IdPair) == 2 * sizeof(uint32_t) && std::is_standard_layout_v<IdPair> &&
+                    offsetof(IdPair, a) == 0 && offsetof(IdPair, b) == sizeof(uint32_t),
+                "IdPair must be laid out as two consecutive uint32");
   outMsg.pairs.resize(2 * inPairs.size());
-  uint32_t* out = outMsg.pairs.data();
-  for (const IdPair& pair : inPairs) {
-    *out++ = pair.a;
-    *out++ = pair.b;
-  }
+  if (!inPairs.empty())
+    std::memcpy(outMsg.pairs.data(), inPairs.data(), inPairs.size() * sizeof(IdPair));
 }
 
 void boxSetToBoxArray(const BoxSet& inBoxes, const std_msgs::Header& inHeader, BoxArray& outMsg) {

@@ -108,7 +108,7 @@ void FrameWorker::run() {
 }
 
 void FrameWorker::applySettings(const NodeParams& inSettings) {
-  const bool new_engine = !sameEngineConfig(inSettings.engine, params_.engine);
+  const bool new_engine = !sameConfig(inSettings.engine, params_.engine);
   if (new_engine) {
     // The engine takes its configuration once, at construction; the new one starts without
     // temporal state (partition bounds, kept candidates, the last frame) and must be told
@@ -156,15 +156,23 @@ bool FrameWorker::takeDeliveries() {
     changed = true;
   }
   deliveries_.clear();
-  if (converted_watch_.shouldShrink(converted_.size(), converted_.ids.capacity()))
+  if (converted_watch_.shouldGiveBack(converted_.size(), converted_.ids.capacity()))
     shrinkBoxSet(converted_);
   return changed;
 }
 
 void FrameWorker::expireSources() {
-  for (const std::string& name : sources_.expire(ros::Time::now(), params_.source_timeout)) {
-    status_.timeOut(name + " silent for more than ~source_timeout (" +
-                    std::to_string(params_.source_timeout) + " s): dropped out");
+  // A ~sources entry's own timeout, else ~source_timeout.
+  const auto timeout_of = [this](const SourceKey& inKey) {
+    for (const SourceSpec& spec : params_.sources)
+      if (spec.topic == inKey.topic && spec.timeout) return *spec.timeout;
+    return params_.source_timeout;
+  };
+  for (const SourceKey& key : sources_.expire(ros::Time::now(), timeout_of)) {
+    const bool own = timeout_of(key) != params_.source_timeout;
+    status_.timeOut(sourceName(key) + " silent for more than " +
+                    (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +
+                    std::to_string(timeout_of(key)) + " s): dropped out");
   }
 }
 
@@ -177,7 +185,7 @@ void FrameWorker::computeFrame() {
   if (!fixed_frame.empty()) assembly.header.frame_id = fixed_frame;
   for (const std::string& refusal : assembly.refusals)
     status_.refuse(assembly.header, world.size(), refusal);
-  if (world_watch_.shouldShrink(world_.size(), world_.ids.capacity())) shrinkBoxSet(world_);
+  if (world_watch_.shouldGiveBack(world_.size(), world_.ids.capacity())) shrinkBoxSet(world_);
   if (assembly.sources_merged == 0) return;
 
   FrameAccount frame;

@@ -75,9 +75,9 @@ class FrameWorker {
   std::vector<uint32_t> static_ids_;  // sorted ids of the scenery, for the id check
   std::string static_frame_;          // frame of the scenery without ~fixed_frame
   BoxSet converted_;                  // conversion buffer, swapped into the sources
-  CapacityWatch converted_watch_;
+  GiveBackWatch converted_watch_;
   BoxSet world_;  // union of the sources when there are several
-  CapacityWatch world_watch_;
+  GiveBackWatch world_watch_;
   std::thread thread_;
 };
 

@@ -8,7 +8,8 @@
 #include <ros/node_handle.h>
 
 #include "markers.h"
-#include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/config.h"
+#include "source_spec.h"
 
 namespace sap_broadphase {
 
@@ -22,7 +23,9 @@ struct NodeParams {
   int boxes_queue_size = 10;    ///< ~boxes_queue_size: subscriber queue of each source topic
   int pairs_queue_size = 10;    ///< ~pairs_queue_size: publisher queue of `pairs`
   int refusal_log_period = 1;   ///< ~refusal_log_period: seconds between refusal errors
-  std::vector<std::string> sources{"boxes"};  ///< ~sources: BoxArray topics merged into a world
+  /// ~sources: topics (BoxArray) and {topic, type, id_offset, group, mask, timeout} entries
+  /// whose publishers make up the world
+  std::vector<SourceSpec> sources{SourceSpec{"boxes", InputType::kBoxArray, 0, {}, {}, {}}};
   double source_timeout = 1.0;     ///< ~source_timeout: seconds of silence before a source drops
                                    ///< out; 0 = never
   double rate = 0.0;               ///< ~rate: Hz of fixed-rate frames; 0 = a frame per delivery
@@ -30,33 +33,23 @@ struct NodeParams {
   double transform_timeout = 0.1;  ///< ~transform_timeout: seconds to wait for a transform
 };
 
-/// Parses an axis given as "x", "y", "z" (any case) or "0", "1", "2". False on anything else.
-bool parseAxisName(const std::string& inName, int& outAxis);
-
-/// Parses a skin given as text: "auto" or "" (automatic), "off" (0) or a number (0 = off,
-/// > 0 = fixed; configProblem() judges its range). False when the text is none of these.
-bool parseSkin(const std::string& inText, std::optional<double>& outSkin);
-
-/// The skin as parseSkin() reads it back: "auto", "off" or the shortest exact number.
-std::string skinText(const std::optional<double>& inSkin);
-
-/// Reads the private parameters of inPrivate over the defaults of NodeParams. Returns the
-/// problem (unknown axis or method, equal axes, negative counts, no sources) or an empty string.
+/// Reads the private parameters of inPrivate over the defaults of NodeParams: the engine's
+/// fields by walking the core's table (configFields(): one parameter per field, same name),
+/// then the node's own. Returns the problem (a value of the wrong kind or out of range, equal
+/// axes, no sources) or an empty string.
 std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams);
 
-/// One line of the parameters in force (threads, method, thresholds, skin, markers, sources,
+/// One line of the parameters in force (every engine field from the table, markers, sources,
 /// frames), logged at start-up and after every accepted reconfigure.
 std::string describeNodeParams(const NodeParams& inParams);
 
-/// The run-time settings of inParams (engine and markers) as a dynamic_reconfigure config.
+/// The run-time settings of inParams (engine and markers) as a dynamic_reconfigure config; the
+/// engine's fields by name through the table (cfg/BroadphaseNode.cfg names them alike).
 void toReconfigureConfig(const NodeParams& inParams, BroadphaseNodeConfig& outConfig);
 
 /// Takes the run-time settings of inConfig into ioParams, checked as at start-up (axes, method,
 /// skin, configProblem()). Returns the problem, with ioParams unchanged, or an empty string.
 std::string fromReconfigureConfig(const BroadphaseNodeConfig& inConfig, NodeParams& ioParams);
-
-/// True when both configurations build the same engine.
-bool sameEngineConfig(const BroadphaseConfig& inA, const BroadphaseConfig& inB);
 
 /// True when both parameter sets draw the same markers (publish_markers and MarkerOptions'
 /// settings that the node reads from parameters).

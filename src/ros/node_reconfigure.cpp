@@ -41,7 +41,7 @@ void NodeReconfigure::onReconfigure(BroadphaseNodeConfig& ioConfig, uint32_t /*i
   // Written back as the node reads them ("Z" -> "z", "0" -> "off"), so clients see the
   // settings in force.
   toReconfigureConfig(settings, ioConfig);
-  const bool new_engine = !sameEngineConfig(settings.engine, accepted_.engine);
+  const bool new_engine = !sameConfig(settings.engine, accepted_.engine);
   if (!new_engine && sameMarkerSettings(settings, accepted_)) return;
   accepted_ = settings;
   apply_(settings, new_engine);

@@ -49,7 +49,7 @@ bool PairsService::onComputePairs(ComputePairs::Request& inRequest,
   }
   pairListToPairArray(engine_.update(boxes_), inRequest.boxes.header, outResponse.pairs);
   outResponse.success = true;
-  if (watch_.shouldShrink(boxes_.size(), boxes_.ids.capacity())) shrinkBoxSet(boxes_);
+  if (watch_.shouldGiveBack(boxes_.size(), boxes_.ids.capacity())) shrinkBoxSet(boxes_);
   return true;
 }
 

@@ -37,7 +37,7 @@ class PairsService {
   std::optional<ros::AsyncSpinner> spinner_;
   Broadphase engine_;  // used only by the service thread
   BoxSet boxes_;       // its conversion buffer
-  CapacityWatch watch_;
+  GiveBackWatch watch_;
   std::mutex mutex_;                                // guards pending_config_
   std::optional<BroadphaseConfig> pending_config_;  // for the service thread
 };

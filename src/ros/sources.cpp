@@ -106,16 +106,6 @@ void shrinkBoxSet(BoxSet& ioBoxes) {
   ioBoxes.masks.shrink_to_fit();
 }
 
-bool CapacityWatch::shouldShrink(std::size_t inUsed, std::size_t inCapacity) {
-  if (inCapacity <= kMinCapacity || inCapacity <= 4 * inUsed) {
-    frames_small_ = 0;
-    return false;
-  }
-  if (++frames_small_ < kPatience) return false;
-  frames_small_ = 0;
-  return true;
-}
-
 void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::Header& inHeader,
                       const ros::Time& inReceived) {
   auto [it, joined] = sources_.try_emplace(inKey);
@@ -125,18 +115,26 @@ void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::H
   source.header = inHeader;
   source.received = inReceived;
   source.sorted_ids.clear();
-  if (source.watch.shouldShrink(source.boxes.size(), source.boxes.ids.capacity())) {
+  if (source.watch.shouldGiveBack(source.boxes.size(), source.boxes.ids.capacity())) {
     shrinkBoxSet(source.boxes);
     source.sorted_ids.shrink_to_fit();
   }
 }
 
 std::vector<std::string> SourceSet::expire(const ros::Time& inNow, double inTimeout) {
-  std::vector<std::string> expired;
-  if (inTimeout <= 0.0) return expired;
+  std::vector<std::string> names;
+  for (const SourceKey& key : expire(inNow, [inTimeout](const SourceKey&) { return inTimeout; }))
+    names.push_back(sourceName(key));
+  return names;
+}
+
+std::vector<SourceKey> SourceSet::expire(
+    const ros::Time& inNow, const std::function<double(const SourceKey&)>& inTimeoutOf) {
+  std::vector<SourceKey> expired;
   for (auto it = sources_.begin(); it != sources_.end();) {
-    if ((inNow - it->second.received).toSec() > inTimeout) {
-      expired.push_back(sourceName(it->first));
+    const double timeout = inTimeoutOf(it->first);
+    if (timeout > 0.0 && (inNow - it->second.received).toSec() > timeout) {
+      expired.push_back(it->first);
       it = sources_.erase(it);
     } else {
       ++it;

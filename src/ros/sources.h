@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <std_msgs/Header.h>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/memory_policy.h"
 
 namespace sap_broadphase {
 
@@ -44,21 +46,6 @@ constexpr const char* kStaticSourceName = "'static_boxes'";
 /// becomes -inf / +inf.
 void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes);
 
-/// Gives capacity back once a buffer has stayed much larger than what it holds for a while:
-/// a frame of 2^21 boxes must not keep its memory for days of small frames.
-class CapacityWatch {
- public:
-  /// Records a frame of inUsed boxes held in a buffer of inCapacity; true when the buffer should
-  /// be shrunk now (capacity above 4 x the use of each of the last kPatience frames and above
-  /// kMinCapacity boxes).
-  bool shouldShrink(std::size_t inUsed, std::size_t inCapacity);
-
- private:
-  static constexpr std::size_t kPatience = 100;       // frames of small use before giving back
-  static constexpr std::size_t kMinCapacity = 65536;  // boxes: below this, keep (~3.4 MB)
-  std::size_t frames_small_ = 0;
-};
-
 /// What one merge left out, and why (one refusal per source left out).
 struct WorldAssembly {
   std_msgs::Header header;            ///< newest stamp of the merged sources, their frame id
@@ -76,6 +63,10 @@ class SourceSet {
   /// Drops the sources whose latest frame is older than inTimeout seconds at inNow (0 = never)
   /// and returns their names.
   std::vector<std::string> expire(const ros::Time& inNow, double inTimeout);
+  /// As above with each source's own time-out, inTimeoutOf(key) seconds (0 = never); returns
+  /// the keys of the sources dropped.
+  std::vector<SourceKey> expire(const ros::Time& inNow,
+                                const std::function<double(const SourceKey&)>& inTimeoutOf);
   /// Number of sources held.
   std::size_t size() const { return sources_.size(); }
 
@@ -96,7 +87,7 @@ class SourceSet {
     ros::Time received;
     uint64_t joined = 0;  // order in which sources appeared: the older one keeps a shared id
     std::vector<uint32_t> sorted_ids;  // ids of boxes, sorted; built only when compared
-    CapacityWatch watch;
+    GiveBackWatch watch;
   };
   using SourceIt = std::map<SourceKey, Source>::iterator;
   /// The source's ids, sorted (cached until its next frame).

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "sap_broadphase/core/brute_force.h"
 #include "markers.h"
+#include "sap_broadphase/core/brute_force.h"
 #include "test_frames.h"
 
 namespace sap_broadphase {

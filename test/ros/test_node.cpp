@@ -159,7 +159,7 @@ TEST(TopicRefusal, BadFramesCountedAndNextGoodFrameServed) {
   EXPECT_EQ(stats->last_refusal.empty(), false);
 }
 
-TEST(Burst, TwoHundredFramesLastOneArrivesDropsCounted) {
+TEST(Burst, TwoHundredFramesLastOneArrivesEveryFrameAccountedFor) {
   NodeClient& node = client("burst");  // method brute: each frame is slow on purpose
   std::vector<BoxSet> frames;
   for (uint32_t i = 0; i < 4; ++i) frames.push_back(randomBoxes(2500, 0.5, true, 71 + i));
@@ -183,8 +183,9 @@ TEST(Burst, TwoHundredFramesLastOneArrivesDropsCounted) {
   ASSERT_TRUE(stats);
   EXPECT_EQ(stats->frames_received, 200u);
   EXPECT_EQ(stats->frames_refused, 0u);
+  // Each frame was either taken or replaced by a newer one of its source; how many were
+  // replaced depends on the machine's speed, so the split is not asserted.
   EXPECT_EQ(stats->frames_processed + stats->frames_dropped, 200u);
-  EXPECT_GT(stats->frames_dropped, 0u);
 }
 
 /// Checks that a LINE_LIST holds exactly the wireframes of the boxes with the given ids.

@@ -175,24 +175,6 @@ TEST(TransformBoxes, TouchingBoxesStillTouchAndInfinityStaysInfinite) {
   EXPECT_EQ(moved.hi[1].back(), inf) << "x mixes into y under a yaw";
 }
 
-TEST(CapacityWatch, ShrinksOnlyAfterManySmallFramesInABigBuffer) {
-  CapacityWatch watch;
-  for (int frame = 0; frame < 1000; ++frame)
-    EXPECT_FALSE(watch.shouldShrink(100, 1000)) << "small buffers are kept";
-  for (int frame = 0; frame < 1000; ++frame)
-    EXPECT_FALSE(watch.shouldShrink(600000, 1 << 21)) << "a quarter or more in use";
-  int shrinks = 0, first = -1;
-  for (int frame = 0; frame < 250; ++frame) {
-    if (watch.shouldShrink(1000, 1 << 21)) {
-      ++shrinks;
-      if (first < 0) first = frame;
-    }
-    if (frame == 150) watch.shouldShrink(1 << 20, 1 << 21);  // one big frame restarts the wait
-  }
-  EXPECT_EQ(first, 99);
-  EXPECT_EQ(shrinks, 1) << "frames 151..249 are 99 small frames: not yet patient enough";
-}
-
 }  // namespace
 }  // namespace test
 }  // namespace sap_broadphase
