@@ -233,7 +233,7 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     const BoxSet& swept = impl.setAsideRestingBoxes(boxes, delta, threads);
     const FramePlan plan = impl.plan(boxes, swept, delta, threads);
     impl.execute(plan, boxes, swept);
-    {
+    if (!impl.config.skin) {  // the costs only feed the automatic skin's choice
       PhaseTimer timer(report.ms_plan);
       impl.skin.learn(plan, swept, impl.pairs.size(), report);
     }
