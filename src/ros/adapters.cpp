@@ -260,12 +260,16 @@ std::optional<std::string> SourceAdapter::convert(const topic_tools::ShapeShifte
            expected.md5 +
            " (the ROS 1 definition the node decodes): another version of the message";
   }
-  if (spec_.type == InputType::kMarkerArray)
-    return convertMarkers(*inMsg.instantiate<visualization_msgs::MarkerArray>(), inPublisher,
-                          outBoxes);
-  if (spec_.type == InputType::kBoxArray) {
-    outBoxes = *inMsg.instantiate<BoxArray>();
-    return applyOverrides(outBoxes);
+  try {
+    if (spec_.type == InputType::kMarkerArray)
+      return convertMarkers(*inMsg.instantiate<visualization_msgs::MarkerArray>(), inPublisher,
+                            outBoxes);
+    if (spec_.type == InputType::kBoxArray) {
+      outBoxes = *inMsg.instantiate<BoxArray>();
+      return applyOverrides(outBoxes);
+    }
+  } catch (const ros::Exception& exception) {  // bytes shorter than the type's layout
+    return std::string(expected.name) + " that cannot be read: " + exception.what();
   }
   std::lock_guard<std::mutex> lock(mutex_);
   wire_.resize(inMsg.size());

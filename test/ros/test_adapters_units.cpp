@@ -342,6 +342,14 @@ TEST(ShapeShifterCheck, MarkerArrayAndBoxArrayAreInstantiated) {
   ASSERT_EQ(out.bounds.size(), 6u);
   EXPECT_NEAR(out.bounds[0], -1.0, 1e-12);
   EXPECT_NEAR(out.bounds[5], 1.0, 1e-12);
+  std::vector<uint8_t> truncated = wire.bytes;
+  truncated.resize(truncated.size() - 10);
+  const auto unreadable =
+      adapter.convert(shapeShifter(info.name, info.md5, truncated), "/robot", out);
+  ASSERT_TRUE(unreadable);
+  EXPECT_NE(unreadable->find("visualization_msgs/MarkerArray that cannot be read"),
+            std::string::npos)
+      << *unreadable;
 
   BoxArray boxes;
   boxes.header = header("map");
