@@ -1,6 +1,9 @@
 // Running scenes through engines.
 #include "engine_runner.h"
 
+#include <algorithm>
+#include <ctime>
+#include <functional>
 #include <iostream>
 
 #include "bench_stats.h"
@@ -28,6 +31,25 @@ BroadphaseConfig parallelConfig(int inThreads) {
   return config;
 }
 
+namespace {
+
+double processCpuMs() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
+}
+
+FrameSample timedUpdate(Broadphase& ioEngine, const sap_broadphase::BoxSet& inBoxes,
+                        std::size_t& outPairs) {
+  const double cpu_start = processCpuMs();
+  Stopwatch clock;
+  outPairs = ioEngine.update(inBoxes).size();
+  const double wall = clock.ms();
+  return FrameSample{ioEngine.stats(), wall, processCpuMs() - cpu_start};
+}
+
+}  // namespace
+
 SceneRun runScene(const SceneConfig& inScene, const std::vector<EngineSpec>& inEngines, int inRuns,
                   int inFrames, int inFirstFrame, Progress* ioProgress) {
   SceneRun result;
@@ -43,10 +65,8 @@ SceneRun runScene(const SceneConfig& inScene, const std::vector<EngineSpec>& inE
       std::size_t firstCount = 0;
       bool mismatch = false;
       for (std::size_t e = 0; e < engines.size(); ++e) {
-        Stopwatch clock;
-        const std::size_t count = engines[e].update(simulator.boxes()).size();
-        FrameSample sample{engines[e].stats(), clock.ms()};
-        result.samples[e].back().push_back(sample);
+        std::size_t count = 0;
+        result.samples[e].back().push_back(timedUpdate(engines[e], simulator.boxes(), count));
         if (e == 0) firstCount = count;
         mismatch = mismatch || count != firstCount;
       }
@@ -61,12 +81,55 @@ SceneRun runScene(const SceneConfig& inScene, const std::vector<EngineSpec>& inE
   return result;
 }
 
+SceneRun runSceneIsolated(const SceneConfig& inScene, const std::vector<EngineSpec>& inEngines,
+                          int inRuns, int inFrames, int inFirstFrame, Progress* ioProgress) {
+  SceneRun result;
+  result.samples.assign(inEngines.size(), {});
+  std::vector<std::vector<std::size_t>> counts(inFrames);  // [frame][engine, run]
+  for (std::size_t e = 0; e < inEngines.size(); ++e) {
+    for (int run = 0; run < inRuns; ++run) {
+      SceneSimulator simulator(inScene);
+      simulator.advanceTo(inFirstFrame);
+      Broadphase engine(inEngines[e].config);
+      result.samples[e].emplace_back();
+      for (int frame = 0; frame < inFrames; ++frame) {
+        if (frame > 0) simulator.step();
+        std::size_t count = 0;
+        result.samples[e].back().push_back(timedUpdate(engine, simulator.boxes(), count));
+        counts[frame].push_back(count);
+        if (ioProgress) ioProgress->step();
+      }
+    }
+  }
+  for (const auto& perFrame : counts) {
+    if (std::adjacent_find(perFrame.begin(), perFrame.end(), std::not_equal_to<>()) !=
+        perFrame.end())
+      ++result.count_mismatches;
+  }
+  if (result.count_mismatches > 0) {
+    std::cerr << "sap_bench: WARNING: engines disagreed on the pair count in "
+              << result.count_mismatches << " frame(s)\n";
+  }
+  return result;
+}
+
 Metric statField(double FrameReport::*inField) {
   return [inField](const FrameSample& inSample) { return inSample.stats.*inField; };
 }
 
 Metric wallMs() {
   return [](const FrameSample& inSample) { return inSample.wall_ms; };
+}
+
+Metric cpuMs() {
+  return [](const FrameSample& inSample) { return inSample.cpu_ms; };
+}
+
+double firstFrameMedian(const SceneRun& inRun, std::size_t inEngine, const Metric& inMetric) {
+  std::vector<double> perRun;
+  for (const auto& frames : inRun.samples[inEngine])
+    if (!frames.empty()) perRun.push_back(inMetric(frames.front()));
+  return median(perRun);
 }
 
 double steadyMedian(const SceneRun& inRun, std::size_t inEngine, const Metric& inMetric) {

@@ -27,6 +27,7 @@ sap_broadphase::BroadphaseConfig parallelConfig(int inThreads);
 struct FrameSample {
   sap_broadphase::FrameReport stats;
   double wall_ms = 0.0;  ///< wall clock around update(), measured by the harness
+  double cpu_ms = 0.0;   ///< CPU time of the whole process (every thread) during update()
 };
 
 /// Samples of a scene run, indexed [engine][run][frame].
@@ -40,6 +41,11 @@ struct SceneRun {
 SceneRun runScene(const sap_broadphase::SceneConfig& inScene,
                   const std::vector<EngineSpec>& inEngines, int inRuns, int inFrames,
                   int inFirstFrame = 0, Progress* ioProgress = nullptr);
+/// The same with every engine in a run of its own: engine e's runs see only engine e, so a
+/// fresh engine's first frame is not warmed by another engine's pages and caches.
+SceneRun runSceneIsolated(const sap_broadphase::SceneConfig& inScene,
+                          const std::vector<EngineSpec>& inEngines, int inRuns, int inFrames,
+                          int inFirstFrame = 0, Progress* ioProgress = nullptr);
 
 /// A number taken from a sample.
 using Metric = std::function<double(const FrameSample&)>;
@@ -47,6 +53,10 @@ using Metric = std::function<double(const FrameSample&)>;
 Metric statField(double sap_broadphase::FrameReport::*inField);
 /// Metric reading the harness's wall clock.
 Metric wallMs();
+/// Metric reading the process CPU time spent in update().
+Metric cpuMs();
+/// Median over runs of a run's first frame (a fresh engine's).
+double firstFrameMedian(const SceneRun& inRun, std::size_t inEngine, const Metric& inMetric);
 
 /// Median over runs of the median over steady-state frames (all but the first frame of each
 /// run, when a run has more than one).

@@ -19,6 +19,7 @@ void runPeers(const Options& inOptions);
 void runMemory(const Options& inOptions);
 void runSkips(const Options& inOptions);
 void runCoherence(const Options& inOptions);
+void runDistributed(const Options& inOptions);
 
 /// One experiment: its name on the command line, a line of description, its function.
 struct Experiment {

@@ -33,6 +33,9 @@ const std::vector<Experiment>& allExperiments() {
       {"coherence",
        "Motion speed against time: automatic skin, no skin, best fixed skin, FCL dynamic tree",
        runCoherence},
+      {"distributed",
+       "MPI ranks of this machine: exchange and engine per frame, bytes, the cluster model",
+       runDistributed},
   };
   return kExperiments;
 }

@@ -80,7 +80,8 @@ std::string checkSuperset(const BoxSet& inBoxes, const PairList& inOracle,
 }
 
 // What validate() should say, by the simplest possible means: a refusal and, for coordinate
-// and duplicate-id problems, the box index it should name.
+// and duplicate-id problems, the box index it should name (the lowest index of a box with a
+// bad coordinate or an id an earlier box has).
 bool referenceRefusal(const BoxSet& inBoxes, std::size_t& outIndex, bool& outIndexKnown) {
   const std::size_t n = inBoxes.ids.size();
   outIndexKnown = false;
@@ -90,19 +91,15 @@ bool referenceRefusal(const BoxSet& inBoxes, std::size_t& outIndex, bool& outInd
       (!inBoxes.masks.empty() && inBoxes.masks.size() != n))
     return true;
   outIndexKnown = true;
+  std::set<uint32_t> seen;
   for (std::size_t i = 0; i < n; ++i) {
+    bool bad = !seen.insert(inBoxes.ids[i]).second;
     for (int axis = 0; axis < 3; ++axis) {
       const double low = inBoxes.lo[axis][i];
       const double high = inBoxes.hi[axis][i];
-      if (std::isnan(low) || std::isnan(high) || low > high) {
-        outIndex = i;
-        return true;
-      }
+      bad = bad || std::isnan(low) || std::isnan(high) || low > high;
     }
-  }
-  std::set<uint32_t> seen;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!seen.insert(inBoxes.ids[i]).second) {
+    if (bad) {
       outIndex = i;
       return true;
     }

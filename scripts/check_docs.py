@@ -79,6 +79,8 @@ def built_executables():
                   for n in re.findall(r"add_executable\((\S+)", text)}
         names |= set(re.findall(r"OUTPUT_NAME\s+(\S+)", text))
         names |= set(re.findall(r"(?:catkin_add_gtest|sap_add_gtest|add_rostest_gtest)\((\S+)", text))
+        for programs in re.findall(r"catkin_install_python\(PROGRAMS(.*?)DESTINATION", text, re.S):
+            names |= {pathlib.Path(path).name for path in programs.split()}
     return names
 
 

@@ -3,7 +3,9 @@
 # ROS-free tests with plain CMake (-DSAP_BUILD_ROS=OFF, so no catkin is needed or used), runs
 # the tests, installs the engine, builds examples/find_package against the installed package
 # config (find_package(sap_broadphase_core)) and checks the README and docs/ (links, commands,
-# the C++ example: scripts/check_docs.py). Exits non-zero when anything fails.
+# the C++ example: scripts/check_docs.py), and runs the core tests a second time with the
+# engine's invariants checked (-DSAP_ASSERTS=ON, in BUILD_DIR/asserts). Exits non-zero when
+# anything fails.
 #
 # Needs only a C++17 compiler with OpenMP, CMake >= 3.16, GoogleTest and, for sap_microbench,
 # Google Benchmark (Debian 12: g++ cmake make libgtest-dev libbenchmark-dev).
@@ -25,6 +27,25 @@ set +e
 (cd "$BUILD" && ctest --output-on-failure)
 test_status=$?
 set -e
+
+# The core tests once more with the engine's invariants checked (SAP_ASSERT, -DSAP_ASSERTS=ON):
+# a second build of only the core test targets, optimised as the first, so that the asserted
+# run adds minutes, not the whole suite. Its JUnit files join the count below.
+ASSERTS_BUILD="$BUILD/asserts"
+ASSERTED_TESTS=(test_core test_engine test_skin_list test_frame_flow test_static_index test_cli)
+cmake -S "$ROOT" -B "$ASSERTS_BUILD" -DSAP_BUILD_ROS=OFF -DCMAKE_BUILD_TYPE=Release \
+  -DSAP_ASSERTS=ON > /dev/null
+cmake --build "$ASSERTS_BUILD" -j"$JOBS" --target "${ASSERTED_TESTS[@]}"
+rm -rf "$ASSERTS_BUILD/test_results"
+set +e
+(cd "$ASSERTS_BUILD" &&
+  ctest --output-on-failure -R "^($(IFS='|'; echo "${ASSERTED_TESTS[*]}"))\$")
+asserts_status=$?
+set -e
+mkdir -p "$BUILD/test_results/asserts"
+cp "$ASSERTS_BUILD"/test_results/*.xml "$BUILD/test_results/asserts/" 2>/dev/null || true
+echo "test_no_ros: core tests with SAP_ASSERTS: $([ $asserts_status -eq 0 ] && echo passed || echo FAILED)"
+if [ "$test_status" -eq 0 ]; then test_status=$asserts_status; fi
 
 # The installed package: only the API headers, and a project of its own can use it.
 rm -rf "$PREFIX"

@@ -8,6 +8,7 @@
 sap_add_gtest(test_core
   test/core/test_text_io.cpp
   test/core/test_config.cpp
+  test/core/test_asserts.cpp
   test/core/test_box_set.cpp
   test/core/test_succ_tree.cpp
   test/core/test_radix_sort.cpp
@@ -69,3 +70,6 @@ sap_add_gtest(test_frame_flow
 )
 target_include_directories(test_frame_flow PRIVATE test/core)
 target_link_libraries(test_frame_flow ${PROJECT_NAME}_core_internal)
+
+# The distributed broad phase over MPI, run under mpirun (plain CMake build, MPI found).
+include(test/distributed/distributed_tests.cmake)

@@ -35,19 +35,19 @@ struct Broadphase::Impl {
 
   const BroadphaseConfig config;  // as the user set it
   FrameReport report;
-  FrameHistory history;             // the last frame, and what changed since
-  SweepAndPrune sweep;              // the paper's sweep, with its partition bounds and axes
-  SkinReuse skin;                   // kept candidates, motion and learnt costs
-  SmallFrameWorkspace small_frame;  // buffers of the small-frame path
-  StaticSplit resting;              // boxes guessed static (index_static_boxes)
-  StaticIndex scenery;              // boxes declared static (setStaticBoxes)
-  BoxSet collidable;                // the frame without boxes that can pair with nothing
-  PairList pairs;                   // the frame's one canonical pair list
-  bool pairs_valid = false;         // pairs hold the last frame's whole answer
-  struct Scratch {
+  FrameHistory history;      // the last frame, and what changed since
+  SweepAndPrune sweep;       // the paper's sweep, with its partition bounds and axes
+  SkinReuse skin;            // kept candidates, motion and learnt costs
+  StaticSplit resting;       // boxes guessed static (index_static_boxes)
+  StaticIndex scenery;       // boxes declared static (setStaticBoxes)
+  PairList pairs;            // the frame's one canonical pair list
+  bool pairs_valid = false;  // pairs hold the last frame's whole answer
+  struct Buffers {
+    BoxSet collidable;                // the frame without boxes that can pair with nothing
+    SmallFrameWorkspace small_frame;  // the small-frame path's
     std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
     PairSortScratch pair_sort;
-  } scratch;
+  } buffers;
   GiveBackWatch give_back;
 
   const BoxSet& dropBoxesThatPairWithNothing(const BoxSet& inBoxes);
@@ -70,15 +70,15 @@ const BoxSet& Broadphase::Impl::dropBoxesThatPairWithNothing(const BoxSet& inBox
     excluded += inBoxes.group(i) == 0 || inBoxes.mask(i) == 0;
   report.boxes_filtered_out = excluded;
   if (excluded == 0) return inBoxes;
-  collidable.clear();
-  collidable.reserve(inBoxes.size() - excluded);
+  buffers.collidable.clear();
+  buffers.collidable.reserve(inBoxes.size() - excluded);
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
     if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;
     const double low[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
     const double high[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
-    collidable.add(inBoxes.ids[i], low, high, inBoxes.group(i), inBoxes.mask(i));
+    buffers.collidable.add(inBoxes.ids[i], low, high, inBoxes.group(i), inBoxes.mask(i));
   }
-  return collidable;
+  return buffers.collidable;
 }
 
 // Resting boxes (bit for bit unchanged, of group/mask classes that cannot pair among
@@ -112,7 +112,13 @@ FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
   inputs.kept_covers =
       planConsidersKeptCandidates(inputs) && skin.coversFrame(inSwept, inThreads, report);
   PhaseTimer timer(report.ms_plan);
-  return planFrame(inputs);
+  const FramePlan plan = planFrame(inputs);
+  SAP_ASSERT(plan.work != FrameWork::kKeptCandidates || inputs.kept_covers,
+             "the plan answers from kept candidates that do not cover the frame");
+  SAP_ASSERT(plan.sweep_skin == 0.0 || plan.work == FrameWork::kSweep,
+             "a skin to grow boxes by on a frame that is not swept");
+  SAP_ASSERT(plan.threads >= 1 && plan.threads <= inThreads, "the plan's threads out of range");
+  return plan;
 }
 
 // Runs the plan's strategy: this frame's pairs of inSwept (or of inBoxes for brute force) go
@@ -136,7 +142,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
     case FrameWork::kSmallFrame: {
       PhaseTimer timer(report.ms_pairing);
       skin.forget();
-      pairSmallFrame(inSwept, small_frame, pairs);
+      pairSmallFrame(inSwept, buffers.small_frame, pairs);
       break;
     }
     case FrameWork::kSweep:
@@ -160,14 +166,14 @@ void Broadphase::Impl::addStaticPairs(const BoxSet& inBoxes, int inThreads) {
     PhaseTimer timer(report.ms_static);
     if (resting.indexedBoxes() > 0) resting.crossPairs(inBoxes, inThreads, pairs);
     if (scenery.size() > 0 && inBoxes.size() > 0) {
-      scratch.every_box.resize(inBoxes.size());
-      std::iota(scratch.every_box.begin(), scratch.every_box.end(), 0u);
-      scenery.queryAll(inBoxes, scratch.every_box, inThreads, pairs);
+      buffers.every_box.resize(inBoxes.size());
+      std::iota(buffers.every_box.begin(), buffers.every_box.end(), 0u);
+      scenery.queryAll(inBoxes, buffers.every_box, inThreads, pairs);
     }
   }
   if (pairs.size() == strategy_pairs) return;
   PhaseTimer timer(report.ms_output);
-  sortPairsCanonical(pairs, scratch.pair_sort);
+  sortPairsCanonical(pairs, buffers.pair_sort);
 }
 
 // The report's rows that describe the frame as a whole (the phases and the sweep's rows were
@@ -194,9 +200,8 @@ void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
   sweep.releaseBuffers();
   history.shrinkToFit();
   skin.releaseMemory();  // the next grown sweep keeps candidates of the frame's size again
-  collidable = BoxSet();
   pairs.shrink_to_fit();
-  scratch = Scratch();
+  buffers = Buffers();
 }
 
 Broadphase::Broadphase(const BroadphaseConfig& inConfig) {
@@ -228,7 +233,7 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     const BoxSet& swept = impl.setAsideRestingBoxes(boxes, delta, threads);
     const FramePlan plan = impl.plan(boxes, swept, delta, threads);
     impl.execute(plan, boxes, swept);
-    {
+    if (!impl.config.skin) {  // the costs only feed the automatic skin's choice
       PhaseTimer timer(report.ms_plan);
       impl.skin.learn(plan, swept, impl.pairs.size(), report);
     }

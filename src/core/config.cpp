@@ -12,8 +12,6 @@
 #include <sstream>
 #include <type_traits>
 
-#include "core/slab_grid.h"
-
 namespace sap_broadphase {
 
 const char* methodName(Method inMethod) {
@@ -278,8 +276,8 @@ std::vector<ConfigField> makeConfigFields() {
       {"parallel_min_boxes", ConfigFieldType::kInteger, "12288", 0.0, kLargestCount,
        "an integer >= 0", "method auto sweeps sequentially below this many boxes",
        getInteger<&C::parallel_min_boxes>, setInteger<&C::parallel_min_boxes>},
-      {"third_axis_slabs", ConfigFieldType::kInteger, "0", 0.0, static_cast<double>(kMaxSlabs),
-       "an integer in 0..64 (0 = auto)",
+      {"third_axis_slabs", ConfigFieldType::kInteger, "0", 0.0,
+       static_cast<double>(kMaxThirdAxisSlabs), "an integer in 0..64 (0 = auto)",
        "active lists per slab of the unused axis: 0 = auto, 1 = the paper's single list",
        getInteger<&C::third_axis_slabs>, setInteger<&C::third_axis_slabs>},
       {"reuse_unchanged_frames", ConfigFieldType::kBool, "true", 0.0, 1.0, "true or false",

@@ -1,4 +1,5 @@
 #include "core/frame_history.h"
+#include "core/assert.h"
 #include "core/buffers.h"
 
 #include <algorithm>
@@ -64,7 +65,27 @@ void FrameHistory::compareBoxByBox(const BoxSet& inBoxes, int inThreads) {
   delta_.max_displacement = max_displacement;
 }
 
+namespace {
+
+// Bit for bit the same boxes (ids, bounds, groups, masks).
+bool sameBoxes(const BoxSet& inA, const BoxSet& inB) {
+  bool same = sameElements(inA.ids, inB.ids) && sameElements(inA.groups, inB.groups) &&
+              sameElements(inA.masks, inB.masks);
+  for (int axis = 0; axis < 3; ++axis)
+    same = same && sameElements(inA.lo[axis], inB.lo[axis]) &&
+           sameElements(inA.hi[axis], inB.hi[axis]);
+  return same;
+}
+
+}  // namespace
+
 void FrameHistory::remember(const BoxSet& inBoxes) {
+  rememberChanges(inBoxes);
+  // Only the boxes compare() found changed were copied: the copy must now be the frame.
+  SAP_ASSERT(sameBoxes(last_, inBoxes), "the frame history's copy differs from the frame");
+}
+
+void FrameHistory::rememberChanges(const BoxSet& inBoxes) {
   if (!valid_ || delta_.relation == FrameRelation::kFirst ||
       delta_.relation == FrameRelation::kOtherIds || unchanged_.size() != inBoxes.size()) {
     last_ = inBoxes;  // vectors keep their capacity

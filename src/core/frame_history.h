@@ -49,6 +49,7 @@ class FrameHistory {
 
  private:
   void compareBoxByBox(const BoxSet& inBoxes, int inThreads);
+  void rememberChanges(const BoxSet& inBoxes);
 
   BoxSet last_;
   bool valid_ = false;

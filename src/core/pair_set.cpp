@@ -1,6 +1,8 @@
 #include "sap_broadphase/core/pair_set.h"
 #include "core/buffers.h"
 
+#include <omp.h>
+
 #include <algorithm>
 
 namespace sap_broadphase {
@@ -58,12 +60,82 @@ void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
   }
 }
 
+// bucketSort of the per-thread parts on inThreads threads: each part counted and placed by one
+// thread, the offsets' prefix sum split into ranges of a, the runs of equal a sorted by b in
+// chunks handed out dynamically. ioOffsets holds one row of counts per part; after placing,
+// the last part's row ends each run of a. Same result as bucketSort: the layout is part 0's
+// pairs of a, then part 1's, ..., and every run is then sorted by b.
+void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal,
+                     uint32_t inLargestA, int inThreads, std::vector<uint32_t>& ioOffsets,
+                     PairList& outSorted) {
+  const std::size_t parts = inParts.size();
+  const std::size_t row = std::size_t{inLargestA} + 1;
+  resizeDiscarding(ioOffsets, parts * row);
+  resizeDiscarding(outSorted, inTotal);
+  uint32_t* offsets = ioOffsets.data();
+  IdPair* sorted = outSorted.data();
+  const int threads = std::max(1, inThreads);
+  std::vector<uint32_t> range_base(threads + 1, 0);  // pairs before each thread's range of a
+#pragma omp parallel num_threads(threads)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    for (std::size_t part = thread; part < parts; part += team) {
+      uint32_t* counts = offsets + part * row;
+      std::fill(counts, counts + row, 0u);
+      inParts[part].forEach([&](const IdPair& inPair) { ++counts[inPair.a]; });
+    }
+#pragma omp barrier
+    const std::size_t a_begin = row * thread / team;
+    const std::size_t a_end = row * (thread + 1) / team;
+    uint32_t in_range = 0;
+    for (std::size_t part = 0; part < parts; ++part)
+      for (std::size_t a = a_begin; a < a_end; ++a) in_range += offsets[part * row + a];
+    range_base[thread + 1] = in_range;
+#pragma omp barrier
+#pragma omp single
+    for (int t = 0; t < team; ++t) range_base[t + 1] += range_base[t];
+    uint32_t next = range_base[thread];
+    for (std::size_t a = a_begin; a < a_end; ++a) {
+      for (std::size_t part = 0; part < parts; ++part) {
+        uint32_t& slot = offsets[part * row + a];
+        const uint32_t count = slot;
+        slot = next;
+        next += count;
+      }
+    }
+#pragma omp barrier
+    for (std::size_t part = thread; part < parts; part += team) {
+      uint32_t* next_slot = offsets + part * row;
+      inParts[part].forEach([&](const IdPair& inPair) { sorted[next_slot[inPair.a]++] = inPair; });
+    }
+#pragma omp barrier
+    const uint32_t* run_end = offsets + (parts - 1) * row;
+    constexpr std::size_t kRunChunk = 4096;  // values of a a thread takes at a time
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t chunk = 0; chunk < (row + kRunChunk - 1) / kRunChunk; ++chunk) {
+      const std::size_t first = chunk * kRunChunk;
+      const std::size_t last = std::min(row, first + kRunChunk);
+      uint32_t begin = first == 0 ? 0 : run_end[first - 1];
+      for (std::size_t a = first; a < last; ++a) {
+        const uint32_t end = run_end[a];
+        if (end - begin > 1) sortByB(sorted + begin, sorted + end);
+        begin = end;
+      }
+    }
+  }
+}
+
 template <typename Pairs>
 uint32_t largestA(const Pairs& inPairs) {
   uint32_t largest = 0;
   forEachPair(inPairs, [&](const IdPair& inPair) { largest = std::max(largest, inPair.a); });
   return largest;
 }
+
+// Below this many pairs one thread merges the parts: a team's barriers and the second row of
+// counts cost more (measured: 26k pairs of 2^17 boxes, 0.19 ms on one thread, 0.30 on two).
+constexpr std::size_t kParallelMergePairs = 65536;
 
 bool denseEnough(uint32_t inLargestA, std::size_t inCount) {
   return inLargestA < 4 * inCount + 65536;
@@ -111,11 +183,24 @@ void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch) {
 
 void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
                         PairSortScratch& ioScratch) {
+  sortPairsCanonical(inParts, outPairs, ioScratch, 1);
+}
+
+void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
+                        PairSortScratch& ioScratch, int inThreads) {
   std::size_t total = 0;
   for (const PairChunks& part : inParts) total += part.size();
-  const uint32_t largest_a = largestA(inParts);
+  const int threads =
+      static_cast<int>(std::min<std::size_t>(std::max(1, inThreads), inParts.size()));
+  uint32_t largest_a = 0;
+#pragma omp parallel for num_threads(threads) reduction(max : largest_a) schedule(static, 1)
+  for (std::size_t part = 0; part < inParts.size(); ++part)
+    inParts[part].forEach([&](const IdPair& inPair) { largest_a = std::max(largest_a, inPair.a); });
   if (denseEnough(largest_a, total)) {
-    bucketSort(inParts, total, largest_a, ioScratch.offsets, outPairs);
+    if (threads > 1 && total >= kParallelMergePairs)
+      bucketSortParts(inParts, total, largest_a, threads, ioScratch.offsets, outPairs);
+    else
+      bucketSort(inParts, total, largest_a, ioScratch.offsets, outPairs);
     return;
   }
   resizeDiscarding(outPairs, total);

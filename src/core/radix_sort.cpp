@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/assert.h"
 #include "core/sort_keys.h"
 
 namespace sap_broadphase {
@@ -45,10 +46,14 @@ constexpr uint8_t kSplitPrefix = 0xFF;
 static_assert(kMaxSortPartitions - 1 < kSplitPrefix,
               "partition numbers are stored in 8 bits, with kSplitPrefix reserved");
 
-void buildPrefixTable(const uint32_t* inBounds, int inBoundCount, std::vector<uint8_t>& outTable) {
-  outTable.resize(std::size_t{1} << (32 - kPrefixShift));
-  int below_first = 0;  // bounds <= the prefix's first key
-  for (uint32_t prefix = 0; prefix < outTable.size(); ++prefix) {
+// Fills entries [inFirstPrefix, inEndPrefix) of the table (the caller sized it).
+void fillPrefixTable(const uint32_t* inBounds, int inBoundCount, uint32_t inFirstPrefix,
+                     uint32_t inEndPrefix, uint8_t* outTable) {
+  // Bounds <= the first key of inFirstPrefix, then kept up to date prefix by prefix.
+  int below_first = static_cast<int>(
+      std::upper_bound(inBounds, inBounds + inBoundCount, inFirstPrefix << kPrefixShift) -
+      inBounds);
+  for (uint32_t prefix = inFirstPrefix; prefix < inEndPrefix; ++prefix) {
     const uint32_t first = prefix << kPrefixShift;
     const uint32_t last = first | ((1u << kPrefixShift) - 1);
     while (below_first < inBoundCount && inBounds[below_first] <= first) ++below_first;
@@ -56,6 +61,8 @@ void buildPrefixTable(const uint32_t* inBounds, int inBoundCount, std::vector<ui
     outTable[prefix] = split ? kSplitPrefix : static_cast<uint8_t>(below_first);
   }
 }
+
+constexpr uint32_t kPrefixCount = uint32_t{1} << (32 - kPrefixShift);
 
 inline uint8_t lookupPartition(uint32_t inKey, const uint8_t* inTable, const uint32_t* inBounds,
                                int inBoundCount) {
@@ -123,7 +130,11 @@ double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, ui
   if (!ioBounds.from_previous_frame ||
       ioBounds.bounds.size() != static_cast<std::size_t>(partitions - 1))
     initialiseBoundsFromSpan(ioPacked, inCount, partitions, inThreads, ioBounds);
+  SAP_ASSERT(std::is_sorted(ioBounds.bounds.begin(), ioBounds.bounds.end()),
+             "partition bounds B out of order");
   scatterIntoPartitions(ioPacked, ioScratch, inCount, ioBounds, inThreads);
+  SAP_ASSERT(partition_begin_.back() == inCount,
+             "the partitions do not cover every rank exactly once");
   sortPartitionsAndExtract(ioScratch, ioPacked, inCount, inThreads, outIndex);
   // Algorithm 2, lines 6-7: next frame's bounds are this frame's keys at ranks p * floor(2n/m).
   std::copy(bound_samples_.begin(), bound_samples_.end(), ioBounds.bounds.begin());
@@ -165,9 +176,13 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
   const int bound_count = partitions - 1;
   assert(partitions >= 1 && partitions <= kMaxSortPartitions);  // partition_of_ is 8 bits
   const uint32_t* bounds = inBounds.bounds.data();
-  counts_.assign(static_cast<std::size_t>(inThreads) * partitions, 0);
+  // Each thread's counters sit a cache line past the previous thread's: counters that shared
+  // a line would bounce between the cores on every item.
+  const std::size_t stride =
+      static_cast<std::size_t>(partitions) + kCacheLineBytes / sizeof(uint32_t);
+  counts_.assign(static_cast<std::size_t>(inThreads) * stride, 0);
   resizeDiscarding(partition_of_, inCount);
-  buildPrefixTable(bounds, bound_count, prefix_table_);
+  prefix_table_.resize(kPrefixCount);
   partition_begin_.assign(partitions + 1, 0);
   partition_size_.assign(partitions, 0);
 #pragma omp parallel num_threads(inThreads)
@@ -176,8 +191,13 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
     const int team = omp_get_num_threads();
     const uint32_t begin = static_cast<uint32_t>(uint64_t{inCount} * thread / team);
     const uint32_t end = static_cast<uint32_t>(uint64_t{inCount} * (thread + 1) / team);
-    uint32_t* my_counts = &counts_[static_cast<std::size_t>(thread) * partitions];
+    uint32_t* my_counts = &counts_[static_cast<std::size_t>(thread) * stride];
     uint8_t* partition_of = partition_of_.data();
+    // The prefix table, a slice a thread (65536 entries, a serial part otherwise).
+    fillPrefixTable(
+        bounds, bound_count, static_cast<uint32_t>(uint64_t{kPrefixCount} * thread / team),
+        static_cast<uint32_t>(uint64_t{kPrefixCount} * (thread + 1) / team), prefix_table_.data());
+#pragma omp barrier
     for (uint32_t k = begin; k < end; ++k) {
       const uint32_t key = static_cast<uint32_t>(inPacked[k] >> 32);
       partition_of[k] = lookupPartition(key, prefix_table_.data(), bounds, bound_count);
@@ -190,7 +210,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
       for (int p = 0; p < partitions; ++p) {
         partition_begin_[p] = offset;
         for (int t = 0; t < team; ++t) {
-          uint32_t& slot = counts_[static_cast<std::size_t>(t) * partitions + p];
+          uint32_t& slot = counts_[static_cast<std::size_t>(t) * stride + p];
           const uint32_t size = slot;
           slot = static_cast<uint32_t>(offset);
           offset += size;

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/buffers.h"
+
 namespace sap_broadphase {
 
 /// Packs a key and an index into one sortable word.
@@ -56,9 +58,9 @@ class PartitionedSorter {
                                 int inThreads, uint32_t* outIndex);
   double dispersion(uint32_t inCount) const;
 
-  std::vector<uint64_t> owned_packed_;  // sort()'s buffers; sortPacked() uses the caller's
-  std::vector<uint64_t> owned_scratch_;
-  std::vector<uint8_t> partition_of_;         // partition of each key, found once
+  Buffer<uint64_t> owned_packed_;  // sort()'s buffers; sortPacked() uses the caller's
+  Buffer<uint64_t> owned_scratch_;
+  Buffer<uint8_t> partition_of_;              // partition of each key, found once
   std::vector<uint8_t> prefix_table_;         // partition by the key's top 16 bits
   std::vector<uint32_t> counts_;              // [thread][partition]
   std::vector<std::size_t> partition_begin_;  // m + 1 offsets

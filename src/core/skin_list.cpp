@@ -178,6 +178,17 @@ void SkinList::adopt(const BoxSet& inBoxes, const PairList& inCandidates) {
   keepSpatialOrder();
   keepSpatialCandidates();
   valid_ = true;
+  SAP_ASSERT(covers(inBoxes, 1), "a box outside its grown box in the skin list");
+  SAP_ASSERT(holdsEveryCandidate(), "a kept candidate whose box has no spatial position");
+}
+
+bool SkinList::holdsEveryCandidate() const {
+  const std::size_t count = canonical_pairs_.size();
+  if (first_positions_.size() != count || partner_positions_.size() != count) return false;
+  for (std::size_t k = 0; k < count; ++k)
+    if (!(first_positions_[k] < partner_positions_[k] && partner_positions_[k] < spatial_count_))
+      return false;
+  return true;
 }
 
 // The boxes that have candidates, sorted by their inflated lower bound's sort key along the

@@ -70,6 +70,7 @@ class SkinList {
 
  private:
   bool sameIdsAndFilters(const BoxSet& inBoxes) const;
+  bool holdsEveryCandidate() const;
   void keepSpatialOrder();
   void keepSpatialCandidates();
   bool gatherInside(const BoxSet& inBoxes, int inThreads);

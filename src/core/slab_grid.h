@@ -4,11 +4,12 @@
 #include <cstdint>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/config.h"
 
 namespace sap_broadphase {
 
-/// Most slabs (slab indexes are stored in 8 bits; more slabs cost inserts for large boxes).
-constexpr int kMaxSlabs = 64;
+/// Most slabs: the configuration's bound on third_axis_slabs (config.h).
+constexpr int kMaxSlabs = kMaxThirdAxisSlabs;
 
 /// Slabs of the unused (third) axis. Our extension of Algorithm 4: the secondary-axis active
 /// list is split into one SuccTree per slab, so a range query only meets candidates that are

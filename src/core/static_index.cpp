@@ -1,5 +1,6 @@
 #include "core/static_index.h"
 
+#include "core/assert.h"
 #include "core/axis_spread.h"
 
 #include <omp.h>
@@ -66,6 +67,27 @@ void StaticIndex::build(const BoxSet& inBoxes, const std::vector<uint32_t>& inIn
   placeBoxes(inBoxes, inIndexes, threads);
   fillCells();
   buildIdLookup();
+  SAP_ASSERT(holdsEveryBoxOnce(inBoxes, inIndexes), "the static index lost or repeated a box");
+}
+
+// Every box of inIndexes has one slot (its id once among the slots' ids), and every grid slot
+// is listed in its home cell, the cell of its low corner.
+bool StaticIndex::holdsEveryBoxOnce(const BoxSet& inBoxes,
+                                    const std::vector<uint32_t>& inIndexes) const {
+  if (slots_.size() != inIndexes.size() || live_count_ != inIndexes.size()) return false;
+  std::vector<uint32_t> ids;
+  for (uint32_t i : inIndexes) ids.push_back(inBoxes.ids[i]);
+  std::sort(ids.begin(), ids.end());
+  if (ids != sorted_ids_ || std::adjacent_find(ids.begin(), ids.end()) != ids.end()) return false;
+  for (std::size_t s = 0; s < grid_count_; ++s) {
+    uint64_t cell = 0;
+    for (int axis = 2; axis >= 0; --axis)
+      cell = cell * dims_[axis] + cellOf(axis, slots_[s].lo[axis]);
+    const auto first = cell_slots_.begin() + static_cast<std::ptrdiff_t>(cell_begin_[cell]);
+    const auto last = cell_slots_.begin() + static_cast<std::ptrdiff_t>(cell_begin_[cell + 1]);
+    if (std::find(first, last, static_cast<uint32_t>(s)) == last) return false;
+  }
+  return true;
 }
 
 void StaticIndex::chooseGrid(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes,

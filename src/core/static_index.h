@@ -74,6 +74,7 @@ class StaticIndex {
   void placeBoxes(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
   void fillCells();
   void buildIdLookup();
+  bool holdsEveryBoxOnce(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes) const;
   /// The cells a box covers on each axis (outLow..outHigh), and how many they are.
   uint64_t cellRange(const double inLow[3], const double inHigh[3], uint32_t outLow[3],
                      uint32_t outHigh[3]) const;

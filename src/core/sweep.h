@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/buffers.h"
 #include "core/slab_grid.h"
 #include "core/succ_tree.h"
 #include "sap_broadphase/core/box_set.h"
@@ -25,8 +26,8 @@ struct RankRange {
 
 /// Ranks and candidate ranges of all objects, plus the inverse of the rank (R^- in the paper).
 struct CandidateRanges {
-  std::vector<RankRange> of_object;      ///< indexed by object
-  std::vector<uint32_t> object_of_rank;  ///< R^-
+  Buffer<RankRange> of_object;      ///< indexed by object
+  Buffer<uint32_t> object_of_rank;  ///< R^-
 };
 
 /// Group and mask of one box, in rank order (only built when filters are in use).
@@ -95,6 +96,10 @@ struct PairingInput {
 /// ranks inside it fit in 16 bits.
 constexpr uint32_t kPairingPartitionRanks = 1u << 15;
 
+/// Fewest rank partitions per thread of the parallel pairing (when there are several threads):
+/// enough that handing them out by decreasing work evens the threads out.
+constexpr uint32_t kPairingPartitionsPerThread = 4;
+
 /// Largest total size, in bits (n ranks times the slab count), of the whole-stream trees that
 /// the one-thread pairing sweeps with; above it the thread sweeps rank partitions instead.
 /// Measured on the uniform scene (d = 0.35, 1 thread): whole-stream trees win by 5-10% up to
@@ -104,13 +109,15 @@ constexpr uint64_t kSequentialTreeBits = uint64_t{1} << 24;
 
 /// Reusable buffers of the parallel phases.
 struct SweepWorkspace {
-  std::vector<SuccTree> partition_local;    ///< Algorithm 3: toggled within each partition
-  std::vector<SuccTree> partition_start;    ///< Algorithm 3: ⊕-prefix, active at partition start
-  std::vector<uint32_t> lows_before;        ///< Algorithm 3: rank counter at partition start
-  std::vector<SuccTree> pairing;            ///< Algorithm 4: slab_count trees per thread
-  std::vector<uint64_t> partition_entries;  ///< Algorithm 4: endpoints by partition
+  std::vector<SuccTree> partition_local;  ///< Algorithm 3: toggled within each partition
+  std::vector<SuccTree> partition_start;  ///< Algorithm 3: ⊕-prefix, active at partition start
+  std::vector<uint32_t> lows_before;      ///< Algorithm 3: rank counter at partition start
+  std::vector<SuccTree> pairing;          ///< Algorithm 4: slab_count trees per thread
+  Buffer<uint64_t> partition_entries;     ///< Algorithm 4: endpoints by partition
   std::vector<std::size_t> partition_offsets;  ///< start of each partition's entries, m + 1
   std::vector<std::size_t> scatter_counts;     ///< [thread][partition] placement counters
+  std::vector<std::size_t> partition_work;     ///< Algorithm 4: measured work per partition
+  std::vector<uint32_t> partition_order;       ///< Algorithm 4: partitions by decreasing work
 };
 
 /// Algorithm 1, lines 5-14: ranks and candidate ranges from the primary-axis order, one thread.
@@ -128,8 +135,9 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs);
 
 /// Algorithm 4: rank space split into partitions of at most kPairingPartitionRanks ranks (and at
-/// least one per thread), each swept by one thread with its own SuccTrees; each pair is found in
-/// exactly one partition, without locks or reduction. Unlike the paper, where every thread reads
+/// least kPairingPartitionsPerThread per thread), each swept by one thread with its own
+/// SuccTrees, handed out largest measured work first; each pair is found in exactly one
+/// partition, without locks or reduction. Unlike the paper, where every thread reads
 /// all 2n endpoints, one scatter pass first hands each partition only the endpoints that touch
 /// it (those whose rank or candidate range falls in it), in sweep order, packed in 8 bytes:
 /// partitions then fit in cache and there may be many more of them than threads.

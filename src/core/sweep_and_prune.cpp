@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/axis_policy.h"
+#include "core/assert.h"
 #include "core/axis_spread.h"
 #include "core/buffers.h"
 #include "core/phase_timer.h"
@@ -88,12 +89,12 @@ void SweepAndPrune::forgetCoherence() {
 }
 
 void SweepAndPrune::releaseBuffers() {
-  std::vector<uint64_t>().swap(endpoint_words_);
+  Buffer<uint64_t>().swap(endpoint_words_);
   std::vector<uint32_t>().swap(sweep_order_);
   ranges_ = CandidateRanges();
-  std::vector<RankedKeys>().swap(ranked_keys_);
-  std::vector<RankedFilter>().swap(ranked_filters_);
-  std::vector<RankedSlabs>().swap(ranked_slabs_);
+  Buffer<RankedKeys>().swap(ranked_keys_);
+  Buffer<RankedFilter>().swap(ranked_filters_);
+  Buffer<RankedSlabs>().swap(ranked_slabs_);
   workspace_ = SweepWorkspace();
   sequential_tree_ = SuccTree();
   pairs_per_thread_.clear();
@@ -192,6 +193,8 @@ void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, int inThreads) {
       keys.lo[axis] = origin.low(axis, inBoxes.lo[axis][i]);
       keys.hi[axis] = origin.high(axis, inBoxes.hi[axis][i]);
     }
+    SAP_ASSERT(keys.lo[0] <= keys.hi[0] && keys.lo[1] <= keys.hi[1] && keys.lo[2] <= keys.hi[2],
+               "a key record with lo > hi (keys must round outward)");
     if (slabbed)
       ranked_slabs_[rank] = {static_cast<uint8_t>(slab_grid_.slabOf(third_low[i])),
                              static_cast<uint8_t>(slab_grid_.slabOf(third_high[i]))};
@@ -261,7 +264,7 @@ void SweepAndPrune::run(const BoxSet& inBoxes, FramePath inPath, int inThreads,
     // Each thread's pairs are disjoint from the others': merging them is the whole set. The
     // sweep order is dead by now: the sort borrows its memory for its histogram.
     std::swap(sweep_order_, pair_scratch_.offsets);
-    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_);
+    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_, threads);
     std::swap(sweep_order_, pair_scratch_.offsets);
   }
   decideAxes(warm && axis_swapping_ && 2 * std::size_t{n} >= tuning::kMinPartitionedEndpoints,

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/buffers.h"
 #include "core/key_origin.h"
 #include "core/radix_sort.h"
 #include "core/slab_grid.h"
@@ -59,12 +60,12 @@ class SweepAndPrune {
   PartitionedSorter sorter_;
   // 4n words: packed (key, index) items and the sort's scratch while sorting, then the
   // secondary stream (2 words per endpoint) while pairing.
-  std::vector<uint64_t> endpoint_words_;
+  Buffer<uint64_t> endpoint_words_;
   std::vector<uint32_t> sweep_order_;  // 2n endpoint indexes: primary order, then secondary
   CandidateRanges ranges_;
-  std::vector<RankedKeys> ranked_keys_;
-  std::vector<RankedFilter> ranked_filters_;
-  std::vector<RankedSlabs> ranked_slabs_;
+  Buffer<RankedKeys> ranked_keys_;
+  Buffer<RankedFilter> ranked_filters_;
+  Buffer<RankedSlabs> ranked_slabs_;
   SlabGrid slab_grid_;
   SweepWorkspace workspace_;
   SuccTree sequential_tree_;

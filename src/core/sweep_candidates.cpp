@@ -77,23 +77,27 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
 #pragma omp barrier
 #pragma omp single
     for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-    // Lines 8-11: ranks.
+    // Lines 8-11: ranks. Lines 12-14 build each slice's own tree, the ranks with one endpoint
+    // inside the slice, by flipping leaf bits (both endpoints inside: flipped twice, absent),
+    // then its summaries in one pass: a low's rank is known right here, a high's once every
+    // slice has handed out its ranks.
+    SuccTree& local = ioWork.partition_local[slice];
+    if (local.size() != inObjects) local.resize(inObjects);
     uint32_t next_rank = ioWork.lows_before[slice];
     for (std::size_t k = begin; k < end; ++k) {
       const uint32_t endpoint = inPrimaryOrder[k];
       if (endpoint < inObjects) {
         ranges[endpoint].rank = next_rank;
-        object_of_rank[next_rank++] = endpoint;
+        object_of_rank[next_rank] = endpoint;
+        local.flipLeaf(next_rank++);
       }
     }
-    // Lines 12-14: each slice's own tree keeps the ranks with one endpoint inside the slice.
-    SuccTree& local = ioWork.partition_local[slice];
-    if (local.size() != inObjects) local.resize(inObjects);
 #pragma omp barrier
     for (std::size_t k = begin; k < end; ++k) {
       const uint32_t endpoint = inPrimaryOrder[k];
-      local.toggle(ranges[endpoint < inObjects ? endpoint : endpoint - inObjects].rank);
+      if (endpoint >= inObjects) local.flipLeaf(ranges[endpoint - inObjects].rank);
     }
+    local.rebuildSummaries();
 #pragma omp barrier
     // Line 15: the active set at the start of the slice is the ⊕ of all earlier slices' trees.
     SuccTree& active = ioWork.partition_start[slice];

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <numeric>
 
 #include "core/buffers.h"
 #include "core/sweep.h"
@@ -198,75 +199,110 @@ class PartitionSweep {
   PairChunks& pairs_;
 };
 
+// The split of rank space into partitions of 2^shift ranks (a power of two, so that finding
+// an endpoint's partitions is a shift, not a division: the scatter does it twice an endpoint).
+struct RankPartitions {
+  uint32_t shift = 0;
+  uint32_t count = 0;
+  uint32_t size() const { return uint32_t{1} << shift; }
+  uint32_t of(uint32_t inRank) const { return inRank >> shift; }
+  uint32_t begin(uint32_t inPartition) const { return inPartition << shift; }
+};
+
+// All ones when a secondary-stream word names a high endpoint, else 0.
+inline uint32_t highMask(uint32_t inRankAndKind) {
+  static_assert(secondary_stream::kHighBit == 0x80000000u, "the kind is the top bit");
+  return 0u - (inRankAndKind >> 31);
+}
+
 // The rank partitions an endpoint matters to: its own (insert, erase) and, for a low endpoint,
 // every partition its candidate range [L, U) reaches (which includes its own: L <= R < U).
-inline void partitionsOf(const uint64_t* inStream, std::size_t inK, uint32_t inPartitionSize,
+// Lows and highs alternate at random in the stream, so both are computed without a branch.
+inline void partitionsOf(const uint64_t* inStream, std::size_t inK, const RankPartitions& inSplit,
                          uint32_t& outFirst, uint32_t& outLast) {
   const uint32_t rank_and_kind = secondary_stream::rankAndKind(inStream, inK);
   const uint32_t rank = rank_and_kind & ~secondary_stream::kHighBit;
-  if (rank_and_kind & secondary_stream::kHighBit) {
-    outFirst = outLast = rank / inPartitionSize;
-  } else {
-    outFirst = std::min(secondary_stream::low(inStream, inK), rank) / inPartitionSize;
-    outLast = (std::max(secondary_stream::high(inStream, inK), rank + 1) - 1) / inPartitionSize;
-  }
+  // All ones for a high endpoint: the selections are masks, since the compiler turns a
+  // conditional expression back into a branch.
+  const uint32_t high = highMask(rank_and_kind);
+  const uint32_t low_first = std::min(secondary_stream::low(inStream, inK), rank);
+  const uint32_t low_last = std::max(secondary_stream::high(inStream, inK), rank + 1) - 1;
+  outFirst = inSplit.of((rank & high) | (low_first & ~high));
+  outLast = inSplit.of((rank & high) | (low_last & ~high));
 }
 
-// The entry of stream endpoint inK for partition inPartition.
+// The entry of stream endpoint inK for partition inPartition (branch-free, as above).
 inline uint64_t entryFor(const uint64_t* inStream, std::size_t inK, uint32_t inPartition,
-                         uint32_t inPartitionSize) {
+                         const RankPartitions& inSplit) {
   const uint32_t rank_and_kind = secondary_stream::rankAndKind(inStream, inK);
   const uint32_t rank = rank_and_kind & ~secondary_stream::kHighBit;
-  if (rank_and_kind & secondary_stream::kHighBit) return highEntry(rank);
-  const uint32_t partition_begin = inPartition * inPartitionSize;
-  const uint32_t partition_end = partition_begin + inPartitionSize;
+  const uint32_t partition_begin = inSplit.begin(inPartition);
+  const uint32_t partition_end = partition_begin + inSplit.size();
   const uint32_t begin = std::max(secondary_stream::low(inStream, inK), partition_begin);
   const uint32_t end = std::min(secondary_stream::high(inStream, inK), partition_end);
-  return lowEntry(rank, begin - partition_begin, std::max(begin, end) - partition_begin);
+  const uint64_t low_entry =
+      lowEntry(rank, begin - partition_begin, std::max(begin, end) - partition_begin);
+  const uint64_t high = uint64_t{0} - (rank_and_kind >> 31);  // all ones for a high endpoint
+  return (highEntry(rank) & high) | (low_entry & ~high);
 }
 
 // Copies each endpoint of the stream to the entry lists of the partitions it matters to,
 // keeping sweep order within each (threads take contiguous slices; counts, then placement).
-void scatterToPartitions(const PairingInput& inInput, int inThreads, uint32_t inPartitionSize,
-                         uint32_t inPartitions, SweepWorkspace& ioWork) {
+// Also measures each partition's work, its entries plus the candidate ranks its low entries
+// span, into ioWork.partition_work.
+void scatterToPartitions(const PairingInput& inInput, int inThreads, const RankPartitions& inSplit,
+                         SweepWorkspace& ioWork) {
   const std::size_t endpoints = 2 * std::size_t{inInput.objects};
   const uint64_t* stream = inInput.stream;
+  const uint32_t partitions = inSplit.count;
   std::vector<std::size_t>& counts = ioWork.scatter_counts;
-  counts.assign(std::size_t(inThreads) * inPartitions, 0);
-  ioWork.partition_offsets.assign(inPartitions + 1, 0);
+  // Each thread's counters sit a cache line past the previous thread's (no false sharing):
+  // entry counts at [0, partitions), work at [partitions, 2 * partitions).
+  const std::size_t stride = 2 * std::size_t{partitions} + kCacheLineBytes / sizeof(std::size_t);
+  counts.assign(std::size_t(inThreads) * stride, 0);
+  ioWork.partition_offsets.assign(partitions + 1, 0);
+  ioWork.partition_work.assign(partitions, 0);
 #pragma omp parallel num_threads(inThreads)
   {
     const int thread = omp_get_thread_num();
     const int team = omp_get_num_threads();
     const std::size_t begin = endpoints * thread / team;
     const std::size_t end = endpoints * (thread + 1) / team;
-    std::size_t* my_counts = &counts[std::size_t(thread) * inPartitions];
+    std::size_t* my_counts = &counts[std::size_t(thread) * stride];
+    std::size_t* my_work = my_counts + partitions;
     uint32_t first = 0, last = 0;
     for (std::size_t k = begin; k < end; ++k) {
-      partitionsOf(stream, k, inPartitionSize, first, last);
-      for (uint32_t p = first; p <= last; ++p) ++my_counts[p];
+      partitionsOf(stream, k, inSplit, first, last);
+      ++my_counts[first];
+      for (uint32_t p = first + 1; p <= last; ++p) ++my_counts[p];  // rare: ranges are short
+      // A low endpoint's candidate ranks, charged to the partition where its range starts.
+      const uint32_t span = secondary_stream::high(stream, k) - secondary_stream::low(stream, k);
+      my_work[first] += span & ~highMask(secondary_stream::rankAndKind(stream, k));
     }
 #pragma omp barrier
 #pragma omp single
     {
       std::size_t offset = 0;
-      for (uint32_t p = 0; p < inPartitions; ++p) {
+      for (uint32_t p = 0; p < partitions; ++p) {
         ioWork.partition_offsets[p] = offset;
+        std::size_t work = 0;
         for (int t = 0; t < team; ++t) {
-          std::size_t& slot = counts[std::size_t(t) * inPartitions + p];
+          std::size_t& slot = counts[std::size_t(t) * stride + p];
           const std::size_t size = slot;
           slot = offset;
           offset += size;
+          work += counts[std::size_t(t) * stride + partitions + p];
         }
+        ioWork.partition_work[p] = work + (offset - ioWork.partition_offsets[p]);
       }
-      ioWork.partition_offsets[inPartitions] = offset;
+      ioWork.partition_offsets[partitions] = offset;
       resizeDiscarding(ioWork.partition_entries, offset);
     }
     uint64_t* out = ioWork.partition_entries.data();
     for (std::size_t k = begin; k < end; ++k) {
-      partitionsOf(stream, k, inPartitionSize, first, last);
+      partitionsOf(stream, k, inSplit, first, last);
       for (uint32_t p = first; p <= last; ++p)
-        out[my_counts[p]++] = entryFor(stream, k, p, inPartitionSize);
+        out[my_counts[p]++] = entryFor(stream, k, p, inSplit);
     }
   }
 }
@@ -281,23 +317,29 @@ void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCou
   }
 }
 
-// Partition size Δ and count of the rank split: at most kPairingPartitionRanks ranks each, and
-// at least one partition per thread.
-void partitionRanks(uint32_t inObjects, int inThreads, uint32_t& outSize, uint32_t& outCount) {
-  const uint32_t wanted = std::max<uint32_t>(
-      inThreads, (inObjects + kPairingPartitionRanks - 1) / kPairingPartitionRanks);
-  outSize = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
-  outCount = (inObjects + outSize - 1) / outSize;
-  assert(outSize <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
+// The rank split: partitions of at most kPairingPartitionRanks ranks, and on several threads
+// at least kPairingPartitionsPerThread per thread, so that handing the partitions out by
+// decreasing measured work evens the threads out on clustered frames too. The size is the
+// largest power of two that gives at least that many partitions.
+RankPartitions partitionRanks(uint32_t inObjects, int inThreads) {
+  const uint32_t by_cache = (inObjects + kPairingPartitionRanks - 1) / kPairingPartitionRanks;
+  const uint32_t by_threads = inThreads > 1 ? inThreads * kPairingPartitionsPerThread : 1;
+  const uint32_t wanted = std::max(by_cache, by_threads);
+  const uint32_t largest_size = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
+  RankPartitions split;
+  while ((uint32_t{2} << split.shift) <= largest_size) ++split.shift;
+  split.count = (inObjects + split.size() - 1) >> split.shift;
+  assert(split.size() <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
+  return split;
 }
 
 // Sweeps partition inPartition of the scattered entries with ioTrees (slab_count trees of the
 // partition's size, left empty again by the sweep).
 void sweepPartition(const PairingInput& inInput, const SweepWorkspace& inWork,
-                    uint32_t inPartitionSize, uint32_t inPartition, SuccTree* ioTrees,
+                    const RankPartitions& inSplit, uint32_t inPartition, SuccTree* ioTrees,
                     PairChunks& outPairs) {
-  const uint32_t rank_begin = inPartition * inPartitionSize;
-  const uint32_t rank_end = std::min(inInput.objects, rank_begin + inPartitionSize);
+  const uint32_t rank_begin = inSplit.begin(inPartition);
+  const uint32_t rank_end = std::min(inInput.objects, rank_begin + inSplit.size());
   const std::size_t begin = inWork.partition_offsets[inPartition];
   const std::size_t end = inWork.partition_offsets[inPartition + 1];
   PartitionSweep sweep(inInput, rank_begin, rank_end, ioTrees, outPairs);
@@ -333,22 +375,28 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
   // stream; on the big trees every insert, erase and range walk would miss the cache.
-  uint32_t partition_size = 0, partitions = 0;
-  partitionRanks(n, 1, partition_size, partitions);
-  scatterToPartitions(inInput, 1, partition_size, partitions, ioWork);
-  prepareTrees(ioWork.pairing, 0, inInput.slab_count, partition_size);
-  for (uint32_t p = 0; p < partitions; ++p)
-    sweepPartition(inInput, ioWork, partition_size, p, ioWork.pairing.data(), outPairs);
+  const RankPartitions split = partitionRanks(n, 1);
+  scatterToPartitions(inInput, 1, split, ioWork);
+  prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
+  for (uint32_t p = 0; p < split.count; ++p)
+    sweepPartition(inInput, ioWork, split, p, ioWork.pairing.data(), outPairs);
 }
 
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread) {
   const int threads = std::max(1, inThreads);
-  uint32_t partition_size = 0, partitions = 0;  // Δ and m
-  partitionRanks(inInput.objects, threads, partition_size, partitions);
-  scatterToPartitions(inInput, threads, partition_size, partitions, ioWork);
+  const RankPartitions split = partitionRanks(inInput.objects, threads);  // Δ and m
+  scatterToPartitions(inInput, threads, split, ioWork);
+  // Largest measured work first: the last partitions handed out are the small ones, so the
+  // threads finish together (longest-processing-time-first on a dynamic schedule).
+  std::vector<uint32_t>& order = ioWork.partition_order;
+  order.resize(split.count);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t inA, uint32_t inB) {
+    return ioWork.partition_work[inA] > ioWork.partition_work[inB];
+  });
   const int slab_count = inInput.slab_count;
-  prepareTrees(ioWork.pairing, 0, threads * slab_count, partition_size);
+  prepareTrees(ioWork.pairing, 0, threads * slab_count, split.size());
   outPairsPerThread.resize(threads);
 #pragma omp parallel num_threads(threads)
   {
@@ -357,8 +405,8 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
     PairChunks& pairs = outPairsPerThread[thread];
     pairs.clear();
 #pragma omp for schedule(dynamic, 1)
-    for (uint32_t p = 0; p < partitions; ++p)
-      sweepPartition(inInput, ioWork, partition_size, p, trees, pairs);
+    for (uint32_t k = 0; k < split.count; ++k)
+      sweepPartition(inInput, ioWork, split, order[k], trees, pairs);
   }
 }
 

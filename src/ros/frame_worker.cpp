@@ -165,9 +165,17 @@ bool FrameWorker::takeDeliveries() {
 }
 
 void FrameWorker::expireSources() {
-  for (const std::string& name : sources_.expire(ros::Time::now(), params_.source_timeout)) {
-    status_.timeOut(name + " silent for more than ~source_timeout (" +
-                    std::to_string(params_.source_timeout) + " s): dropped out");
+  // A ~sources entry's own timeout, else ~source_timeout.
+  const auto timeout_of = [this](const SourceKey& inKey) {
+    for (const SourceSpec& spec : params_.sources)
+      if (spec.topic == inKey.topic && spec.timeout) return *spec.timeout;
+    return params_.source_timeout;
+  };
+  for (const SourceKey& key : sources_.expire(ros::Time::now(), timeout_of)) {
+    const bool own = timeout_of(key) != params_.source_timeout;
+    status_.timeOut(sourceName(key) + " silent for more than " +
+                    (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +
+                    std::to_string(timeout_of(key)) + " s): dropped out");
   }
 }
 

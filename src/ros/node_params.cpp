@@ -8,13 +8,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <set>
 #include <sstream>
 #include <type_traits>
 
 #include <dynamic_reconfigure/Config.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include "adapters_sources.h"
 #include "sap_broadphase/BroadphaseNodeConfig.h"
 
 namespace sap_broadphase {
@@ -119,24 +119,11 @@ std::string readNonNegative(const ros::NodeHandle& inPrivate, const std::string&
   return "";
 }
 
-/// Reads ~sources, the topics whose publishers make up the world.
-std::string readSources(const ros::NodeHandle& inPrivate, std::vector<std::string>& ioSources) {
+/// Reads ~sources: topics and {topic, type, ...} entries whose publishers make up the world.
+std::string readSources(const ros::NodeHandle& inPrivate, std::vector<SourceSpec>& ioSources) {
   XmlRpc::XmlRpcValue value;
   if (!inPrivate.getParam("sources", value)) return "";
-  if (value.getType() != XmlRpc::XmlRpcValue::TypeArray || value.size() == 0)
-    return "~sources must be a non-empty list of BoxArray topics, e.g. [boxes, robot_a/boxes]";
-  std::vector<std::string> topics;
-  std::set<std::string> seen;
-  for (int i = 0; i < value.size(); ++i) {
-    if (value[i].getType() != XmlRpc::XmlRpcValue::TypeString)
-      return "~sources[" + std::to_string(i) + "] must be a topic name (a string)";
-    const std::string topic = static_cast<std::string>(value[i]);
-    if (topic.empty() || !seen.insert(topic).second)
-      return "~sources lists '" + topic + "' twice (or an empty name)";
-    topics.push_back(topic);
-  }
-  ioSources = topics;
-  return "";
+  return parseSourceSpecs(value, ioSources);
 }
 
 /// Reads the marker settings (the node's own, not the engine's).
@@ -186,7 +173,7 @@ std::string describeNodeParams(const NodeParams& inParams) {
     text << "off";
   text << ", sources [";
   for (std::size_t i = 0; i < inParams.sources.size(); ++i)
-    text << (i ? ", " : "") << inParams.sources[i];
+    text << (i ? ", " : "") << describeSourceSpec(inParams.sources[i]);
   text << "], source_timeout " << inParams.source_timeout << " s, ";
   if (inParams.rate > 0.0)
     text << "rate " << inParams.rate << " Hz";

@@ -9,6 +9,7 @@
 
 #include "markers.h"
 #include "sap_broadphase/core/config.h"
+#include "source_spec.h"
 
 namespace sap_broadphase {
 
@@ -22,7 +23,9 @@ struct NodeParams {
   int boxes_queue_size = 10;    ///< ~boxes_queue_size: subscriber queue of each source topic
   int pairs_queue_size = 10;    ///< ~pairs_queue_size: publisher queue of `pairs`
   int refusal_log_period = 1;   ///< ~refusal_log_period: seconds between refusal errors
-  std::vector<std::string> sources{"boxes"};  ///< ~sources: BoxArray topics merged into a world
+  /// ~sources: topics (BoxArray) and {topic, type, id_offset, group, mask, timeout} entries
+  /// whose publishers make up the world
+  std::vector<SourceSpec> sources{SourceSpec{"boxes", InputType::kBoxArray, 0, {}, {}, {}}};
   double source_timeout = 1.0;     ///< ~source_timeout: seconds of silence before a source drops
                                    ///< out; 0 = never
   double rate = 0.0;               ///< ~rate: Hz of fixed-rate frames; 0 = a frame per delivery

@@ -4,10 +4,25 @@
 #include <utility>
 
 #include <tf2/exceptions.h>
+#include <topic_tools/shape_shifter.h>
+#include <boost/make_shared.hpp>
 
+#include "adapters.h"
+#include "sap_broadphase/IdNames.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
+
+namespace {
+
+/// The node's output topic that inTopic resolves to, or nullptr.
+const char* ownOutputNamed(const ros::NodeHandle& inNode, const std::string& inTopic) {
+  for (const char* output : {"pairs", "pair_events", "markers", "stats", "id_names"})
+    if (inNode.resolveName(inTopic) == inNode.resolveName(output)) return output;
+  return nullptr;
+}
+
+}  // namespace
 
 SourceIngest::SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams,
                            NodeStatus& ioStatus, Wake inWake)
@@ -34,16 +49,71 @@ SourceIngest::SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams,
         }
         wake_();
       }));
-  for (const std::string& topic : inParams.sources) {
-    ros::SubscribeOptions options;
+  for (const SourceSpec& spec : inParams.sources) {
+    if (const char* output = ownOutputNamed(ioNode, spec.topic)) {
+      // The node would read what it writes (e.g. `markers` as a MarkerArray source).
+      ROS_ERROR(
+          "sap_broadphase: ~sources topic '%s' is the node's own output '%s': not read; "
+          "remap the source or the output",
+          spec.topic.c_str(), output);
+      continue;
+    }
+    subscribe(ioNode, spec, inParams.boxes_queue_size);
+  }
+  if (!adapters_.empty()) id_names_pub_ = ioNode.advertise<IdNames>("id_names", 1, true);
+}
+
+void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, int inQueueSize) {
+  ros::SubscribeOptions options;
+  const std::string topic = inSpec.topic;
+  if (inSpec.takesBoxArrayAsIs()) {
     options.initByFullCallbackType<const ros::MessageEvent<BoxArray const>&>(
-        topic, static_cast<uint32_t>(inParams.boxes_queue_size),
+        topic, static_cast<uint32_t>(inQueueSize),
         [this, topic](const ros::MessageEvent<BoxArray const>& inEvent) {
           deliver(topic, inEvent);
         });
-    options.transport_hints = ros::TransportHints().tcpNoDelay();
-    subscribers_.push_back(ioNode.subscribe(options));
+  } else {
+    // Any type (ShapeShifter): the adapter checks the type name and MD5 sum. Every message is
+    // converted here, in order, since a MarkerArray only tells what changed.
+    adapters_.push_back(std::make_unique<SourceAdapter>(inSpec));
+    SourceAdapter* adapter = adapters_.back().get();
+    options.initByFullCallbackType<const ros::MessageEvent<topic_tools::ShapeShifter const>&>(
+        topic, static_cast<uint32_t>(inQueueSize),
+        [this, adapter](const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent) {
+          onAdaptedMessage(*adapter, inEvent);
+        });
   }
+  options.transport_hints = ros::TransportHints().tcpNoDelay();
+  subscribers_.push_back(ioNode.subscribe(options));
+}
+
+void SourceIngest::onAdaptedMessage(
+    SourceAdapter& ioAdapter, const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent) {
+  auto boxes = boost::make_shared<BoxArray>();
+  if (auto reason =
+          ioAdapter.convert(*inEvent.getConstMessage(), inEvent.getPublisherName(), *boxes)) {
+    status_.countReceived();
+    const SourceKey key{ioAdapter.spec().topic, inEvent.getPublisherName(), ""};
+    status_.refuse(boxes->header, 0, sourceName(key) + ": " + *reason);
+    return;
+  }
+  publishIdNames(boxes->header);
+  // The BoxArray built, with the connection header (publisher) of the message received.
+  deliver(ioAdapter.spec().topic,
+          ros::MessageEvent<BoxArray const>(boxes, inEvent.getConnectionHeaderPtr(),
+                                            inEvent.getReceiptTime()));
+}
+
+void SourceIngest::publishIdNames(const std_msgs::Header& inHeader) {
+  std::lock_guard<std::mutex> lock(id_names_mutex_);
+  std::size_t names = 0;
+  for (const auto& adapter : adapters_) names += adapter->nameCount();
+  if (names == id_names_published_) return;  // names only grow: none is new
+  auto msg = boost::make_shared<IdNames>();
+  msg->header = inHeader;
+  for (const auto& adapter : adapters_) adapter->appendIdNames(msg->ids, msg->names);
+  id_names_published_ = msg->ids.size();
+  id_names_pub_.publish(msg);
 }
 
 SourceIngest::~SourceIngest() {

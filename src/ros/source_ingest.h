@@ -24,7 +24,13 @@
 #include "sap_broadphase/core/box_set.h"
 #include "sources.h"
 
+namespace topic_tools {
+class ShapeShifter;  // the message of a source read through an adapter (any type)
+}  // namespace topic_tools
+
 namespace sap_broadphase {
+
+class SourceAdapter;  // adapters.h: a ~sources entry of another type
 
 /// A source frame waiting for the worker: the latest of its source wins.
 struct Delivery {
@@ -70,6 +76,15 @@ class SourceIngest {
   const std::string& fixedFrame() const { return fixed_frame_; }
 
  private:
+  /// Subscribes to a ~sources entry: a BoxArray topic as published (shared in process by a
+  /// nodelet, never copied), any other entry through its adapter.
+  void subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, int inQueueSize);
+  /// Callback of a source read through an adapter (another type, or a BoxArray with an
+  /// id_offset, group or mask): converts the message, names new ids on ~id_names, delivers.
+  void onAdaptedMessage(SourceAdapter& ioAdapter,
+                        const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent);
+  /// Publishes the names of every adapter's ids on ~id_names when some are new (any thread).
+  void publishIdNames(const std_msgs::Header& inHeader);
   /// Keeps a checked frame for the worker, or aside while its transform is missing.
   void store(const SourceKey& inKey, const Delivery& inDelivery);
   /// Moves the waiting frames that tf2 can now place to pending_, skips those that waited too
@@ -90,6 +105,10 @@ class SourceIngest {
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   boost::signals2::connection tf_changed_;  // wakes the worker while frames wait for tf
   std::vector<ros::Subscriber> subscribers_;
+  std::vector<std::unique_ptr<SourceAdapter>> adapters_;  // sources read through an adapter
+  ros::Publisher id_names_pub_;                           // latched, while adapters name ids
+  std::mutex id_names_mutex_;
+  std::size_t id_names_published_ = 0;  // names in the last ~id_names (under the mutex above)
 
   std::mutex mutex_;                       // guards what the worker takes
   std::map<SourceKey, Delivery> pending_;  // ready for the worker

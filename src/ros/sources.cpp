@@ -122,11 +122,19 @@ void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::H
 }
 
 std::vector<std::string> SourceSet::expire(const ros::Time& inNow, double inTimeout) {
-  std::vector<std::string> expired;
-  if (inTimeout <= 0.0) return expired;
+  std::vector<std::string> names;
+  for (const SourceKey& key : expire(inNow, [inTimeout](const SourceKey&) { return inTimeout; }))
+    names.push_back(sourceName(key));
+  return names;
+}
+
+std::vector<SourceKey> SourceSet::expire(
+    const ros::Time& inNow, const std::function<double(const SourceKey&)>& inTimeoutOf) {
+  std::vector<SourceKey> expired;
   for (auto it = sources_.begin(); it != sources_.end();) {
-    if ((inNow - it->second.received).toSec() > inTimeout) {
-      expired.push_back(sourceName(it->first));
+    const double timeout = inTimeoutOf(it->first);
+    if (timeout > 0.0 && (inNow - it->second.received).toSec() > timeout) {
+      expired.push_back(it->first);
       it = sources_.erase(it);
     } else {
       ++it;

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -62,6 +63,10 @@ class SourceSet {
   /// Drops the sources whose latest frame is older than inTimeout seconds at inNow (0 = never)
   /// and returns their names.
   std::vector<std::string> expire(const ros::Time& inNow, double inTimeout);
+  /// As above with each source's own time-out, inTimeoutOf(key) seconds (0 = never); returns
+  /// the keys of the sources dropped.
+  std::vector<SourceKey> expire(const ros::Time& inNow,
+                                const std::function<double(const SourceKey&)>& inTimeoutOf);
   /// Number of sources held.
   std::size_t size() const { return sources_.size(); }
 

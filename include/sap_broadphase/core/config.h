@@ -52,6 +52,10 @@ std::string skinToText(const std::optional<double>& inSkin);
 /// configProblem's to check.
 bool skinFromText(const std::string& inText, std::optional<double>& outSkin);
 
+/// Most third-axis slabs (BroadphaseConfig::third_axis_slabs): slab numbers are stored in 8
+/// bits, and more slabs cost inserts for large boxes.
+constexpr int kMaxThirdAxisSlabs = 64;
+
 /// What a caller may tune. Defaults are the exact, adaptive engine.
 struct BroadphaseConfig {
   int threads = 0;                    ///< worker threads; 0 = all cores (omp_get_max_threads)

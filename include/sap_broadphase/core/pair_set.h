@@ -84,5 +84,9 @@ void sortPairsCanonical(PairList& ioPairs);
 /// them into one list when ids are dense. inParts is left unchanged.
 void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
                         PairSortScratch& ioScratch);
+/// The same on up to inThreads threads (one part each), so the merge grows with n on every
+/// core rather than on one. Same result for any thread count.
+void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
+                        PairSortScratch& ioScratch, int inThreads);
 
 }  // namespace sap_broadphase

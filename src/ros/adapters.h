@@ -1,0 +1,142 @@
+// Input adapters: the box messages robots publish (visualization_msgs/MarkerArray, vision_msgs,
+// jsk_recognition_msgs) turned into the node's BoxArray, one adapter per ~sources entry.
+//
+// vision_msgs and jsk_recognition_msgs are not packaged in Debian 12, so the node has no build
+// dependency on them: it subscribes with topic_tools::ShapeShifter, checks the publisher's
+// type name and MD5 sum against the ROS 1 (noetic) definitions embedded here
+// (src/ros/adapters_msgs/*.msg) and decodes the wire bytes with ros::serialization.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <geometry_msgs/Point.h>
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Vector3.h>
+#include <std_msgs/Header.h>
+#include <topic_tools/shape_shifter.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "sap_broadphase/BoxArray.h"
+#include "sap_broadphase/core/box_set.h"
+#include "source_spec.h"
+
+namespace sap_broadphase {
+
+/// What the node knows of a type: its ROS name, MD5 sum and full definition (as gencpp writes
+/// it: the type's own text, then each dependency after a line of '=' and "MSG: pkg/Type").
+struct InputTypeInfo {
+  InputType type;
+  const char* name;
+  const char* md5;
+  const char* definition;
+};
+
+/// The description of inType.
+const InputTypeInfo& inputTypeInfo(InputType inType);
+/// The type named inName (e.g. "vision_msgs/Detection3DArray"), or nothing.
+std::optional<InputType> inputTypeByName(const std::string& inName);
+/// "sap_broadphase/BoxArray, visualization_msgs/MarkerArray, ...": for refusals.
+std::string inputTypeNames();
+
+/// A box as the messages give it: a box of `size` centred on `centre`, in the frame that `pose`
+/// places in the message's frame.
+struct PosedBox {
+  std::string name;             ///< what the box is called in its source: "obstacles/7", ...
+  geometry_msgs::Pose pose;     ///< of the box's frame in the message's frame
+  geometry_msgs::Point centre;  ///< in the box's frame: a CUBE_LIST point, else the origin
+  geometry_msgs::Vector3 size;  ///< full extent along the box's frame axes
+};
+
+/// The boxes of one message of a vision_msgs or jsk type, with the message's header.
+struct DecodedBoxes {
+  std_msgs::Header header;
+  std::vector<PosedBox> boxes;
+};
+
+/// Decodes the serialized message inData (of inSize bytes) of inType (BoundingBox3DArray,
+/// Detection3DArray or jsk BoundingBoxArray) into outDecoded. Boxes are named "box k",
+/// "detection k" and "label L" ("label L #j" for the j-th repeat of L in the message). Returns
+/// the refusal (truncated or over-long data, a box in another frame than its array), or nothing.
+std::optional<std::string> decodeWireBoxes(InputType inType, const uint8_t* inData, uint32_t inSize,
+                                           DecodedBoxes& outDecoded);
+
+/// Checks a box at the edge: no NaN in pose or size, no negative size, a unit quaternion (an
+/// all-zero quaternion is read as the identity, as rviz does). Returns the reason, or nothing.
+std::optional<std::string> checkPosedBox(const PosedBox& inBox);
+
+/// Stable ids for the names of a source: the k-th name seen gets id_offset + k, for the life of
+/// the node, whatever order later messages list them in.
+class IdTable {
+ public:
+  explicit IdTable(uint32_t inOffset) : offset_(inOffset) {}
+  /// The id of inName (registered when new), or nothing when the offset plus the number of
+  /// names would pass 2^32 - 1.
+  std::optional<uint32_t> idOf(const std::string& inName);
+  /// The names in id order: names()[k] has id offset() + k.
+  const std::vector<std::string>& names() const { return names_; }
+  uint32_t offset() const { return offset_; }
+
+ private:
+  uint32_t offset_;
+  std::map<std::string, uint32_t> ids_;
+  std::vector<std::string> names_;
+};
+
+/// Converts the messages of one ~sources entry into BoxArrays. Thread-safe: one mutex per
+/// source (roscpp calls one subscription's callbacks one at a time, in order, which the marker
+/// state relies on).
+class SourceAdapter {
+ public:
+  explicit SourceAdapter(const SourceSpec& inSpec);
+  const SourceSpec& spec() const { return spec_; }
+
+  /// Any message of the topic: checks its type name and MD5 sum against spec().type, decodes
+  /// and converts it into outBoxes (replaced). Returns the refusal, or nothing.
+  std::optional<std::string> convert(const topic_tools::ShapeShifter& inMsg,
+                                     const std::string& inPublisher, BoxArray& outBoxes);
+  /// A MarkerArray of inPublisher: applied to the publisher's marker set (ADD/MODIFY replace a
+  /// marker, DELETE removes one, DELETEALL all of them), then the whole set of CUBE and
+  /// CUBE_LIST markers is converted. A refused message leaves the set as it was.
+  std::optional<std::string> convertMarkers(const visualization_msgs::MarkerArray& inMsg,
+                                            const std::string& inPublisher, BoxArray& outBoxes);
+  /// Serialized bytes of a vision_msgs or jsk message of inType (type already checked).
+  std::optional<std::string> convertWire(InputType inType, const std::vector<uint8_t>& inData,
+                                         BoxArray& outBoxes);
+  /// A BoxArray of a source with an id_offset, group or mask: applies them to ioBoxes (ids
+  /// numbered 0..n-1 first when empty). Returns the refusal (an id overflowing uint32).
+  std::optional<std::string> applyOverrides(BoxArray& ioBoxes) const;
+
+  /// Appends the (id, name) of every named box seen so far; the number of names grows only.
+  void appendIdNames(std::vector<uint32_t>& ioIds, std::vector<std::string>& ioNames) const;
+  /// Number of names given an id so far (grows only: a change means ~id_names is out of date).
+  std::size_t nameCount() const;
+
+ private:
+  /// One publisher's markers, by (ns, id), and the frame of the last set converted.
+  struct MarkerSet {
+    std::map<std::pair<std::string, int32_t>, visualization_msgs::Marker> markers;
+    std_msgs::Header header;
+  };
+  /// Checks and converts inBoxes (in the frame of inHeader) into outBoxes with ids from the
+  /// table and the spec's group and mask (caller holds mutex_).
+  std::optional<std::string> toBoxArray(const std_msgs::Header& inHeader,
+                                        const std::vector<PosedBox>& inBoxes, BoxArray& outBoxes);
+  /// The spec's group and mask, when given, on every box of ioBoxes.
+  void applyFilters(BoxArray& ioBoxes) const;
+
+  const SourceSpec spec_;
+  mutable std::mutex mutex_;
+  IdTable ids_;
+  std::map<std::string, MarkerSet> marker_sets_;  // by publisher
+  std::vector<uint8_t> wire_;                     // a ShapeShifter's bytes, reused
+  DecodedBoxes decoded_;                          // reused
+  BoxSet one_box_;                                // a box moved by its pose, reused
+};
+
+}  // namespace sap_broadphase
