@@ -93,9 +93,12 @@ void FrameWorker::run() {
     const ros::Time now = ros::Time::now();
     if (now + period < next_tick) next_tick = now + period;  // the clock went back (a bag loop)
     const bool tick = now >= next_tick;
-    // A late tick (a slow frame, or /clock jumping ahead) is not made up for: the next one
-    // is a period from now.
-    if (tick) next_tick = std::max(next_tick + period, now + period);
+    // Ticks keep their phase; one that is more than a period late (a slow frame, /clock
+    // jumping ahead) is not made up for: the next one is a period from now.
+    if (tick) {
+      next_tick += period;
+      if (next_tick <= now) next_tick = now + period;
+    }
     if (fixed_rate && !tick) continue;  // woken for settings only
 
     const bool scenery_changed = takeScenery();
