@@ -112,7 +112,7 @@ bool pairArrayToPairList(const PairArray& inMsg, PairList& outPairs) {
   if (inMsg.pairs.size() % 2 != 0) return false;
   outPairs.resize(inMsg.pairs.size() / 2);
   for (std::size_t i = 0; i < outPairs.size(); ++i)
-    outPairs[i] = IdPair{inMsg.pairs[2 * i], inMsg.pairs[2 * i + 1]};
+    outPairs[i] = makeIdPair(inMsg.pairs[2 * i], inMsg.pairs[2 * i + 1]);
   return true;
 }
 

@@ -29,8 +29,8 @@ void pairListToPairArray(const PairList& inPairs, const std_msgs::Header& inHead
 /// Fills outMsg (replaced) with the boxes of inBoxes; ids are always written.
 void boxSetToBoxArray(const BoxSet& inBoxes, const std_msgs::Header& inHeader, BoxArray& outMsg);
 
-/// Reads the pairs of a PairArray back into outPairs (replaced). Returns false when the array
-/// has an odd length.
+/// Reads the pairs of a PairArray back into outPairs (replaced), each with a < b (makeIdPair,
+/// the one rule for a pair's order). Returns false when the array has an odd length.
 bool pairArrayToPairList(const PairArray& inMsg, PairList& outPairs);
 
 }  // namespace sap_broadphase
