@@ -35,9 +35,10 @@ sap_add_gtest(test_engine
 target_include_directories(test_engine PRIVATE test/core)
 target_link_libraries(test_engine ${PROJECT_NAME}_core_internal)
 
-# Skin reuse's kept candidates (SkinList) against the oracle over moving frames.
+# Skin reuse (SkinReuse) and its kept candidates (SkinList) against the oracle over moving frames.
 sap_add_gtest(test_skin_list
-  test/core/test_skin_list.cpp test/core/test_support.cpp test/core/test_main.cpp)
+  test/core/test_skin_list.cpp test/core/test_skin_reuse.cpp test/core/test_support.cpp
+  test/core/test_main.cpp)
 target_include_directories(test_skin_list PRIVATE test/core)
 target_link_libraries(test_skin_list ${PROJECT_NAME}_core_internal)
 

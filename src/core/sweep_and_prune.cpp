@@ -5,8 +5,8 @@
 #include <cstring>
 #include <utility>
 
-#include "core/axis_policy.h"
 #include "core/assert.h"
+#include "core/axis_policy.h"
 #include "core/axis_spread.h"
 #include "core/buffers.h"
 #include "core/phase_timer.h"

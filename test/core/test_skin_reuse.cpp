@@ -1,0 +1,105 @@
+// SkinReuse on its own against the oracle: a grown sweep's candidates answer the frame, the
+// coverage known before planning says yes while every box stays inside its skin and no once
+// one box left it, and the sweep's costs are learnt from the sweep's own phases.
+#include <gtest/gtest.h>
+
+#include "core/frame_history.h"
+#include "core/frame_plan.h"
+#include "core/skin_reuse.h"
+#include "sap_broadphase/core/brute_force.h"
+#include "test_support.h"
+
+namespace sap_broadphase {
+namespace {
+
+constexpr double kSkin = 0.5;
+
+/// A grown sweep of inBoxes as the engine runs it, with the oracle in the sweep's place.
+PairList growSweepAndKeep(SkinReuse& ioSkin, const BoxSet& inBoxes, FrameReport& ioReport) {
+  PairList pairs = bruteForcePairs(ioSkin.grow(inBoxes, kSkin, 2, ioReport));
+  ioSkin.keepAndAnswer(inBoxes, 2, ioReport, pairs);
+  return pairs;
+}
+
+/// inBoxes with every bound moved by inShift on the x axis.
+BoxSet shiftedX(const BoxSet& inBoxes, double inShift) {
+  BoxSet moved = inBoxes;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    moved.lo[0][i] += inShift;
+    moved.hi[0][i] += inShift;
+  }
+  return moved;
+}
+
+TEST(SkinReuse, KeptCandidatesAnswerExactlyWhileEveryBoxStaysInsideItsSkin) {
+  const BoxSet first = test_support::randomBoxes(3000, 40.0, 1.5, 11);
+  SkinReuse skin;
+  FrameReport report;
+  EXPECT_FALSE(skin.hasCandidates());
+  EXPECT_EQ(growSweepAndKeep(skin, first, report), bruteForcePairs(first));
+  EXPECT_TRUE(skin.hasCandidates());
+  EXPECT_EQ(skin.skin(), kSkin);
+  EXPECT_GE(skin.candidates(), bruteForcePairs(first).size());
+  // Every box moved by less than skin / 2: covered, and the candidates give the exact pairs.
+  const BoxSet inside = shiftedX(first, 0.2);
+  ASSERT_TRUE(skin.coversFrame(inside, 2, report));
+  PairList pairs;
+  skin.answerFromCandidates(2, report, pairs);
+  EXPECT_EQ(pairs, bruteForcePairs(inside));
+  EXPECT_EQ(report.skin_candidates, skin.candidates());
+  // One box beyond its skin: not covered, known before any plan is made.
+  BoxSet outside = inside;
+  outside.hi[1][7] += 0.3;
+  EXPECT_FALSE(skin.coversFrame(outside, 2, report));
+  // Other ids are never covered.
+  BoxSet renamed = inside;
+  renamed.ids[0] += 100000;
+  EXPECT_FALSE(skin.coversFrame(renamed, 2, report));
+  skin.forget();
+  EXPECT_FALSE(skin.hasCandidates());
+  EXPECT_FALSE(skin.coversFrame(inside, 2, report));
+}
+
+TEST(SkinReuse, MotionIsTheLargestDisplacementOfTheRecentWindow) {
+  SkinReuse skin;
+  FrameDelta delta;
+  delta.relation = FrameRelation::kSameIds;
+  for (double displacement : {0.1, 0.4, 0.2}) {
+    delta.max_displacement = displacement;
+    skin.startFrame(delta);
+  }
+  EXPECT_EQ(skin.recentMotion(), 0.4);
+  delta.relation = FrameRelation::kOtherIds;  // other ids: the motion is unknown again
+  skin.startFrame(delta);
+  EXPECT_EQ(skin.recentMotion(), 0.0);
+}
+
+TEST(SkinReuse, LearnsTheSweepFromItsOwnPhasesAndThePassFromThePass) {
+  const BoxSet boxes = test_support::randomBoxes(4000, 40.0, 1.5, 12);
+  SkinReuse skin;
+  FrameReport report;
+  report.ms_keys = 1.0;
+  report.ms_sort = 2.0;
+  report.ms_candidates = 1.0;
+  report.ms_pairing = 3.0;
+  report.ms_output = 1.0;
+  FramePlan plain;
+  plain.work = FrameWork::kSweep;
+  const std::size_t pairs = bruteForcePairs(boxes).size();
+  skin.learn(plain, boxes, pairs, report);
+  EXPECT_DOUBLE_EQ(skin.costs().sweep_ns_per_box, 4.0e6 / 4000.0);
+  EXPECT_DOUBLE_EQ(skin.costs().pairing_ns_per_item, 4.0e6 / (4000.0 + pairs));
+  EXPECT_EQ(skin.costs().reference_boxes, 4000u);
+  EXPECT_EQ(skin.costs().pass_ns_per_box, 0.0) << "no pass ran";
+  EXPECT_GT(skin.costs().span[0], 0.0);
+  // A grown sweep: its reference is the grown boxes' candidates at its skin.
+  FramePlan grown = plain;
+  grown.sweep_skin = kSkin;
+  growSweepAndKeep(skin, boxes, report);
+  skin.learn(grown, boxes, 0, report);
+  EXPECT_EQ(skin.costs().reference_skin, kSkin);
+  EXPECT_EQ(skin.costs().reference_candidates, static_cast<double>(skin.candidates()));
+}
+
+}  // namespace
+}  // namespace sap_broadphase
