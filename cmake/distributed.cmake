@@ -17,7 +17,8 @@ target_include_directories(${PROJECT_NAME}_distributed
 target_link_libraries(${PROJECT_NAME}_distributed PUBLIC ${PROJECT_NAME}_core MPI::MPI_CXX)
 
 # mpirun -np R sap_pairs_mpi FILE: sap_pairs' contract, computed by R ranks.
-add_executable(sap_pairs_mpi src/apps/sap_pairs_mpi_main.cpp src/apps/cli_args.cpp)
+add_executable(sap_pairs_mpi src/apps/sap_pairs_mpi_main.cpp src/apps/pairs_options.cpp
+  src/apps/cli_args.cpp)
 target_link_libraries(sap_pairs_mpi ${PROJECT_NAME}_distributed)
 
 # The worker of `sap_bench -e distributed`, which sap_bench starts under mpirun.

@@ -1,23 +1,20 @@
 // sap_pairs: reads boxes as text, prints every overlapping pair (see --help for the contract).
-#include <sys/stat.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <exception>
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <string>
 
 #include "cli_args.h"
+#include "pairs_options.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/text_io.h"
 
 namespace {
 
 using namespace sap_broadphase;
+using cli::PairsOptions;
 
 const char* const kProgram = "sap_pairs";
 const char* const kUsage =
@@ -45,99 +42,6 @@ const char* const kUsage =
     "stderr; FILE is '<stdin>' for standard input, LINE 0 when the file cannot be read) or bad\n"
     "usage; 1 unexpected failure (e.g. output not writable).\n";
 
-/// What the command line asked for.
-struct PairsOptions {
-  int threads = 0;  // 0 = all cores
-  Method method = Method::kAuto;
-  bool count_only = false;
-  bool stats = false;
-  bool help = false;
-  std::string path = "-";
-};
-
-/// The methods the CLI offers, by the engine's names (methodName), except that Method::kAuto
-/// is spelled "sap" here, as it was before the engine named it.
-const Method kCliMethods[] = {Method::kAuto, Method::kSequential, Method::kBruteForce};
-
-const char* cliMethodName(Method inMethod) {
-  return inMethod == Method::kAuto ? "sap" : methodName(inMethod);
-}
-
-/// Parses a --method name: one of kCliMethods by its CLI name.
-bool parseMethodName(const std::string& inName, Method& outMethod) {
-  for (Method method : kCliMethods) {
-    if (inName == cliMethodName(method)) {
-      outMethod = method;
-      return true;
-    }
-  }
-  return false;
-}
-
-/// Fills outOptions from argv; returns an error message, empty on success.
-std::string parseOptions(int inArgc, char** inArgv, PairsOptions& outOptions) {
-  cli::ArgCursor cursor(inArgc, inArgv);
-  bool havePath = false;
-  while (cursor.more()) {
-    std::string arg;
-    std::string value;
-    std::string error;
-    bool isOption = false;
-    cursor.next(arg, isOption);
-    if (arg == "--") continue;
-    if (!isOption) {
-      if (havePath) return "more than one input file given ('" + arg + "')";
-      outOptions.path = arg;
-      havePath = true;
-    } else if (arg == "--threads") {
-      int64_t threads = 0;
-      if (!cursor.takeValue(arg, value, error)) return error;
-      if (!cli::parseInteger(value, 1, 4096, threads))
-        return "bad --threads value '" + value + "' (an integer from 1 to 4096)";
-      outOptions.threads = static_cast<int>(threads);
-    } else if (arg == "--method") {
-      if (!cursor.takeValue(arg, value, error)) return error;
-      if (!parseMethodName(value, outOptions.method))
-        return "bad --method value '" + value + "' (" +
-               methodList({std::begin(kCliMethods), std::end(kCliMethods)}, cliMethodName) + ")";
-    } else if (arg == "--count" || arg == "--stats" || arg == "--help" || arg == "-h") {
-      if (cursor.hasAttachedValue()) return arg + " takes no value";
-      if (arg == "--count")
-        outOptions.count_only = true;
-      else if (arg == "--stats")
-        outOptions.stats = true;
-      else
-        outOptions.help = true;
-    } else {
-      return "unknown option '" + arg + "'";
-    }
-  }
-  return "";
-}
-
-/// Reads the boxes of inPath ("-" = stdin); on failure prints the reason and returns false.
-bool readBoxes(const std::string& inPath, BoxSet& outBoxes) {
-  std::optional<ParseError> error;
-  if (inPath == "-") {
-    error = readBoxText(std::cin, "<stdin>", outBoxes);
-  } else {
-    struct stat info;
-    if (stat(inPath.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
-      error = ParseError{inPath, 0, "cannot read: is a directory"};
-    } else {
-      std::ifstream file(inPath, std::ios::binary);
-      if (!file) {
-        error = ParseError{inPath, 0, std::string("cannot open: ") + std::strerror(errno)};
-      } else {
-        error = readBoxText(file, inPath, outBoxes);
-      }
-    }
-  }
-  if (!error) return true;
-  std::fprintf(stderr, "%s\n", error->message().c_str());
-  return false;
-}
-
 /// Prints the frame statistics to stderr.
 void printStats(const FrameReport& inStats, double inReadMs) {
   std::fprintf(stderr,
@@ -155,7 +59,7 @@ void printStats(const FrameReport& inStats, double inReadMs) {
 
 int run(int inArgc, char** inArgv) {
   PairsOptions options;
-  const std::string usageError = parseOptions(inArgc, inArgv, options);
+  const std::string usageError = cli::parsePairsOptions(inArgc, inArgv, options);
   if (!usageError.empty()) return cli::reportUsageError(kProgram, usageError, kUsage);
   if (options.help) {
     std::fputs(kUsage, stdout);
@@ -164,7 +68,7 @@ int run(int inArgc, char** inArgv) {
   std::ios::sync_with_stdio(false);
   const auto readStart = std::chrono::steady_clock::now();
   BoxSet boxes;
-  if (!readBoxes(options.path, boxes)) return cli::kExitBadInput;
+  if (!cli::readPairsInput(options.path, boxes)) return cli::kExitBadInput;
   const double readMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart)
           .count();

@@ -2,19 +2,16 @@
 // Rank 0 reads the file and deals the boxes out in blocks of file order, as a simulation's
 // ranks would hold them; the distributed broad phase finds the pairs and rank 0 prints them.
 #include <mpi.h>
-#include <sys/stat.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <exception>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "cli_args.h"
+#include "pairs_options.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/text_io.h"
 #include "sap_broadphase/distributed/distributed_broadphase.h"
@@ -22,6 +19,7 @@
 namespace {
 
 using namespace sap_broadphase;
+using cli::PairsOptions;
 using distributed::DistributedBroadphase;
 using distributed::DistributedConfig;
 using distributed::DistributedReport;
@@ -48,81 +46,6 @@ const char* const kUsage =
     "\n"
     "Exit status: 0 success; 2 bad input (then nothing on stdout and 'FILE:LINE: reason' on\n"
     "stderr) or bad usage; 1 unexpected failure. mpirun may add its own lines to stderr.\n";
-
-/// What the command line asked for (sap_pairs' options).
-struct PairsOptions {
-  int threads = 0;  // 0 = all cores
-  Method method = Method::kAuto;
-  bool count_only = false;
-  bool stats = false;
-  bool help = false;
-  std::string path = "-";
-};
-
-/// Fills outOptions from argv; returns an error message, empty on success. The same options
-/// and messages as sap_pairs.
-std::string parseOptions(int inArgc, char** inArgv, PairsOptions& outOptions) {
-  cli::ArgCursor cursor(inArgc, inArgv);
-  bool havePath = false;
-  while (cursor.more()) {
-    std::string arg;
-    std::string value;
-    std::string error;
-    bool isOption = false;
-    cursor.next(arg, isOption);
-    if (arg == "--") continue;
-    if (!isOption) {
-      if (havePath) return "more than one input file given ('" + arg + "')";
-      outOptions.path = arg;
-      havePath = true;
-    } else if (arg == "--threads") {
-      int64_t threads = 0;
-      if (!cursor.takeValue(arg, value, error)) return error;
-      if (!cli::parseInteger(value, 1, 4096, threads))
-        return "bad --threads value '" + value + "' (an integer from 1 to 4096)";
-      outOptions.threads = static_cast<int>(threads);
-    } else if (arg == "--method") {
-      if (!cursor.takeValue(arg, value, error)) return error;
-      if (value != "sap" && value != "sequential" && value != "brute")
-        return "bad --method value '" + value + "' (sap, sequential or brute)";
-      outOptions.method = *parseMethod(value);
-    } else if (arg == "--count" || arg == "--stats" || arg == "--help" || arg == "-h") {
-      if (cursor.hasAttachedValue()) return arg + " takes no value";
-      if (arg == "--count")
-        outOptions.count_only = true;
-      else if (arg == "--stats")
-        outOptions.stats = true;
-      else
-        outOptions.help = true;
-    } else {
-      return "unknown option '" + arg + "'";
-    }
-  }
-  return "";
-}
-
-/// Reads the boxes of inPath ("-" = stdin) as sap_pairs does; on failure prints the reason.
-bool readBoxes(const std::string& inPath, BoxSet& outBoxes) {
-  std::optional<ParseError> error;
-  if (inPath == "-") {
-    error = readBoxText(std::cin, "<stdin>", outBoxes);
-  } else {
-    struct stat info;
-    if (stat(inPath.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
-      error = ParseError{inPath, 0, "cannot read: is a directory"};
-    } else {
-      std::ifstream file(inPath, std::ios::binary);
-      if (!file) {
-        error = ParseError{inPath, 0, std::string("cannot open: ") + std::strerror(errno)};
-      } else {
-        error = readBoxText(file, inPath, outBoxes);
-      }
-    }
-  }
-  if (!error) return true;
-  std::fprintf(stderr, "%s\n", error->message().c_str());
-  return false;
-}
 
 /// Scatters one per-box array of rank 0 in blocks (counts and offsets in boxes).
 template <typename T>
@@ -211,7 +134,7 @@ int run(int inArgc, char** inArgv) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   PairsOptions options;
   // Every rank parses the same arguments; only rank 0 speaks.
-  const std::string usageError = parseOptions(inArgc, inArgv, options);
+  const std::string usageError = cli::parsePairsOptions(inArgc, inArgv, options);
   if (!usageError.empty())
     return rank == 0 ? cli::reportUsageError(kProgram, usageError, kUsage) : cli::kExitBadInput;
   if (options.help) {
@@ -221,7 +144,7 @@ int run(int inArgc, char** inArgv) {
   std::ios::sync_with_stdio(false);
   const auto readStart = std::chrono::steady_clock::now();
   BoxSet all;
-  int readOk = rank == 0 ? readBoxes(options.path, all) : 1;
+  int readOk = rank == 0 ? cli::readPairsInput(options.path, all) : 1;
   MPI_Bcast(&readOk, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (!readOk) return cli::kExitBadInput;
   const double readMs =
