@@ -227,11 +227,13 @@ TEST(SmallFrame, GapsSmallerThanAFloat32Step) {
 TEST(SmallFrame, SweepsTheAxisWhereBoxesAreNarrowest) {
   BoxSet boxes;
   for (int i = 0; i < 200; ++i) addBox(boxes, 0, i, 0, 100, i + 0.5, 100);  // slices along y
-  EXPECT_EQ(chooseSmallFrameAxis(boxes), 1);
+  FrameSpread spread(boxes);
+  EXPECT_EQ(chooseSmallFrameAxis(spread), 1);
   expectSmallFrameMatches(boxes, "slices along y");
   BoxSet flat;
   for (int i = 0; i < 200; ++i) addBox(flat, i, 7, i % 5, i + 3, 7, i % 5 + 1);  // y span 0
-  EXPECT_NE(chooseSmallFrameAxis(flat), 1);
+  FrameSpread flat_spread(flat);
+  EXPECT_NE(chooseSmallFrameAxis(flat_spread), 1);
   expectSmallFrameMatches(flat, "all at one y");
 }
 
