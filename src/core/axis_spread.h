@@ -32,4 +32,29 @@ struct AxisSpread {
 AxisSpread measureAxisSpread(const BoxSet& inBoxes, int inAxis, int inThreads,
                              const std::vector<uint32_t>* inIndexes = nullptr);
 
+/// The spread of one box set on each axis, each axis measured once, when first asked for: a
+/// frame's key origins, slab grid, small-frame axis and skin cost model all read the same
+/// measurement instead of each walking the boxes again. Lives for one frame (the boxes it
+/// points at must not change meanwhile).
+class FrameSpread {
+ public:
+  explicit FrameSpread(const BoxSet& inBoxes) : boxes_(&inBoxes) {}
+
+  /// The spread on inAxis, measured on inThreads threads if not measured yet (the thread count
+  /// changes only how extent_sum's additions are grouped).
+  const AxisSpread& axis(int inAxis, int inThreads) {
+    if (!measured_[inAxis]) {
+      spreads_[inAxis] = measureAxisSpread(*boxes_, inAxis, inThreads);
+      measured_[inAxis] = true;
+    }
+    return spreads_[inAxis];
+  }
+  const BoxSet& boxes() const { return *boxes_; }
+
+ private:
+  const BoxSet* boxes_;
+  AxisSpread spreads_[3];
+  bool measured_[3] = {false, false, false};
+};
+
 }  // namespace sap_broadphase

@@ -55,7 +55,7 @@ struct Broadphase::Impl {
                                      int inThreads);
   FramePlan plan(const BoxSet& inBoxes, const BoxSet& inSwept, const FrameDelta& inDelta,
                  int inThreads);
-  void execute(const FramePlan& inPlan, const BoxSet& inBoxes, const BoxSet& inSwept);
+  void execute(const FramePlan& inPlan, const BoxSet& inBoxes, FrameSpread& ioSwept);
   void addStaticPairs(const BoxSet& inBoxes, int inThreads);
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
@@ -121,10 +121,12 @@ FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
   return plan;
 }
 
-// Runs the plan's strategy: this frame's pairs of inSwept (or of inBoxes for brute force) go
-// into pairs, in canonical order.
+// Runs the plan's strategy: this frame's pairs of the swept boxes (or of inBoxes for brute force)
+// go into pairs, in canonical order. ioSwept is the spread of the swept boxes, measured by
+// whichever strategy needs it first and read again by the cost learning after it.
 void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
-                               const BoxSet& inSwept) {
+                               FrameSpread& ioSwept) {
+  const BoxSet& swept = ioSwept.boxes();
   switch (inPlan.work) {
     case FrameWork::kEmpty:
       pairs.clear();
@@ -142,17 +144,18 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
     case FrameWork::kSmallFrame: {
       PhaseTimer timer(report.ms_pairing);
       skin.forget();
-      pairSmallFrame(inSwept, buffers.small_frame, pairs);
+      pairSmallFrame(swept, ioSwept, buffers.small_frame, pairs);
       break;
     }
     case FrameWork::kSweep:
       if (inPlan.sweep_skin > 0.0) {
-        const BoxSet& grown = skin.grow(inSwept, inPlan.sweep_skin, inPlan.threads, report);
-        sweep.run(grown, inPlan.sweep_path, inPlan.threads, report, pairs);
-        skin.keepAndAnswer(inSwept, inPlan.threads, report, pairs);
+        const BoxSet& grown = skin.grow(swept, inPlan.sweep_skin, inPlan.threads, report);
+        FrameSpread grown_spread(grown);  // other boxes than the swept ones: their own spread
+        sweep.run(grown, grown_spread, inPlan.sweep_path, inPlan.threads, report, pairs);
+        skin.keepAndAnswer(swept, inPlan.threads, report, pairs);
       } else {
         skin.forget();
-        sweep.run(inSwept, inPlan.sweep_path, inPlan.threads, report, pairs);
+        sweep.run(swept, ioSwept, inPlan.sweep_path, inPlan.threads, report, pairs);
       }
       break;
   }
@@ -232,10 +235,11 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     impl.skin.startFrame(delta);
     const BoxSet& swept = impl.setAsideRestingBoxes(boxes, delta, threads);
     const FramePlan plan = impl.plan(boxes, swept, delta, threads);
-    impl.execute(plan, boxes, swept);
+    FrameSpread swept_spread(swept);  // measured once, by the first part that needs it
+    impl.execute(plan, boxes, swept_spread);
     if (!impl.config.skin) {  // the costs only feed the automatic skin's choice
       PhaseTimer timer(report.ms_plan);
-      impl.skin.learn(plan, swept, impl.pairs.size(), report);
+      impl.skin.learn(plan, swept_spread, impl.pairs.size(), report);
     }
     if (plan.work != FrameWork::kReuse) impl.addStaticPairs(boxes, threads);
     {

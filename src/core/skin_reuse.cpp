@@ -16,9 +16,9 @@ double smoothed(double inAverage, double inSample) {
 
 // Mean finite box extent and the span of the finite bounds on each axis (the skin cost
 // model's picture of the frame).
-void measureExtents(const BoxSet& inBoxes, int inThreads, SkinCosts& ioCosts) {
+void measureExtents(FrameSpread& ioSpread, int inThreads, SkinCosts& ioCosts) {
   for (int axis = 0; axis < 3; ++axis) {
-    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
+    const AxisSpread& spread = ioSpread.axis(axis, inThreads);
     ioCosts.mean_extent[axis] = spread.meanExtent();
     ioCosts.span[axis] = spread.span();
   }
@@ -80,20 +80,21 @@ void SkinReuse::keepAndAnswer(const BoxSet& inSwept, int inThreads, FrameReport&
 // its candidates and the pass that answers the frame; each is learnt as its own cost
 // (SkinCosts). The sweep's own phases (keys, sorts, candidates, pairing, output) hold only the
 // sweep: the skin's work is in the report's ms_skin.
-void SkinReuse::learn(const FramePlan& inPlan, const BoxSet& inSwept, std::size_t inSweepPairs,
+void SkinReuse::learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t inSweepPairs,
                       const FrameReport& inReport) {
-  const double boxes = static_cast<double>(inSwept.size());
+  const BoxSet& swept = ioSwept.boxes();
+  const double boxes = static_cast<double>(swept.size());
   const bool grown_sweep = inPlan.work == FrameWork::kSweep && inPlan.sweep_skin > 0.0;
-  if (inPlan.work == FrameWork::kSweep && inSwept.size() >= tuning::kMinSkinBoxes) {
+  if (inPlan.work == FrameWork::kSweep && swept.size() >= tuning::kMinSkinBoxes) {
     const double candidates = static_cast<double>(grown_sweep ? kept_.candidates() : inSweepPairs);
     const double ms_sweep_per_box = inReport.ms_keys + inReport.ms_sort + inReport.ms_candidates;
     const double ms_sweep_per_item = inReport.ms_pairing + inReport.ms_output;
     costs_.sweep_ns_per_box = ms_sweep_per_box * 1e6 / boxes;
     costs_.pairing_ns_per_item = ms_sweep_per_item * 1e6 / (boxes + candidates);
-    costs_.reference_boxes = inSwept.size();
+    costs_.reference_boxes = swept.size();
     costs_.reference_candidates = candidates;
     costs_.reference_skin = inPlan.sweep_skin;
-    measureExtents(inSwept, inPlan.threads, costs_);
+    measureExtents(ioSwept, inPlan.threads, costs_);
     if (grown_sweep) {
       costs_.grow_ns_per_box = smoothed(costs_.grow_ns_per_box, times_.ms_grow * 1e6 / boxes);
       costs_.keep_ns_per_candidate =

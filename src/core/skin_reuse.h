@@ -9,6 +9,7 @@
 
 #include <cstddef>
 
+#include "core/axis_spread.h"
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/skin_list.h"
@@ -42,10 +43,11 @@ class SkinReuse {
   /// Forgets the kept candidates (a plain sweep, a small frame or reset()).
   void forget() { kept_.clear(); }
 
-  /// Learns from a frame that ran inPlan on inSwept: a sweep's costs per box and per item
-  /// (from the sweep phases of inReport, with inSweepPairs its pairs or kept candidates) and
-  /// the costs of growing, keeping and passing.
-  void learn(const FramePlan& inPlan, const BoxSet& inSwept, std::size_t inSweepPairs,
+  /// Learns from a frame that ran inPlan on the boxes of ioSwept (their spread, measured here
+  /// if the frame has not yet): a sweep's costs per box and per item (from the sweep phases of
+  /// inReport, with inSweepPairs its pairs or kept candidates) and the costs of growing,
+  /// keeping and passing.
+  void learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t inSweepPairs,
              const FrameReport& inReport);
 
   /// What the plan weighs.

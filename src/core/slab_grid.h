@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "sap_broadphase/core/box_set.h"
+#include "core/axis_spread.h"
 #include "sap_broadphase/core/config.h"
 
 namespace sap_broadphase {
@@ -32,6 +32,7 @@ struct SlabGrid {
 /// Chooses slabs for the third axis inAxis: about two mean box extents wide over the span of
 /// the finite coordinates, at most kMaxSlabs, one slab when boxes are few or the span is
 /// degenerate (empty, infinite). inRequested > 0 forces that many slabs (1 = the paper).
-SlabGrid chooseSlabGrid(const BoxSet& inBoxes, int inAxis, int inRequested, int inThreads);
+/// ioSpread is the spread of the boxes (measured on inThreads threads if not yet).
+SlabGrid chooseSlabGrid(FrameSpread& ioSpread, int inAxis, int inRequested, int inThreads);
 
 }  // namespace sap_broadphase

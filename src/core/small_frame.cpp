@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/axis_spread.h"
+#include "core/assert.h"
 #include "core/buffers.h"
 #include "core/key_origin.h"
 #include "core/radix_sort.h"
@@ -28,8 +28,8 @@ constexpr uint32_t kBlock = 8;
 
 // Mean finite extent over the span of the finite bounds on inAxis; infinite when the span is
 // degenerate (a sweep on that axis would see every box start at once).
-double relativeExtent(const BoxSet& inBoxes, int inAxis) {
-  const AxisSpread spread = measureAxisSpread(inBoxes, inAxis, 1);
+double relativeExtent(FrameSpread& ioSpread, int inAxis) {
+  const AxisSpread& spread = ioSpread.axis(inAxis, 1);
   const double span = spread.span();
   if (!(span > 0.0) || !std::isfinite(span)) return std::numeric_limits<double>::infinity();
   return spread.meanExtent() / span;
@@ -39,9 +39,10 @@ double relativeExtent(const BoxSet& inBoxes, int inAxis) {
 // order, inAxis first. Keys are measured from the frame's key origin, as the sweep's are: a
 // robot's few thousand boxes in UTM or Earth-centred coordinates would otherwise share their
 // float32 values and all become candidates of one another.
-void prepareSweep(const BoxSet& inBoxes, int inAxis, SmallFrameWorkspace& ioWork) {
+void prepareSweep(const BoxSet& inBoxes, FrameSpread& ioSpread, int inAxis,
+                  SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
-  const KeyOrigin origin = keyOriginOf(inBoxes, 1);
+  const KeyOrigin origin = keyOriginOf(ioSpread, 1);
   resizeDiscarding(ioWork.order, n);
   resizeDiscarding(ioWork.scratch, n);
   const double* sweep_low = inBoxes.lo[inAxis].data();
@@ -151,22 +152,23 @@ bool cpuHasAvx2() {
 }
 
 template <typename Sweep>
-void pairWith(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs,
-              Sweep&& inSweep) {
+void pairWith(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
+              PairList& outPairs, Sweep&& inSweep) {
   outPairs.clear();
   if (inBoxes.size() < 2) return;
-  prepareSweep(inBoxes, chooseSmallFrameAxis(inBoxes), ioWork);
+  SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the small frame reads the spread of other boxes");
+  prepareSweep(inBoxes, ioSpread, chooseSmallFrameAxis(ioSpread), ioWork);
   inSweep(inBoxes, ioWork, outPairs);
   sortPairsCanonical(outPairs, ioWork.pair_scratch);
 }
 
 }  // namespace
 
-int chooseSmallFrameAxis(const BoxSet& inBoxes) {
+int chooseSmallFrameAxis(FrameSpread& ioSpread) {
   int best_axis = 0;
-  double best = relativeExtent(inBoxes, 0);
+  double best = relativeExtent(ioSpread, 0);
   for (int axis = 1; axis < 3; ++axis) {
-    const double relative = relativeExtent(inBoxes, axis);
+    const double relative = relativeExtent(ioSpread, axis);
     if (relative < best) {
       best = relative;
       best_axis = axis;
@@ -179,16 +181,23 @@ bool smallFrameUsesAvx2() {
   return cpuHasAvx2();
 }
 
-void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
+void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
+                    PairList& outPairs) {
 #if SAP_SMALL_FRAME_AVX2
-  if (cpuHasAvx2()) return pairWith(inBoxes, ioWork, outPairs, sweepAvx2);
+  if (cpuHasAvx2()) return pairWith(inBoxes, ioSpread, ioWork, outPairs, sweepAvx2);
 #endif
-  pairWith(inBoxes, ioWork, outPairs, sweepPortable);
+  pairWith(inBoxes, ioSpread, ioWork, outPairs, sweepPortable);
+}
+
+void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
+  FrameSpread spread(inBoxes);
+  pairSmallFrame(inBoxes, spread, ioWork, outPairs);
 }
 
 void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork,
                             PairList& outPairs) {
-  pairWith(inBoxes, ioWork, outPairs, sweepPortable);
+  FrameSpread spread(inBoxes);
+  pairWith(inBoxes, spread, ioWork, outPairs, sweepPortable);
 }
 
 }  // namespace sap_broadphase

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/axis_spread.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
 
@@ -42,12 +43,17 @@ struct SmallFrameWorkspace {
 };
 
 /// The sweep axis of a small frame: the one whose mean box extent is smallest relative to the
-/// span of the finite bounds, i.e. the fewest boxes start inside a box's interval.
-int chooseSmallFrameAxis(const BoxSet& inBoxes);
+/// span of the finite bounds, i.e. the fewest boxes start inside a box's interval (read from
+/// ioSpread, the spread of the frame's boxes, measured on one thread if not yet).
+int chooseSmallFrameAxis(FrameSpread& ioSpread);
 
 /// Every overlapping, filter-allowed pair of inBoxes (exactly bruteForcePairs' result), in
 /// canonical order, into outPairs (replaced). One thread; AVX2 blocks of 8 candidates where
-/// the CPU has them, a portable loop otherwise (chosen at run time).
+/// the CPU has them, a portable loop otherwise (chosen at run time). ioSpread is the spread of
+/// inBoxes: the sweep axis and the key origin are read from it.
+void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
+                    PairList& outPairs);
+/// The same, measuring the spread of inBoxes itself.
 void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
 
 /// The same, forced onto the portable loop (for tests and benchmarks on AVX2 machines).

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <utility>
 
 #include "core/assert.h"
@@ -14,64 +13,6 @@
 #include "core/tuning.h"
 
 namespace sap_broadphase {
-namespace {
-
-// x - origin = outDifference + (returned error), exactly (TwoSum, Knuth), unless x is
-// infinite (then the error is NaN and the difference the same infinity).
-double differenceError(double inValue, double inOrigin, double& outDifference) {
-  const double difference = inValue - inOrigin;
-  const double back = difference - inValue;
-  outDifference = difference;
-  return (inValue - (difference - back)) + (-inOrigin - back);
-}
-
-// lowKey / highKey of sort_keys.h without branches. Coordinates' signs and whether a double
-// rounds up or down onto a float are random in a frame, so the branches of the plain versions
-// mispredict about half the time; keys are made for every endpoint of both sweep axes and six
-// times per box in gatherByRank. Same keys, bit for bit: the float's bits flipped by a mask of
-// its sign, -0.0's key (0x7FFFFFFF) moved onto +0.0's, then one key down (two onto and over
-// the missing key of -0.0) when rounding went the wrong way.
-inline uint32_t floatKeyFlat(float inValue) {
-  uint32_t bits;
-  std::memcpy(&bits, &inValue, sizeof bits);
-  const uint32_t key = bits ^ (static_cast<uint32_t>(static_cast<int32_t>(bits) >> 31) | kZeroKey);
-  return key + static_cast<uint32_t>(key == kZeroKey - 1);
-}
-inline uint32_t lowKeyFlat(double inMin, bool& outExact) {
-  const float nearest = static_cast<float>(inMin);
-  const uint32_t key = floatKeyFlat(nearest);
-  outExact = static_cast<double>(nearest) == inMin;
-  return key - (static_cast<uint32_t>(static_cast<double>(nearest) > inMin)
-                << static_cast<uint32_t>(key == kZeroKey));
-}
-inline uint32_t highKeyFlat(double inMax, bool& outExact) {
-  const float nearest = static_cast<float>(inMax);
-  const uint32_t key = floatKeyFlat(nearest);
-  outExact = static_cast<double>(nearest) == inMax;
-  return key + (static_cast<uint32_t>(static_cast<double>(nearest) < inMax)
-                << static_cast<uint32_t>(key == kZeroKey - 2));
-}
-
-}  // namespace
-
-uint32_t KeyOrigin::low(int inAxis, double inValue) const {
-  double difference;
-  const double error = differenceError(inValue, origin[inAxis], difference);
-  bool exact;  // the difference is a float, so lowKeyFlat did not round it
-  const uint32_t key = lowKeyFlat(difference, exact);
-  // The difference was rounded up onto a float: the exact value lies below that float.
-  return key -
-         (static_cast<uint32_t>(error < 0.0 && exact) << static_cast<uint32_t>(key == kZeroKey));
-}
-
-uint32_t KeyOrigin::high(int inAxis, double inValue) const {
-  double difference;
-  const double error = differenceError(inValue, origin[inAxis], difference);
-  bool exact;
-  const uint32_t key = highKeyFlat(difference, exact);
-  return key + (static_cast<uint32_t>(error > 0.0 && exact)
-                << static_cast<uint32_t>(key == kZeroKey - 2));
-}
 
 SweepAndPrune::SweepAndPrune(const BroadphaseConfig& inConfig)
     : exact_final_test_(inConfig.exact_final_test),
@@ -102,35 +43,12 @@ void SweepAndPrune::releaseBuffers() {
   sorter_ = PartitionedSorter();
 }
 
-namespace {
-
-// The origin of one axis for a frame whose finite bounds span [inLow, inHigh]: 0 (keys of the
-// coordinates themselves) unless the frame lies far from 0 compared with its own size, where
-// keys of the coordinates would be coarse; then the centre.
-double axisOrigin(double inLow, double inHigh) {
-  if (!(inLow <= inHigh)) return 0.0;            // no finite bound: any origin serves
-  const double centre = inLow / 2 + inHigh / 2;  // halves first: no overflow
-  const double half_span = inHigh / 2 - inLow / 2;
-  return std::fabs(centre) > tuning::kFarFromOriginInSpans * half_span ? centre : 0.0;
-}
-
-}  // namespace
-
-KeyOrigin keyOriginOf(const BoxSet& inBoxes, int inThreads) {
-  KeyOrigin origin;
-  for (int axis = 0; axis < 3; ++axis) {
-    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
-    origin.origin[axis] = axisOrigin(spread.lowest, spread.highest);
-  }
-  return origin;
-}
-
 // A placed origin is kept while the frame stays around it (a moved origin shifts every key,
 // and B with them).
-void SweepAndPrune::placeKeyOrigins(const BoxSet& inBoxes, int inThreads) {
+void SweepAndPrune::placeKeyOrigins(FrameSpread& ioSpread, int inThreads) {
   for (int axis = 0; axis < 3; ++axis) {
-    const AxisSpread spread = measureAxisSpread(inBoxes, axis, inThreads);
-    const double origin = axisOrigin(spread.lowest, spread.highest);
+    const AxisSpread& spread = ioSpread.axis(axis, inThreads);
+    const double origin = axisKeyOrigin(spread);
     const double span = spread.hasSpan() ? spread.highest / 2 - spread.lowest / 2 : 0.0;  // half
     const double drift = std::fabs(origin - key_origin_.origin[axis]);
     if (origin_placed_[axis] && drift <= tuning::kOriginDriftInSpans * 2 * span) continue;
@@ -170,13 +88,13 @@ double SweepAndPrune::sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
 }
 
 // Box data in primary-rank order, so a candidate range is a contiguous stretch of memory.
-void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, int inThreads) {
+void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, FrameSpread& ioSpread, int inThreads) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const bool filtered = inBoxes.hasFilters();
   resizeDiscarding(ranked_keys_, n);
   resizeDiscarding(ranked_filters_, filtered ? n : 0);
   const int third_axis = unusedAxis(primary_axis_, secondary_axis_);
-  slab_grid_ = chooseSlabGrid(inBoxes, third_axis, third_axis_slabs_, inThreads);
+  slab_grid_ = chooseSlabGrid(ioSpread, third_axis, third_axis_slabs_, inThreads);
   const bool slabbed = slab_grid_.count > 1;
   resizeDiscarding(ranked_slabs_, slabbed ? n : 0);
   const double* third_low = inBoxes.lo[third_axis].data();
@@ -226,8 +144,9 @@ void SweepAndPrune::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads,
   }
 }
 
-void SweepAndPrune::run(const BoxSet& inBoxes, FramePath inPath, int inThreads,
-                        FrameReport& ioReport, PairList& outPairs) {
+void SweepAndPrune::run(const BoxSet& inBoxes, FrameSpread& ioSpread, FramePath inPath,
+                        int inThreads, FrameReport& ioReport, PairList& outPairs) {
+  SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the sweep reads the spread of other boxes");
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   ioReport.primary_axis = primary_axis_;
   ioReport.secondary_axis = secondary_axis_;
@@ -238,7 +157,7 @@ void SweepAndPrune::run(const BoxSet& inBoxes, FramePath inPath, int inThreads,
   const int threads = inPath == FramePath::kParallel ? inThreads : 1;
   {
     PhaseTimer timer(ioReport.ms_keys);
-    placeKeyOrigins(inBoxes, threads);
+    placeKeyOrigins(ioSpread, threads);
   }
   const bool warm =
       bounds_[primary_axis_].from_previous_frame && bounds_[secondary_axis_].from_previous_frame;
@@ -256,7 +175,7 @@ void SweepAndPrune::run(const BoxSet& inBoxes, FramePath inPath, int inThreads,
   ioReport.dispersion_secondary = sortAxis(inBoxes, secondary_axis_, threads, ioReport);
   {
     PhaseTimer timer(ioReport.ms_pairing);
-    gatherByRank(inBoxes, threads);
+    gatherByRank(inBoxes, ioSpread, threads);
     pair(inBoxes, inPath, threads, ioReport);
   }
   {

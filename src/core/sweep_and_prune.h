@@ -28,9 +28,10 @@ class SweepAndPrune {
 
   /// Every overlapping, filter-allowed pair of inBoxes into outPairs, in canonical order.
   /// inPath is FramePath::kSequential (Algorithm 1) or kParallel (Algorithms 2-4). Fills the
-  /// report's sweep phases, dispersions, axes and slabs.
-  void run(const BoxSet& inBoxes, FramePath inPath, int inThreads, FrameReport& ioReport,
-           PairList& outPairs);
+  /// report's sweep phases, dispersions, axes and slabs. ioSpread is the spread of inBoxes,
+  /// which the key origins and the slabs are placed from.
+  void run(const BoxSet& inBoxes, FrameSpread& ioSpread, FramePath inPath, int inThreads,
+           FrameReport& ioReport, PairList& outPairs);
   /// The sweep axes in force (§5 may have swapped them).
   int primaryAxis() const { return primary_axis_; }
   int secondaryAxis() const { return secondary_axis_; }
@@ -42,9 +43,9 @@ class SweepAndPrune {
   std::size_t capacityBoxes() const { return ranges_.of_object.capacity(); }
 
  private:
-  void placeKeyOrigins(const BoxSet& inBoxes, int inThreads);
+  void placeKeyOrigins(FrameSpread& ioSpread, int inThreads);
   double sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads, FrameReport& ioReport);
-  void gatherByRank(const BoxSet& inBoxes, int inThreads);
+  void gatherByRank(const BoxSet& inBoxes, FrameSpread& ioSpread, int inThreads);
   void pair(const BoxSet& inBoxes, FramePath inPath, int inThreads, FrameReport& ioReport);
   void decideAxes(bool inWarm, FrameReport& ioReport);
 

@@ -86,7 +86,8 @@ TEST(SkinReuse, LearnsTheSweepFromItsOwnPhasesAndThePassFromThePass) {
   FramePlan plain;
   plain.work = FrameWork::kSweep;
   const std::size_t pairs = bruteForcePairs(boxes).size();
-  skin.learn(plain, boxes, pairs, report);
+  FrameSpread spread(boxes);
+  skin.learn(plain, spread, pairs, report);
   EXPECT_DOUBLE_EQ(skin.costs().sweep_ns_per_box, 4.0e6 / 4000.0);
   EXPECT_DOUBLE_EQ(skin.costs().pairing_ns_per_item, 4.0e6 / (4000.0 + pairs));
   EXPECT_EQ(skin.costs().reference_boxes, 4000u);
@@ -96,7 +97,7 @@ TEST(SkinReuse, LearnsTheSweepFromItsOwnPhasesAndThePassFromThePass) {
   FramePlan grown = plain;
   grown.sweep_skin = kSkin;
   growSweepAndKeep(skin, boxes, report);
-  skin.learn(grown, boxes, 0, report);
+  skin.learn(grown, spread, 0, report);
   EXPECT_EQ(skin.costs().reference_skin, kSkin);
   EXPECT_EQ(skin.costs().reference_candidates, static_cast<double>(skin.candidates()));
 }

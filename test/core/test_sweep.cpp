@@ -8,6 +8,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/axis_spread.h"
+#include "core/key_origin.h"
 #include "core/radix_sort.h"
 #include "core/small_frame.h"
 #include "core/sort_keys.h"
@@ -227,12 +229,49 @@ TEST(SmallFrame, GapsSmallerThanAFloat32Step) {
 TEST(SmallFrame, SweepsTheAxisWhereBoxesAreNarrowest) {
   BoxSet boxes;
   for (int i = 0; i < 200; ++i) addBox(boxes, 0, i, 0, 100, i + 0.5, 100);  // slices along y
-  EXPECT_EQ(chooseSmallFrameAxis(boxes), 1);
+  FrameSpread spread(boxes);
+  EXPECT_EQ(chooseSmallFrameAxis(spread), 1);
   expectSmallFrameMatches(boxes, "slices along y");
   BoxSet flat;
   for (int i = 0; i < 200; ++i) addBox(flat, i, 7, i % 5, i + 3, 7, i % 5 + 1);  // y span 0
-  EXPECT_NE(chooseSmallFrameAxis(flat), 1);
+  FrameSpread flat_spread(flat);
+  EXPECT_NE(chooseSmallFrameAxis(flat_spread), 1);
   expectSmallFrameMatches(flat, "all at one y");
+}
+
+// A frame's spread is read by several parts (key origins, slabs, the small frame's axis, the
+// cost model): each axis is measured when first asked for and kept for the frame.
+TEST(FrameSpread, MeasuresEachAxisOnceWhenFirstAsked) {
+  const double inf = std::numeric_limits<double>::infinity();
+  BoxSet boxes;
+  addBox(boxes, 0, 2, 0, 1, 5, 1);
+  addBox(boxes, 3, -inf, 0, 4, 7, 1);  // infinite low end: not in the span or the extents
+  addBox(boxes, 1, 4, 0, 2, inf, 1);
+  FrameSpread spread(boxes);
+  const AxisSpread expected = measureAxisSpread(boxes, 1, 1);
+  const AxisSpread& first = spread.axis(1, 2);
+  EXPECT_EQ(first.lowest, 2.0);
+  EXPECT_EQ(first.highest, 7.0);
+  EXPECT_EQ(first.finite_boxes, 1u);
+  EXPECT_EQ(first.extent_sum, expected.extent_sum);
+  boxes.lo[1][0] = -50.0;  // a change after the measurement is not seen: measured once
+  EXPECT_EQ(spread.axis(1, 1).lowest, 2.0);
+  boxes.lo[0][0] = -50.0;  // axis 0 was not measured yet: its first reading sees the change
+  EXPECT_EQ(spread.axis(0, 1).lowest, -50.0);
+}
+
+TEST(KeyOrigin, CentreOfTheFrameOnlyFarFromZero) {
+  BoxSet boxes;
+  addBox(boxes, 4.0e6, 995, -1, 4.0e6 + 2, 997, 1);
+  addBox(boxes, 4.0e6 + 8, 1003, -3, 4.0e6 + 10, 1005, 3);
+  FrameSpread spread(boxes);
+  const KeyOrigin origin = keyOriginOf(spread, 1);
+  EXPECT_EQ(origin.origin[0], 4.0e6 + 5) << "far from 0 against a span of 10: the centre";
+  EXPECT_EQ(origin.origin[1], 1000.0) << "the centre lies 200 half-spans from 0";
+  EXPECT_EQ(origin.origin[2], 0.0) << "around 0: the coordinates themselves";
+  const BoxSet no_boxes;
+  FrameSpread empty_spread(no_boxes);
+  EXPECT_EQ(keyOriginOf(empty_spread, 1).origin[0], 0.0) << "no finite bound: 0";
 }
 
 }  // namespace

@@ -209,7 +209,8 @@ KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes) {
     const double high[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
     swept.add(inBoxes.ids[i], low, high);
   }
-  return keyOriginOf(swept, 1);
+  FrameSpread spread(swept);
+  return keyOriginOf(spread, 1);
 }
 
 bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b) {
