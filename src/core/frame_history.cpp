@@ -11,16 +11,80 @@
 namespace sap_broadphase {
 namespace {
 
-bool sameBits(double inA, double inB) {
-  return std::memcmp(&inA, &inB, sizeof inA) == 0;
+template <typename T>
+void copySlice(const std::vector<T>& inFrom, std::vector<T>& outTo, std::size_t inBegin,
+               std::size_t inEnd) {
+  if (inFrom.empty()) return;  // groups and masks may be absent
+  std::copy(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin);
 }
 
-// How far one bound moved: 0 when bit for bit equal, infinite when it left or reached an
-// infinity (no finite skin covers that).
-double boundChange(double inNow, double inBefore) {
-  if (sameBits(inNow, inBefore)) return 0.0;
-  const double change = std::fabs(inNow - inBefore);
-  return std::isnan(change) ? HUGE_VAL : change;
+// Copies elements [inBegin, inEnd) when some differ; true when they did.
+bool copyIfDifferent(const std::vector<uint32_t>& inFrom, std::vector<uint32_t>& outTo,
+                     std::size_t inBegin, std::size_t inEnd) {
+  if (std::equal(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin))
+    return false;
+  copySlice(inFrom, outTo, inBegin, inEnd);
+  return true;
+}
+
+uint64_t bitsOf(double inValue) {
+  uint64_t bits;
+  std::memcpy(&bits, &inValue, sizeof bits);
+  return bits;
+}
+
+struct BlockChanges {
+  std::size_t changed_boxes = 0;
+  double max_displacement = 0.0;
+};
+
+// Boxes [inBegin, inEnd): outUnchanged[i] = 1 when every bound is bit for bit the one before
+// (0.0 to -0.0 is a change of size 0), and the largest change of one bound; no branch per box.
+BlockChanges compareBounds(const BoxSet& inNow, const BoxSet& inBefore, std::size_t inBegin,
+                           std::size_t inEnd, uint8_t* outUnchanged) {
+  BlockChanges changes;
+  for (std::size_t i = inBegin; i < inEnd; ++i) {
+    uint64_t differing_bits = 0;
+    double displacement = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double now[2] = {inNow.lo[axis][i], inNow.hi[axis][i]};
+      const double before[2] = {inBefore.lo[axis][i], inBefore.hi[axis][i]};
+      for (int side = 0; side < 2; ++side) {
+        const uint64_t differs = bitsOf(now[side]) ^ bitsOf(before[side]);
+        const double change = std::fabs(now[side] - before[side]);
+        // How far the bound moved: 0 when bit for bit equal, infinite when it left or reached
+        // an infinity (no finite skin covers that).
+        const double bound_change = differs == 0 ? 0.0 : change != change ? HUGE_VAL : change;
+        differing_bits |= differs;
+        displacement = bound_change > displacement ? bound_change : displacement;
+      }
+    }
+    outUnchanged[i] = differing_bits == 0;
+    changes.changed_boxes += differing_bits != 0;
+    changes.max_displacement =
+        displacement > changes.max_displacement ? displacement : changes.max_displacement;
+  }
+  return changes;
+}
+
+// Clears outUnchanged[i] of boxes whose group or mask changed; returns how many did.
+std::size_t markFilterChanges(const BoxSet& inNow, const BoxSet& inBefore, std::size_t inBegin,
+                              std::size_t inEnd, uint8_t* ioUnchanged) {
+  if (inNow.groups.empty() && inNow.masks.empty()) return 0;
+  std::size_t changed = 0;
+  for (std::size_t i = inBegin; i < inEnd; ++i) {
+    const bool same_filter =
+        inNow.group(i) == inBefore.group(i) && inNow.mask(i) == inBefore.mask(i);
+    ioUnchanged[i] &= same_filter;
+    changed += !same_filter;
+  }
+  return changed;
+}
+
+std::size_t countChanged(const uint8_t* inUnchanged, std::size_t inBegin, std::size_t inEnd) {
+  std::size_t changed = 0;
+  for (std::size_t i = inBegin; i < inEnd; ++i) changed += inUnchanged[i] == 0;
+  return changed;
 }
 
 }  // namespace
@@ -46,46 +110,37 @@ const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
   return delta_;
 }
 
-// One pass, each thread over its slice of the boxes: a box is compared with its copy and,
-// where it differs, copied at once, while both are in the cache (a separate copy after the
-// sweep would read both frames from memory a second time). Returns false when some id
-// differs; the ids are copied too, so that last_ equals inBoxes in every case.
+// One pass, each thread over its slice of the boxes, block by block: a block is compared with
+// its copy without a branch and, where some box of it differs, copied at once while both are
+// in the cache (a separate copy after the sweep would read both frames from memory again;
+// copying a whole block keeps the copy a plain streaming one, and unchanged boxes in it are
+// rewritten with their own bits). Returns false when some id differs; the ids are copied too,
+// so that last_ equals inBoxes in every case.
 bool FrameHistory::compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads) {
+  constexpr std::size_t kBlock = 512;
   const std::size_t n = inBoxes.size();
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
   unchanged_.resize(n);
-  const bool has_groups = !inBoxes.groups.empty(), has_masks = !inBoxes.masks.empty();
   std::size_t moved = 0, filters_changed = 0, other_ids = 0;
   double max_displacement = 0.0;
 #pragma omp parallel for num_threads(inThreads) schedule(static) \
     reduction(+ : moved, filters_changed, other_ids) reduction(max : max_displacement)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (inBoxes.ids[i] != last_.ids[i]) {
-      ++other_ids;
-      last_.ids[i] = inBoxes.ids[i];
-    }
-    const bool same_filter = inBoxes.group(i) == last_.group(i) && inBoxes.mask(i) == last_.mask(i);
-    double displacement = 0.0;
-    for (int axis = 0; axis < 3; ++axis)
-      displacement = std::max({displacement, boundChange(inBoxes.lo[axis][i], last_.lo[axis][i]),
-                               boundChange(inBoxes.hi[axis][i], last_.hi[axis][i])});
-    // A bound that changed by less than the smallest double (0.0 to -0.0) still changed.
-    bool same_bounds = displacement == 0.0;
-    for (int axis = 0; axis < 3 && same_bounds; ++axis)
-      same_bounds = sameBits(inBoxes.lo[axis][i], last_.lo[axis][i]) &&
-                    sameBits(inBoxes.hi[axis][i], last_.hi[axis][i]);
-    const bool unchanged = same_filter && same_bounds;
-    unchanged_[i] = unchanged;
-    if (!unchanged) {
+  for (std::size_t block = 0; block < blocks; ++block) {
+    const std::size_t begin = block * kBlock, end = std::min(n, begin + kBlock);
+    if (copyIfDifferent(inBoxes.ids, last_.ids, begin, end)) ++other_ids;
+    const BlockChanges bounds = compareBounds(inBoxes, last_, begin, end, unchanged_.data());
+    const std::size_t filters = markFilterChanges(inBoxes, last_, begin, end, unchanged_.data());
+    if (bounds.changed_boxes > 0 || filters > 0) {
       for (int axis = 0; axis < 3; ++axis) {
-        last_.lo[axis][i] = inBoxes.lo[axis][i];
-        last_.hi[axis][i] = inBoxes.hi[axis][i];
+        copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
+        copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
       }
-      if (has_groups) last_.groups[i] = inBoxes.groups[i];
-      if (has_masks) last_.masks[i] = inBoxes.masks[i];
+      copySlice(inBoxes.groups, last_.groups, begin, end);
+      copySlice(inBoxes.masks, last_.masks, begin, end);
+      moved += countChanged(unchanged_.data(), begin, end);
     }
-    moved += !unchanged;
-    filters_changed += !same_filter;
-    max_displacement = std::max(max_displacement, displacement);
+    filters_changed += filters;
+    max_displacement = std::max(max_displacement, bounds.max_displacement);
   }
   delta_.moved_boxes = moved;
   delta_.filters_changed = filters_changed != 0;
@@ -103,13 +158,6 @@ bool sameBoxes(const BoxSet& inA, const BoxSet& inB) {
     same = same && sameElements(inA.lo[axis], inB.lo[axis]) &&
            sameElements(inA.hi[axis], inB.hi[axis]);
   return same;
-}
-
-template <typename T>
-void copySlice(const std::vector<T>& inFrom, std::vector<T>& outTo, std::size_t inBegin,
-               std::size_t inEnd) {
-  if (inFrom.empty()) return;  // groups and masks may be absent
-  std::copy(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin);
 }
 
 }  // namespace
