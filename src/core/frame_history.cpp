@@ -38,32 +38,50 @@ struct BlockChanges {
   double max_displacement = 0.0;
 };
 
-// Boxes [inBegin, inEnd): outUnchanged[i] = 1 when every bound is bit for bit the one before
-// (0.0 to -0.0 is a change of size 0), and the largest change of one bound; no branch per box.
+constexpr std::size_t kBlock = 512;  // boxes compared, then copied, together
+
+// One bound array over a block of inCount boxes: ORs each box's differing bits into
+// ioDiffering[k] and returns the bits of the largest change, 0 when bit for bit equal,
+// infinite when the bound left or reached an infinity (no finite skin covers that). Changes
+// are never negative nor NaN, so their bits order as the changes do: the maximum is an integer
+// one, and the loop has no branch.
+uint64_t compareBoundArray(const double* inNow, const double* inBefore, std::size_t inCount,
+                           uint64_t* ioDiffering) {
+  const uint64_t infinity_bits = bitsOf(HUGE_VAL);
+  uint64_t largest = 0;
+  for (std::size_t k = 0; k < inCount; ++k) {
+    const uint64_t differs = bitsOf(inNow[k]) ^ bitsOf(inBefore[k]);
+    const double change = std::fabs(inNow[k] - inBefore[k]);
+    const uint64_t change_bits = differs == 0       ? 0
+                                 : change != change ? infinity_bits
+                                                    : bitsOf(change);
+    ioDiffering[k] |= differs;
+    largest = change_bits > largest ? change_bits : largest;
+  }
+  return largest;
+}
+
+// Boxes [inBegin, inEnd), at most kBlock: outUnchanged[i] = 1 when every bound is bit for bit
+// the one before (0.0 to -0.0 is a change of size 0), and the largest change of one bound.
 BlockChanges compareBounds(const BoxSet& inNow, const BoxSet& inBefore, std::size_t inBegin,
                            std::size_t inEnd, uint8_t* outUnchanged) {
-  BlockChanges changes;
-  for (std::size_t i = inBegin; i < inEnd; ++i) {
-    uint64_t differing_bits = 0;
-    double displacement = 0.0;
-    for (int axis = 0; axis < 3; ++axis) {
-      const double now[2] = {inNow.lo[axis][i], inNow.hi[axis][i]};
-      const double before[2] = {inBefore.lo[axis][i], inBefore.hi[axis][i]};
-      for (int side = 0; side < 2; ++side) {
-        const uint64_t differs = bitsOf(now[side]) ^ bitsOf(before[side]);
-        const double change = std::fabs(now[side] - before[side]);
-        // How far the bound moved: 0 when bit for bit equal, infinite when it left or reached
-        // an infinity (no finite skin covers that).
-        const double bound_change = differs == 0 ? 0.0 : change != change ? HUGE_VAL : change;
-        differing_bits |= differs;
-        displacement = bound_change > displacement ? bound_change : displacement;
-      }
-    }
-    outUnchanged[i] = differing_bits == 0;
-    changes.changed_boxes += differing_bits != 0;
-    changes.max_displacement =
-        displacement > changes.max_displacement ? displacement : changes.max_displacement;
+  const std::size_t count = inEnd - inBegin;
+  uint64_t differing[kBlock] = {};
+  uint64_t largest = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    largest =
+        std::max(largest, compareBoundArray(inNow.lo[axis].data() + inBegin,
+                                            inBefore.lo[axis].data() + inBegin, count, differing));
+    largest =
+        std::max(largest, compareBoundArray(inNow.hi[axis].data() + inBegin,
+                                            inBefore.hi[axis].data() + inBegin, count, differing));
   }
+  BlockChanges changes;
+  for (std::size_t k = 0; k < count; ++k) {
+    outUnchanged[inBegin + k] = differing[k] == 0;
+    changes.changed_boxes += differing[k] != 0;
+  }
+  std::memcpy(&changes.max_displacement, &largest, sizeof largest);
   return changes;
 }
 
@@ -117,7 +135,6 @@ const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
 // rewritten with their own bits). Returns false when some id differs; the ids are copied too,
 // so that last_ equals inBoxes in every case.
 bool FrameHistory::compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads) {
-  constexpr std::size_t kBlock = 512;
   const std::size_t n = inBoxes.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   unchanged_.resize(n);
