@@ -2,6 +2,8 @@
 #include "core/assert.h"
 #include "core/buffers.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,60 +11,158 @@
 namespace sap_broadphase {
 namespace {
 
-bool sameBits(double inA, double inB) {
-  return std::memcmp(&inA, &inB, sizeof inA) == 0;
+template <typename T>
+void copySlice(const std::vector<T>& inFrom, std::vector<T>& outTo, std::size_t inBegin,
+               std::size_t inEnd) {
+  if (inFrom.empty()) return;  // groups and masks may be absent
+  std::copy(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin);
 }
 
-// How far one bound moved: 0 when bit for bit equal, infinite when it left or reached an
-// infinity (no finite skin covers that).
-double boundChange(double inNow, double inBefore) {
-  if (sameBits(inNow, inBefore)) return 0.0;
-  const double change = std::fabs(inNow - inBefore);
-  return std::isnan(change) ? HUGE_VAL : change;
+// Copies elements [inBegin, inEnd) when some differ; true when they did.
+bool copyIfDifferent(const std::vector<uint32_t>& inFrom, std::vector<uint32_t>& outTo,
+                     std::size_t inBegin, std::size_t inEnd) {
+  if (std::equal(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin))
+    return false;
+  copySlice(inFrom, outTo, inBegin, inEnd);
+  return true;
+}
+
+uint64_t bitsOf(double inValue) {
+  uint64_t bits;
+  std::memcpy(&bits, &inValue, sizeof bits);
+  return bits;
+}
+
+struct BlockChanges {
+  std::size_t changed_boxes = 0;
+  double max_displacement = 0.0;
+};
+
+constexpr std::size_t kBlock = 512;  // boxes compared, then copied, together
+
+// One bound array over a block of inCount boxes: ORs each box's differing bits into
+// ioDiffering[k] and returns the bits of the largest change, 0 when bit for bit equal,
+// infinite when the bound left or reached an infinity (no finite skin covers that). Changes
+// are never negative nor NaN, so their bits order as the changes do: the maximum is an integer
+// one, and the loop has no branch.
+uint64_t compareBoundArray(const double* inNow, const double* inBefore, std::size_t inCount,
+                           uint64_t* ioDiffering) {
+  const uint64_t infinity_bits = bitsOf(HUGE_VAL);
+  uint64_t largest = 0;
+  for (std::size_t k = 0; k < inCount; ++k) {
+    const uint64_t differs = bitsOf(inNow[k]) ^ bitsOf(inBefore[k]);
+    const double change = std::fabs(inNow[k] - inBefore[k]);
+    const uint64_t change_bits = differs == 0       ? 0
+                                 : change != change ? infinity_bits
+                                                    : bitsOf(change);
+    ioDiffering[k] |= differs;
+    largest = change_bits > largest ? change_bits : largest;
+  }
+  return largest;
+}
+
+// Boxes [inBegin, inEnd), at most kBlock: outUnchanged[i] = 1 when every bound is bit for bit
+// the one before (0.0 to -0.0 is a change of size 0), and the largest change of one bound.
+BlockChanges compareBounds(const BoxSet& inNow, const BoxSet& inBefore, std::size_t inBegin,
+                           std::size_t inEnd, uint8_t* outUnchanged) {
+  const std::size_t count = inEnd - inBegin;
+  uint64_t differing[kBlock] = {};
+  uint64_t largest = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    largest =
+        std::max(largest, compareBoundArray(inNow.lo[axis].data() + inBegin,
+                                            inBefore.lo[axis].data() + inBegin, count, differing));
+    largest =
+        std::max(largest, compareBoundArray(inNow.hi[axis].data() + inBegin,
+                                            inBefore.hi[axis].data() + inBegin, count, differing));
+  }
+  BlockChanges changes;
+  for (std::size_t k = 0; k < count; ++k) {
+    outUnchanged[inBegin + k] = differing[k] == 0;
+    changes.changed_boxes += differing[k] != 0;
+  }
+  std::memcpy(&changes.max_displacement, &largest, sizeof largest);
+  return changes;
+}
+
+// Clears outUnchanged[i] of boxes whose group or mask changed; returns how many did.
+std::size_t markFilterChanges(const BoxSet& inNow, const BoxSet& inBefore, std::size_t inBegin,
+                              std::size_t inEnd, uint8_t* ioUnchanged) {
+  if (inNow.groups.empty() && inNow.masks.empty()) return 0;
+  std::size_t changed = 0;
+  for (std::size_t i = inBegin; i < inEnd; ++i) {
+    const bool same_filter =
+        inNow.group(i) == inBefore.group(i) && inNow.mask(i) == inBefore.mask(i);
+    ioUnchanged[i] &= same_filter;
+    changed += !same_filter;
+  }
+  return changed;
+}
+
+std::size_t countChanged(const uint8_t* inUnchanged, std::size_t inBegin, std::size_t inEnd) {
+  std::size_t changed = 0;
+  for (std::size_t i = inBegin; i < inEnd; ++i) changed += inUnchanged[i] == 0;
+  return changed;
 }
 
 }  // namespace
 
 const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
   delta_ = FrameDelta();
+  threads_ = inThreads;
+  copied_ = false;
   if (!valid_) return delta_;
+  valid_ = false;  // from here until remember(), last_ is being made this frame
   delta_.relation = FrameRelation::kOtherIds;
-  if (!sameElements(last_.ids, inBoxes.ids) || last_.groups.empty() != inBoxes.groups.empty() ||
+  if (last_.size() != inBoxes.size() || last_.groups.empty() != inBoxes.groups.empty() ||
       last_.masks.empty() != inBoxes.masks.empty())
     return delta_;
-  compareBoxByBox(inBoxes, inThreads);
+  copied_ = true;
+  if (!compareAndCopyBoxByBox(inBoxes, inThreads)) {
+    delta_ = FrameDelta();
+    delta_.relation = FrameRelation::kOtherIds;
+    return delta_;
+  }
   delta_.relation = delta_.moved_boxes == 0 ? FrameRelation::kIdentical : FrameRelation::kSameIds;
   delta_.unchanged = &unchanged_;
   return delta_;
 }
 
-void FrameHistory::compareBoxByBox(const BoxSet& inBoxes, int inThreads) {
+// One pass, each thread over its slice of the boxes, block by block: a block is compared with
+// its copy without a branch and, where some box of it differs, copied at once while both are
+// in the cache (a separate copy after the sweep would read both frames from memory again;
+// copying a whole block keeps the copy a plain streaming one, and unchanged boxes in it are
+// rewritten with their own bits). Returns false when some id differs; the ids are copied too,
+// so that last_ equals inBoxes in every case.
+bool FrameHistory::compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads) {
   const std::size_t n = inBoxes.size();
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
   unchanged_.resize(n);
-  std::size_t moved = 0, filters_changed = 0;
+  std::size_t moved = 0, filters_changed = 0, other_ids = 0;
   double max_displacement = 0.0;
 #pragma omp parallel for num_threads(inThreads) schedule(static) \
-    reduction(+ : moved, filters_changed) reduction(max : max_displacement)
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool same_filter = inBoxes.group(i) == last_.group(i) && inBoxes.mask(i) == last_.mask(i);
-    double displacement = 0.0;
-    for (int axis = 0; axis < 3; ++axis)
-      displacement = std::max({displacement, boundChange(inBoxes.lo[axis][i], last_.lo[axis][i]),
-                               boundChange(inBoxes.hi[axis][i], last_.hi[axis][i])});
-    // A bound that changed by less than the smallest double (0.0 to -0.0) still changed.
-    bool same_bounds = displacement == 0.0;
-    for (int axis = 0; axis < 3 && same_bounds; ++axis)
-      same_bounds = sameBits(inBoxes.lo[axis][i], last_.lo[axis][i]) &&
-                    sameBits(inBoxes.hi[axis][i], last_.hi[axis][i]);
-    const bool unchanged = same_filter && same_bounds;
-    unchanged_[i] = unchanged;
-    moved += !unchanged;
-    filters_changed += !same_filter;
-    max_displacement = std::max(max_displacement, displacement);
+    reduction(+ : moved, filters_changed, other_ids) reduction(max : max_displacement)
+  for (std::size_t block = 0; block < blocks; ++block) {
+    const std::size_t begin = block * kBlock, end = std::min(n, begin + kBlock);
+    if (copyIfDifferent(inBoxes.ids, last_.ids, begin, end)) ++other_ids;
+    const BlockChanges bounds = compareBounds(inBoxes, last_, begin, end, unchanged_.data());
+    const std::size_t filters = markFilterChanges(inBoxes, last_, begin, end, unchanged_.data());
+    if (bounds.changed_boxes > 0 || filters > 0) {
+      for (int axis = 0; axis < 3; ++axis) {
+        copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
+        copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
+      }
+      copySlice(inBoxes.groups, last_.groups, begin, end);
+      copySlice(inBoxes.masks, last_.masks, begin, end);
+      moved += countChanged(unchanged_.data(), begin, end);
+    }
+    filters_changed += filters;
+    max_displacement = std::max(max_displacement, bounds.max_displacement);
   }
   delta_.moved_boxes = moved;
   delta_.filters_changed = filters_changed != 0;
   delta_.max_displacement = max_displacement;
+  return other_ids == 0;
 }
 
 namespace {
@@ -80,32 +180,41 @@ bool sameBoxes(const BoxSet& inA, const BoxSet& inB) {
 }  // namespace
 
 void FrameHistory::remember(const BoxSet& inBoxes) {
-  rememberChanges(inBoxes);
+  if (!copied_) copyWholeFrame(inBoxes, threads_);
+  valid_ = true;
+  copied_ = false;
   // Only the boxes compare() found changed were copied: the copy must now be the frame.
   SAP_ASSERT(sameBoxes(last_, inBoxes), "the frame history's copy differs from the frame");
 }
 
-void FrameHistory::rememberChanges(const BoxSet& inBoxes) {
-  if (!valid_ || delta_.relation == FrameRelation::kFirst ||
-      delta_.relation == FrameRelation::kOtherIds || unchanged_.size() != inBoxes.size()) {
-    last_ = inBoxes;  // vectors keep their capacity
-    valid_ = true;
-    return;
+// A first frame, or other ids: every box copied, each thread its slice (vectors keep their
+// capacity, so only a larger frame than any before allocates).
+void FrameHistory::copyWholeFrame(const BoxSet& inBoxes, int inThreads) {
+  const std::size_t n = inBoxes.size();
+  last_.ids.resize(n);
+  for (int axis = 0; axis < 3; ++axis) {
+    last_.lo[axis].resize(n);
+    last_.hi[axis].resize(n);
   }
-  if (delta_.relation == FrameRelation::kIdentical) return;
-  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    if (unchanged_[i]) continue;
+  last_.groups.resize(inBoxes.groups.size());
+  last_.masks.resize(inBoxes.masks.size());
+#pragma omp parallel num_threads(inThreads)
+  {
+    const auto team = static_cast<std::size_t>(omp_get_num_threads());
+    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t begin = n * thread / team, end = n * (thread + 1) / team;
+    copySlice(inBoxes.ids, last_.ids, begin, end);
     for (int axis = 0; axis < 3; ++axis) {
-      last_.lo[axis][i] = inBoxes.lo[axis][i];
-      last_.hi[axis][i] = inBoxes.hi[axis][i];
+      copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
+      copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
     }
-    if (!inBoxes.groups.empty()) last_.groups[i] = inBoxes.groups[i];
-    if (!inBoxes.masks.empty()) last_.masks[i] = inBoxes.masks[i];
+    copySlice(inBoxes.groups, last_.groups, begin, end);
+    copySlice(inBoxes.masks, last_.masks, begin, end);
   }
 }
 
 void FrameHistory::forget() {
-  valid_ = false;
+  valid_ = copied_ = false;
   delta_ = FrameDelta();
 }
 

@@ -38,9 +38,13 @@ struct FrameDelta {
 
 class FrameHistory {
  public:
-  /// Compares inBoxes with the last frame (nothing is remembered yet).
+  /// Compares inBoxes with the last frame. Where ids, their count and the presence of groups
+  /// and masks agree, the same pass over the boxes (each thread its slice) also copies the
+  /// changed boxes: the copy then holds inBoxes, but counts as the last frame only after
+  /// remember(), so a frame that throws in between leaves a first frame behind.
   const FrameDelta& compare(const BoxSet& inBoxes, int inThreads);
-  /// Makes inBoxes the last frame; after compare(inBoxes), only the changed boxes are copied.
+  /// Makes inBoxes, the frame given to compare(), the last frame (copied in parallel unless
+  /// compare() copied it already).
   void remember(const BoxSet& inBoxes);
   /// Forgets the last frame: the next one is a first frame.
   void forget();
@@ -48,11 +52,13 @@ class FrameHistory {
   void shrinkToFit();
 
  private:
-  void compareBoxByBox(const BoxSet& inBoxes, int inThreads);
-  void rememberChanges(const BoxSet& inBoxes);
+  bool compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads);
+  void copyWholeFrame(const BoxSet& inBoxes, int inThreads);
 
   BoxSet last_;
-  bool valid_ = false;
+  bool valid_ = false;   // last_ is the last frame
+  bool copied_ = false;  // compare() made last_ equal to its frame; remember() need not copy
+  int threads_ = 1;      // compare()'s, for remember()
   std::vector<uint8_t> unchanged_;
   FrameDelta delta_;
 };

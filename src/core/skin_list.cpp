@@ -126,14 +126,28 @@ std::size_t shareBegin(std::size_t inCount, int inPart, int inParts) {
   return inCount * static_cast<std::size_t>(inPart) / static_cast<std::size_t>(inParts);
 }
 
+/// Elements [inBegin, inEnd) of two vectors of equal size are bit for bit the same (absent
+/// groups or masks: both empty).
+bool sameSlice(const std::vector<uint32_t>& inA, const std::vector<uint32_t>& inB,
+               std::size_t inBegin, std::size_t inEnd) {
+  return inA.empty() || std::memcmp(inA.data() + inBegin, inB.data() + inBegin,
+                                    (inEnd - inBegin) * sizeof(uint32_t)) == 0;
+}
+
 }  // namespace
 
 bool SkinList::covers(const BoxSet& inBoxes, int inThreads) const {
-  if (!valid_ || !sameIdsAndFilters(inBoxes)) return false;
+  if (!valid_ || !sameCounts(inBoxes)) return false;
   const std::size_t n = inBoxes.size();
   bool inside = true;
-#pragma omp parallel for num_threads(inThreads) reduction(&& : inside) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) inside = inside && boxInside(inBoxes, reference_, i);
+#pragma omp parallel num_threads(inThreads) reduction(&& : inside)
+  {
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    const std::size_t begin = shareBegin(n, thread, team), end = shareBegin(n, thread + 1, team);
+    inside = sameIdsAndFilters(inBoxes, begin, end);
+    for (std::size_t i = begin; i < end && inside; ++i) inside = boxInside(inBoxes, reference_, i);
+  }
   return inside;
 }
 
@@ -261,7 +275,7 @@ bool SkinList::collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs)
 }
 
 bool SkinList::gather(const BoxSet& inBoxes, int inThreads) {
-  frame_gathered_ = valid_ && sameIdsAndFilters(inBoxes) && gatherInside(inBoxes, inThreads);
+  frame_gathered_ = valid_ && sameCounts(inBoxes) && gatherInside(inBoxes, inThreads);
   return frame_gathered_;
 }
 
@@ -272,16 +286,26 @@ void SkinList::collectGathered(int inThreads, PairList& outPairs) {
   copyHits(inThreads, outPairs);
 }
 
-bool SkinList::sameIdsAndFilters(const BoxSet& inBoxes) const {
-  return sameElements(reference_.ids, inBoxes.ids) &&
-         sameElements(reference_.groups, inBoxes.groups) &&
-         sameElements(reference_.masks, inBoxes.masks);
+bool SkinList::sameCounts(const BoxSet& inBoxes) const {
+  return reference_.ids.size() == inBoxes.ids.size() &&
+         reference_.groups.size() == inBoxes.groups.size() &&
+         reference_.masks.size() == inBoxes.masks.size();
 }
 
-// The containment check fused with the gather into spatial order: inBoxes and the reference
-// are read in index order, each box written once at its position (boxes without candidates
-// onto their thread's scratch record behind the positions, which stays in the cache). Blocks
-// of boxes end the pass early when one box has left its skin.
+// Boxes [inBegin, inEnd) have the reference's ids, groups and masks (after sameCounts()): each
+// thread compares its own slice, so that no serial pass over the ids grows with the frame.
+bool SkinList::sameIdsAndFilters(const BoxSet& inBoxes, std::size_t inBegin,
+                                 std::size_t inEnd) const {
+  return sameSlice(reference_.ids, inBoxes.ids, inBegin, inEnd) &&
+         sameSlice(reference_.groups, inBoxes.groups, inBegin, inEnd) &&
+         sameSlice(reference_.masks, inBoxes.masks, inBegin, inEnd);
+}
+
+// The containment check fused with the gather into spatial order, each block's ids and filters
+// compared first (after sameCounts()): inBoxes and the reference are read in index order, each box
+// written once at its position (boxes without candidates onto their thread's scratch record behind
+// the positions, which stays in the cache). Blocks of boxes end the pass early when one box has
+// left its skin.
 bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
   constexpr std::size_t kBlock = 4096;
   const std::size_t n = inBoxes.size();
@@ -298,6 +322,7 @@ bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
     bool mine = true;
     for (std::size_t block = shareBegin(n, thread, team); mine && block < end; block += kBlock) {
       const std::size_t block_end = std::min(end, block + kBlock);
+      mine = sameIdsAndFilters(inBoxes, block, block_end);
       for (std::size_t i = block; i < block_end; ++i) {
         // The line written kPrefetchAhead boxes later is fetched now, so that the scattered
         // stores do not wait for their lines one by one.

@@ -69,7 +69,8 @@ class SkinList {
   void clear() { valid_ = frame_gathered_ = false; }
 
  private:
-  bool sameIdsAndFilters(const BoxSet& inBoxes) const;
+  bool sameCounts(const BoxSet& inBoxes) const;
+  bool sameIdsAndFilters(const BoxSet& inBoxes, std::size_t inBegin, std::size_t inEnd) const;
   bool holdsEveryCandidate() const;
   void keepSpatialOrder();
   void keepSpatialCandidates();
