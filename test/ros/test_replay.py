@@ -30,6 +30,8 @@ REPO = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__))
 ARTIFACTS = os.path.join(REPO, "build", "artifacts")
 ROBOTS = ["robot_a", "robot_b"]
 FRAMES = 8  # per robot
+# The static transforms of replay.test: each robot's frame is its x offset in `map`.
+X_OFFSET = {"robot_a": 0.0, "robot_b": 0.5}
 WAIT = 60.0  # seconds; a bound on waiting, never a speed check
 
 
@@ -60,6 +62,35 @@ class Answers:
     def wait_for(self, stamp):
         with self.condition:
             return self.condition.wait_for(lambda: stamp in self.pairs, WAIT)
+
+
+def world_pairs(frames):
+    """The brute-force pairs of a world made of these frames, moved into `map`."""
+    boxes = []
+    for msg in frames:
+        dx = X_OFFSET[msg.header.frame_id]
+        b = msg.bounds
+        for k, box_id in enumerate(msg.ids):
+            low = (b[6 * k] + dx, b[6 * k + 1], b[6 * k + 2])
+            high = (b[6 * k + 3] + dx, b[6 * k + 4], b[6 * k + 5])
+            boxes.append((box_id, low, high))
+    pairs = []
+    for p, (id_p, low_p, high_p) in enumerate(boxes):
+        for id_q, low_q, high_q in boxes[p + 1:]:
+            if all(low_p[a] <= high_q[a] and low_q[a] <= high_p[a] for a in range(3)):
+                pairs.append((min(id_p, id_q), max(id_p, id_q)))
+    return sorted(pairs)
+
+
+def worlds_by_stamp(frames):
+    """{stamp: [pairs]} of every world a node builds from these frames in this order: after
+    each frame, the latest frame of each robot, stamped with the newest of their stamps."""
+    latest, worlds = {}, {}
+    for msg in frames:
+        latest[msg.header.frame_id] = msg
+        stamp = max(m.header.stamp for m in latest.values())
+        worlds.setdefault(stamp, []).append(world_pairs(latest.values()))
+    return worlds
 
 
 class ReplayTest(unittest.TestCase):
@@ -129,16 +160,24 @@ class ReplayTest(unittest.TestCase):
         self.assertGreater(len(cross), 0, "the robots' boxes should overlap, or nothing is tested")
         self.assertEqual(record.wait(WAIT), 0, "rosbag record did not end after every frame")
         with rosbag.Bag(bag) as reader:
-            in_bag = [msg.header.stamp for _, msg, _ in reader.read_messages()]
+            bag_frames = [msg for _, msg, _ in reader.read_messages()]
+        in_bag = [msg.header.stamp for msg in bag_frames]
         self.assertEqual(sorted(in_bag), sorted(stamps), "the bag lacks frames")
+        # The oracle agrees with the live node on every live world (frames in stamp order).
+        live_worlds = worlds_by_stamp(sorted(bag_frames, key=lambda msg: msg.header.stamp))
+        for stamp in stamps:
+            self.assertEqual(self.live.pairs[stamp], live_worlds[stamp][-1],
+                             "live frame %s: pairs differ from the brute-force oracle" % stamp)
 
-        # Replay at the recorded pace. The node may take several replayed frames in one
-        # computed frame (latest per source wins), so not every stamp gets an answer of its
-        # own; but a replayed world whose newest frame is stamped t is the live world at t,
-        # so every answer must equal the live node's pairs for its stamp, and the last frame
-        # (both robots' last frames) must be answered. (Stepping the player one message per
-        # 's' on its standard input proved unreliable under load: a step could let two
-        # messages out and the next none.)
+        # Replay at the recorded pace. The bag holds the frames in the order the recorder
+        # received them, which under load need not be the order they were published in (the
+        # robots are two connections), and the node may take several replayed frames in one
+        # computed frame (the latest frame of each source wins). So each answer must be the
+        # world of some prefix of the bag's order with the answer's stamp as its newest, and
+        # the last frame must be answered. (Stepping the player one message per 's' on its
+        # standard input proved unreliable under load: a step could let two messages out and
+        # the next none.)
+        replay_worlds = worlds_by_stamp(bag_frames)
         log = open(os.path.join(ARTIFACTS, "replay_play.log"), "w")
         play = subprocess.Popen(["rosbag", "play", "-q", "--wait-for-subscribers", bag,
                                  "/live/boxes:=/replay/boxes"], stdout=log, stderr=log)
@@ -146,9 +185,13 @@ class ReplayTest(unittest.TestCase):
         self.assertTrue(self.replay.wait_for(max(in_bag)), "the last replayed frame (%s) was not "
                         "answered; the replay node answered %s"
                         % (max(in_bag), sorted(self.replay.pairs)))
-        for stamp, pairs in sorted(self.replay.pairs.items()):
-            self.assertEqual(pairs, self.live.pairs[stamp],
-                             "replayed frame %s: pairs differ from the live node's" % stamp)
+        with self.replay.condition:
+            answers = dict(self.replay.pairs)
+        for stamp, pairs in sorted(answers.items()):
+            self.assertIn(stamp, replay_worlds, "an answer stamped %s, which no frame has" % stamp)
+            self.assertIn(pairs, replay_worlds[stamp], "replayed frame %s: pairs of no world the "
+                          "bag's order builds (live pairs of that stamp: %s)"
+                          % (stamp, "equal" if pairs == self.live.pairs.get(stamp) else "differ"))
         self.assertEqual(play.wait(WAIT), 0)
 
 
