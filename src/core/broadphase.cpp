@@ -47,6 +47,7 @@ struct Broadphase::Impl {
     SmallFrameWorkspace small_frame;  // the small-frame path's
     std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
     PairSortScratch pair_sort;
+    BoxSet filtered_records;  // a frame of records with groups or masks, in the BoxSet layout
   } buffers;
   GiveBackWatch give_back;
 
@@ -59,6 +60,7 @@ struct Broadphase::Impl {
   void addStaticPairs(const BoxSet& inBoxes, int inThreads);
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
+  void runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads);
 };
 
 // A box with group 0 or mask 0 passes no filter: it is left out before anything else. The
@@ -216,6 +218,29 @@ Broadphase::~Broadphase() = default;
 Broadphase::Broadphase(Broadphase&&) noexcept = default;
 Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 
+// Everything of a frame after the history has compared (or loaded) it: inBoxes are the boxes
+// that may pair, as the history now holds them.
+void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads) {
+  skin.startFrame(inDelta);
+  const BoxSet& swept = setAsideRestingBoxes(inBoxes, inDelta, inThreads);
+  const FramePlan frame_plan = plan(inBoxes, swept, inDelta, inThreads);
+  FrameSpread swept_spread(swept);  // measured once, by the first part that needs it
+  execute(frame_plan, inBoxes, swept_spread);
+  if (!config.skin) {  // the costs only feed the automatic skin's choice
+    PhaseTimer timer(report.ms_plan);
+    skin.learn(frame_plan, swept_spread, pairs.size(), report);
+  }
+  if (frame_plan.work != FrameWork::kReuse) addStaticPairs(inBoxes, inThreads);
+  {
+    PhaseTimer timer(report.ms_history);
+    history.remember(inBoxes);
+  }
+  pairs_valid = true;
+  PhaseTimer timer(report.ms_plan);
+  giveBackMemoryAfterBursts(inBoxes.size());
+  describeFrame(frame_plan, inDelta);
+}
+
 const PairList& Broadphase::update(const BoxSet& inBoxes) {
   Impl& impl = *impl_;
   FrameReport& report = impl.report;
@@ -232,24 +257,40 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
       PhaseTimer timer(report.ms_history);
       return impl.history.compare(boxes, threads);
     }();
-    impl.skin.startFrame(delta);
-    const BoxSet& swept = impl.setAsideRestingBoxes(boxes, delta, threads);
-    const FramePlan plan = impl.plan(boxes, swept, delta, threads);
-    FrameSpread swept_spread(swept);  // measured once, by the first part that needs it
-    impl.execute(plan, boxes, swept_spread);
-    if (!impl.config.skin) {  // the costs only feed the automatic skin's choice
-      PhaseTimer timer(report.ms_plan);
-      impl.skin.learn(plan, swept_spread, impl.pairs.size(), report);
+    impl.runFrame(boxes, delta, threads);
+  }
+  SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
+  return impl.pairs;
+}
+
+const PairList& Broadphase::update(const InterleavedBoxes& inBoxes) {
+  Impl& impl = *impl_;
+  const int threads = resolveThreadCount(impl.config.threads);
+  if (inBoxes.hasFilters()) {
+    // Boxes that pair with nothing are dropped before the history sees a frame, so a filtered
+    // frame takes the BoxSet path: one copy, checked, then as any BoxSet.
+    copyInterleaved(inBoxes, impl.buffers.filtered_records, threads);
+    if (auto problem = validate(impl.buffers.filtered_records)) {
+      reset();
+      throw InvalidBoxes(std::move(*problem));
     }
-    if (plan.work != FrameWork::kReuse) impl.addStaticPairs(boxes, threads);
-    {
+    return update(impl.buffers.filtered_records);
+  }
+  FrameReport& report = impl.report;
+  report = FrameReport();
+  {
+    PhaseTimer total(report.ms_total);
+    report.boxes = inBoxes.count;
+    std::optional<ValidationError> problem;
+    const FrameDelta delta = [&] {
       PhaseTimer timer(report.ms_history);
-      impl.history.remember(boxes);
+      return impl.history.load(inBoxes, threads, problem);
+    }();
+    if (problem) {
+      reset();  // the kept state described a frame the caller has since replaced
+      throw InvalidBoxes(std::move(*problem));
     }
-    impl.pairs_valid = true;
-    PhaseTimer timer(report.ms_plan);
-    impl.giveBackMemoryAfterBursts(boxes.size());
-    impl.describeFrame(plan, delta);
+    impl.runFrame(impl.history.loaded(), delta, threads);
   }
   SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
   return impl.pairs;

@@ -61,24 +61,51 @@ uint64_t compareBoundArray(const double* inNow, const double* inBefore, std::siz
   return largest;
 }
 
-// Boxes [inBegin, inEnd), at most kBlock: outUnchanged[i] = 1 when every bound is bit for bit
-// the one before (0.0 to -0.0 is a change of size 0), and the largest change of one bound.
-BlockChanges compareBounds(const BoxSet& inNow, const BoxSet& inBefore, std::size_t inBegin,
-                           std::size_t inEnd, uint8_t* outUnchanged) {
-  const std::size_t count = inEnd - inBegin;
+// The six bound arrays of a frame from some box on: min x, y, z, then max x, y, z.
+struct BoundArrays {
+  const double* at[6];
+};
+
+BoundArrays boundArrays(const BoxSet& inBoxes, std::size_t inBegin) {
+  BoundArrays arrays;
+  for (int axis = 0; axis < 3; ++axis) {
+    arrays.at[axis] = inBoxes.lo[axis].data() + inBegin;
+    arrays.at[3 + axis] = inBoxes.hi[axis].data() + inBegin;
+  }
+  return arrays;
+}
+
+// The same arrays of the history's copy, to write a block into.
+struct BoxSetArrays {
+  double* at[6];
+  BoundArrays constant() const {
+    BoundArrays arrays;
+    for (int array = 0; array < 6; ++array) arrays.at[array] = at[array];
+    return arrays;
+  }
+};
+
+BoxSetArrays mutableBoundArrays(BoxSet& ioBoxes, std::size_t inBegin) {
+  BoxSetArrays arrays;
+  for (int axis = 0; axis < 3; ++axis) {
+    arrays.at[axis] = ioBoxes.lo[axis].data() + inBegin;
+    arrays.at[3 + axis] = ioBoxes.hi[axis].data() + inBegin;
+  }
+  return arrays;
+}
+
+// inCount boxes, at most kBlock: outUnchanged[k] = 1 when every bound is bit for bit the one
+// before (0.0 to -0.0 is a change of size 0), and the largest change of one bound.
+BlockChanges compareBounds(const BoundArrays& inNow, const BoundArrays& inBefore,
+                           std::size_t inCount, uint8_t* outUnchanged) {
   uint64_t differing[kBlock] = {};
   uint64_t largest = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    largest =
-        std::max(largest, compareBoundArray(inNow.lo[axis].data() + inBegin,
-                                            inBefore.lo[axis].data() + inBegin, count, differing));
-    largest =
-        std::max(largest, compareBoundArray(inNow.hi[axis].data() + inBegin,
-                                            inBefore.hi[axis].data() + inBegin, count, differing));
-  }
+  for (int array = 0; array < 6; ++array)
+    largest = std::max(largest,
+                       compareBoundArray(inNow.at[array], inBefore.at[array], inCount, differing));
   BlockChanges changes;
-  for (std::size_t k = 0; k < count; ++k) {
-    outUnchanged[inBegin + k] = differing[k] == 0;
+  for (std::size_t k = 0; k < inCount; ++k) {
+    outUnchanged[k] = differing[k] == 0;
     changes.changed_boxes += differing[k] != 0;
   }
   std::memcpy(&changes.max_displacement, &largest, sizeof largest);
@@ -105,7 +132,106 @@ std::size_t countChanged(const uint8_t* inUnchanged, std::size_t inBegin, std::s
   return changed;
 }
 
+// A block of boxes read from records (InterleavedBoxes) into the layout the comparison and the
+// copy read: each thread's, on its stack (28 KB, cache-resident while the block is handled).
+struct RecordBlock {
+  double bounds[6][kBlock];  // min x, y, z, then max x, y, z, as in a record
+  uint32_t ids[kBlock];
+};
+
+BoundArrays boundArrays(const RecordBlock& inBlock) {
+  BoundArrays arrays;
+  for (int array = 0; array < 6; ++array) arrays.at[array] = inBlock.bounds[array];
+  return arrays;
+}
+
+// Reads boxes [inBegin, inEnd) into outBlock and checks them on the way: false when some box
+// has a NaN bound or min > max (`low <= high` is false exactly then, as in validate()).
+bool readRecords(const InterleavedBoxes& inBoxes, std::size_t inBegin, std::size_t inEnd,
+                 RecordBlock& outBlock) {
+  bool usable = true;
+  for (std::size_t i = inBegin; i < inEnd; ++i) {
+    const double* record = inBoxes.bounds + 6 * i;
+    for (int array = 0; array < 6; ++array) outBlock.bounds[array][i - inBegin] = record[array];
+    for (int axis = 0; axis < 3; ++axis) usable &= record[axis] <= record[3 + axis];
+  }
+  for (std::size_t i = inBegin; i < inEnd; ++i)
+    outBlock.ids[i - inBegin] = inBoxes.ids ? inBoxes.ids[i] : static_cast<uint32_t>(i);
+  return usable;
+}
+
 }  // namespace
+
+const FrameDelta& FrameHistory::load(const InterleavedBoxes& inBoxes, int inThreads,
+                                     std::optional<ValidationError>& outProblem) {
+  SAP_ASSERT(!inBoxes.hasFilters(), "load() takes frames without groups or masks");
+  const bool had_last = valid_;
+  delta_ = FrameDelta();
+  threads_ = inThreads;
+  valid_ = false;
+  copied_ = true;  // last_ becomes the frame here: remember() has nothing to copy
+  const bool comparable =
+      had_last && last_.size() == inBoxes.count && last_.groups.empty() && last_.masks.empty();
+  if (!comparable) {
+    // A first frame, or other ids: every box copied, then checked as any BoxSet is.
+    copyInterleaved(inBoxes, last_, inThreads);
+    outProblem = validate(last_);
+    if (had_last) delta_.relation = FrameRelation::kOtherIds;
+  } else {
+    const RecordsLoaded loaded = compareAndLoadBoxByBox(inBoxes, inThreads);
+    // Same ids as a frame that passed: no id can repeat, and only a box found unusable on the
+    // way needs the full check (which names the lowest bad box with validate()'s words).
+    outProblem = loaded.other_ids || loaded.unusable ? validate(last_) : std::nullopt;
+    if (loaded.other_ids) {
+      delta_ = FrameDelta();
+      delta_.relation = FrameRelation::kOtherIds;
+    } else {
+      delta_.relation =
+          delta_.moved_boxes == 0 ? FrameRelation::kIdentical : FrameRelation::kSameIds;
+      delta_.unchanged = &unchanged_;
+    }
+  }
+  if (outProblem) forget();
+  return delta_;
+}
+
+// compareAndCopyBoxByBox() for records: each block is read into a cache-resident scratch
+// (checked on the way), compared with the copy and written into it where some box differs,
+// so the caller's memory is read once and no other copy of the frame is made.
+FrameHistory::RecordsLoaded FrameHistory::compareAndLoadBoxByBox(const InterleavedBoxes& inBoxes,
+                                                                 int inThreads) {
+  const std::size_t n = inBoxes.count;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  unchanged_.resize(n);
+  std::size_t moved = 0, other_ids = 0, unusable = 0;
+  double max_displacement = 0.0;
+#pragma omp parallel num_threads(inThreads) reduction(+ : moved, other_ids, unusable) \
+    reduction(max : max_displacement)
+  {
+    RecordBlock block;
+#pragma omp for schedule(static)
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t begin = b * kBlock, end = std::min(n, begin + kBlock), count = end - begin;
+      unusable += !readRecords(inBoxes, begin, end, block);
+      if (!std::equal(block.ids, block.ids + count, last_.ids.begin() + begin)) {
+        std::copy(block.ids, block.ids + count, last_.ids.begin() + begin);
+        ++other_ids;
+      }
+      const BoxSetArrays copy = mutableBoundArrays(last_, begin);
+      const BlockChanges changes =
+          compareBounds(boundArrays(block), copy.constant(), count, unchanged_.data() + begin);
+      if (changes.changed_boxes > 0) {
+        for (int array = 0; array < 6; ++array)
+          std::memcpy(copy.at[array], block.bounds[array], count * sizeof(double));
+        moved += changes.changed_boxes;
+      }
+      max_displacement = std::max(max_displacement, changes.max_displacement);
+    }
+  }
+  delta_.moved_boxes = moved;
+  delta_.max_displacement = max_displacement;
+  return RecordsLoaded{other_ids != 0, unusable != 0};
+}
 
 const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
   delta_ = FrameDelta();
@@ -145,7 +271,9 @@ bool FrameHistory::compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads) 
   for (std::size_t block = 0; block < blocks; ++block) {
     const std::size_t begin = block * kBlock, end = std::min(n, begin + kBlock);
     if (copyIfDifferent(inBoxes.ids, last_.ids, begin, end)) ++other_ids;
-    const BlockChanges bounds = compareBounds(inBoxes, last_, begin, end, unchanged_.data());
+    const BlockChanges bounds =
+        compareBounds(boundArrays(inBoxes, begin), boundArrays(last_, begin), end - begin,
+                      unchanged_.data() + begin);
     const std::size_t filters = markFilterChanges(inBoxes, last_, begin, end, unchanged_.data());
     if (bounds.changed_boxes > 0 || filters > 0) {
       for (int axis = 0; axis < 3; ++axis) {

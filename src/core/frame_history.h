@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "sap_broadphase/core/box_set.h"
@@ -43,8 +44,18 @@ class FrameHistory {
   /// changed boxes: the copy then holds inBoxes, but counts as the last frame only after
   /// remember(), so a frame that throws in between leaves a first frame behind.
   const FrameDelta& compare(const BoxSet& inBoxes, int inThreads);
-  /// Makes inBoxes, the frame given to compare(), the last frame (copied in parallel unless
-  /// compare() copied it already).
+  /// compare() for a frame given as records, checked on the way: the history's copy is made
+  /// from inBoxes directly (read block by block into a cache-resident scratch while compared)
+  /// and is the frame the engine then runs on, loaded(); the caller's memory is read once.
+  /// On a NaN bound, min > max or a repeated id, outProblem names the lowest bad box as
+  /// validate() does and the history is forgotten (the next frame is a first frame). Frames
+  /// without groups and masks only: the engine drops boxes that pair with nothing first.
+  const FrameDelta& load(const InterleavedBoxes& inBoxes, int inThreads,
+                         std::optional<ValidationError>& outProblem);
+  /// The frame load() made, until the next compare(), load() or forget().
+  const BoxSet& loaded() const { return last_; }
+  /// Makes inBoxes, the frame given to compare() or load(), the last frame (copied in parallel
+  /// unless compare() copied it already).
   void remember(const BoxSet& inBoxes);
   /// Forgets the last frame: the next one is a first frame.
   void forget();
@@ -53,6 +64,11 @@ class FrameHistory {
 
  private:
   bool compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads);
+  struct RecordsLoaded {
+    bool other_ids = false;  // some id differs from the last frame's
+    bool unusable = false;   // some box has a NaN bound or min > max
+  };
+  RecordsLoaded compareAndLoadBoxByBox(const InterleavedBoxes& inBoxes, int inThreads);
   void copyWholeFrame(const BoxSet& inBoxes, int inThreads);
 
   BoxSet last_;

@@ -5,12 +5,11 @@
 #include <cstring>
 #include <type_traits>
 
+#include "sap_broadphase/core/config.h"
+
 namespace sap_broadphase {
 
 namespace {
-
-// Below this many boxes a copy takes less than waking a second thread would.
-constexpr std::size_t kParallelCopyBoxes = std::size_t{1} << 15;
 
 // Says what the sender can change: the two lengths that disagree and the two valid choices.
 std::string lengthError(const char* inField, std::size_t inLength, std::size_t inBoxes) {
@@ -36,45 +35,20 @@ std::optional<std::string> checkBoxArrayShape(const BoxArray& inMsg) {
   return std::nullopt;
 }
 
+InterleavedBoxes boxArrayRecords(const BoxArray& inMsg) {
+  InterleavedBoxes records;
+  records.count = inMsg.bounds.size() / 6;
+  records.bounds = inMsg.bounds.data();
+  records.ids = inMsg.ids.empty() ? nullptr : inMsg.ids.data();
+  records.groups = inMsg.groups.empty() ? nullptr : inMsg.groups.data();
+  records.masks = inMsg.masks.empty() ? nullptr : inMsg.masks.data();
+  return records;
+}
+
 std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes) {
   if (auto shapeError = checkBoxArrayShape(inMsg)) return shapeError;
-  const std::size_t count = inMsg.bounds.size() / 6;
-  if (inMsg.ids.empty()) {
-    outBoxes.ids.resize(count);
-    for (std::size_t i = 0; i < count; ++i) outBoxes.ids[i] = static_cast<uint32_t>(i);
-  } else {
-    outBoxes.ids.assign(inMsg.ids.begin(), inMsg.ids.end());
-  }
-  for (int axis = 0; axis < 3; ++axis) {
-    outBoxes.lo[axis].resize(count);
-    outBoxes.hi[axis].resize(count);
-  }
   // A 2^20-box message is 50 MB: the copy into the engine's layout runs on every core.
-  const double* bounds = inMsg.bounds.data();
-  const auto boxes = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static) if (count >= kParallelCopyBoxes)
-  for (std::ptrdiff_t i = 0; i < boxes; ++i) {
-    const double* box = bounds + 6 * i;
-    for (int axis = 0; axis < 3; ++axis) {
-      outBoxes.lo[axis][i] = box[axis];
-      outBoxes.hi[axis][i] = box[3 + axis];
-    }
-  }
-  // Partial filters are completed with the defaults so the engine sees one per box or none.
-  const bool filtered = !inMsg.groups.empty() || !inMsg.masks.empty();
-  if (filtered) {
-    if (inMsg.groups.empty())
-      outBoxes.groups.assign(count, kDefaultGroup);
-    else
-      outBoxes.groups.assign(inMsg.groups.begin(), inMsg.groups.end());
-    if (inMsg.masks.empty())
-      outBoxes.masks.assign(count, kDefaultMask);
-    else
-      outBoxes.masks.assign(inMsg.masks.begin(), inMsg.masks.end());
-  } else {
-    outBoxes.groups.clear();
-    outBoxes.masks.clear();
-  }
+  copyInterleaved(boxArrayRecords(inMsg), outBoxes, resolveThreadCount(0));
   if (auto error = validate(outBoxes)) return error->message();
   return std::nullopt;
 }

@@ -70,9 +70,13 @@ void FrameOutputs::publishEvents(const PairList& inPairs, const std_msgs::Header
   previous_pairs_valid_ = true;
 }
 
+bool FrameOutputs::wantsMarkers() const {
+  return publish_markers_ && markers_pub_.getNumSubscribers() > 0;
+}
+
 MarkerCounts FrameOutputs::publishMarkers(const BoxSet& inWorld, const PairList& inPairs,
                                           const std_msgs::Header& inHeader) {
-  if (!publish_markers_ || markers_pub_.getNumSubscribers() == 0) return MarkerCounts{};
+  if (!wantsMarkers()) return MarkerCounts{};
   auto markers = boost::make_shared<visualization_msgs::MarkerArray>();
   const MarkerCounts counts = buildMarkers(inWorld, inPairs, inHeader, markers_, *markers);
   markers_pub_.publish(markers);

@@ -23,6 +23,8 @@ class FrameOutputs {
   double publishPairs(const PairList& inPairs, const std_msgs::Header& inHeader);
   /// Publishes what changed since the previous frame, while someone listens.
   void publishEvents(const PairList& inPairs, const std_msgs::Header& inHeader);
+  /// True when markers are on and somebody subscribes to them (a frame then needs its boxes).
+  bool wantsMarkers() const;
   /// Publishes the markers of the world and its pairs, while someone listens.
   MarkerCounts publishMarkers(const BoxSet& inWorld, const PairList& inPairs,
                               const std_msgs::Header& inHeader);

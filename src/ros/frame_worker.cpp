@@ -5,6 +5,8 @@
 #include <chrono>
 #include <utility>
 
+#include "sap_broadphase/ros/conversions.h"
+
 namespace sap_broadphase {
 
 namespace {
@@ -151,6 +153,12 @@ bool FrameWorker::takeScenery() {
 bool FrameWorker::takeDeliveries() {
   bool changed = false;
   for (auto& [key, delivery] : deliveries_) {
+    if (ingest_.fixedFrame().empty()) {
+      // No transform to apply: the frame is kept as published, checked where it is read.
+      sources_.storeMessage(key, delivery.msg, delivery.received);
+      changed = true;
+      continue;
+    }
     if (!ingest_.convert(key, *delivery.msg, converted_)) continue;
     std_msgs::Header header = delivery.msg->header;
     if (!ingest_.fixedFrame().empty()) header.frame_id = ingest_.fixedFrame();  // moved there
@@ -183,9 +191,13 @@ void FrameWorker::computeFrame() {
   const auto start = std::chrono::steady_clock::now();
   const std::string& fixed_frame = ingest_.fixedFrame();
   WorldAssembly assembly;
-  const BoxSet& world = sources_.assemble(
-      static_ids_, fixed_frame.empty() ? static_frame_ : fixed_frame, world_, assembly);
+  const World world =
+      sources_.assemble(static_ids_, fixed_frame.empty() ? static_frame_ : fixed_frame, world_,
+                        assembly, outputs_.wantsMarkers());
   if (!fixed_frame.empty()) assembly.header.frame_id = fixed_frame;
+  for (const RefusedFrame& refused : assembly.refused_frames)
+    status_.refuse(refused.header, refused.boxes, refused.reason);
+  for (std::size_t i = 0; i < assembly.frames_accepted; ++i) status_.countProcessed();
   for (const std::string& refusal : assembly.refusals)
     status_.refuse(assembly.header, world.size(), refusal);
   if (world_watch_.shouldGiveBack(world_.size(), world_.ids.capacity())) shrinkBoxSet(world_);
@@ -196,14 +208,33 @@ void FrameWorker::computeFrame() {
   frame.boxes = world.size();
   frame.sources = assembly.sources_merged;
   frame.ms_conversion = millisecondsSince(start);
-  const PairList& pairs = engine_.update(world);
-  frame.ms_message = outputs_.publishPairs(pairs, assembly.header);
+  const PairList* pairs = world.boxes ? &engine_.update(*world.boxes) : nullptr;
+  if (!pairs && !(pairs = updateFromMessage(world))) return;
+  frame.ms_message = outputs_.publishPairs(*pairs, assembly.header);
   frame.ms_total = millisecondsSince(start);
-  outputs_.publishEvents(pairs, assembly.header);
-  const MarkerCounts markers = outputs_.publishMarkers(world, pairs, assembly.header);
-  frame.marker_boxes = markers.drawn;
-  frame.marker_boxes_omitted = markers.colliding_omitted;
+  outputs_.publishEvents(*pairs, assembly.header);
+  if (world.boxes) {  // markers are drawn from boxes; a world that is one message has none
+    const MarkerCounts markers = outputs_.publishMarkers(*world.boxes, *pairs, assembly.header);
+    frame.marker_boxes = markers.drawn;
+    frame.marker_boxes_omitted = markers.colliding_omitted;
+  }
   status_.frameComputed(frame, engine_.stats());
+}
+
+const PairList* FrameWorker::updateFromMessage(const World& inWorld) {
+  const BoxArray& message = *inWorld.message;
+  try {
+    const PairList& pairs = engine_.update(boxArrayRecords(message));
+    if (sources_.accept(inWorld.source)) status_.countProcessed();
+    return &pairs;
+  } catch (const InvalidBoxes& refusal) {
+    // As a frame refused at conversion: counted and named, nothing published, and the source
+    // keeps its last good frame.
+    status_.refuse(message.header, inWorld.size(),
+                   sourceName(inWorld.source) + ": " + refusal.error().message());
+    sources_.refuse(inWorld.source);
+    return nullptr;
+  }
 }
 
 }  // namespace sap_broadphase

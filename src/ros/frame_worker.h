@@ -55,6 +55,9 @@ class FrameWorker {
   void expireSources();
   /// Merges the sources, computes and publishes one frame.
   void computeFrame();
+  /// The engine on a world that is one source's frame as published, which the engine checks
+  /// as it reads it: the pairs, or null when the frame was refused.
+  const PairList* updateFromMessage(const World& inWorld);
 
   NodeParams params_;  // the settings in force (worker thread only)
   SourceIngest& ingest_;

@@ -4,10 +4,14 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <numeric>
 
 #include <tf2/LinearMath/Matrix3x3.h>
 #include <tf2/LinearMath/Quaternion.h>
+
+#include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
 
@@ -115,10 +119,66 @@ void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::H
   source.header = inHeader;
   source.received = inReceived;
   source.sorted_ids.clear();
+  source.message.reset();
+  source.accepted.reset();
+  source.converted = nullptr;
   if (source.watch.shouldGiveBack(source.boxes.size(), source.boxes.ids.capacity())) {
     shrinkBoxSet(source.boxes);
     source.sorted_ids.shrink_to_fit();
   }
+}
+
+void SourceSet::storeMessage(const SourceKey& inKey, const BoxArrayConstPtr& inMessage,
+                             const ros::Time& inReceived) {
+  auto [it, joined] = sources_.try_emplace(inKey);
+  Source& source = it->second;
+  if (joined) source.joined = next_join_++;
+  source.message = inMessage;
+  source.header = inMessage->header;
+  source.received = inReceived;
+  source.sorted_ids.clear();
+}
+
+bool SourceSet::accept(const SourceKey& inKey) {
+  const auto it = sources_.find(inKey);
+  if (it == sources_.end() || !it->second.message || it->second.accepted == it->second.message)
+    return false;
+  it->second.accepted = it->second.message;
+  return true;
+}
+
+void SourceSet::refuse(const SourceKey& inKey) {
+  const auto it = sources_.find(inKey);
+  if (it != sources_.end() && !fallBack(it->second)) sources_.erase(it);
+}
+
+bool SourceSet::fallBack(Source& ioSource) {
+  if (!ioSource.accepted || ioSource.accepted == ioSource.message) return false;
+  ioSource.message = ioSource.accepted;
+  ioSource.header = ioSource.message->header;
+  ioSource.sorted_ids.clear();
+  return true;
+}
+
+bool SourceSet::convertKept(const SourceKey& inKey, Source& ioSource, WorldAssembly& ioAssembly) {
+  while (ioSource.message && ioSource.converted != ioSource.message.get()) {
+    const BoxArray& message = *ioSource.message;
+    if (auto reason = boxArrayToBoxSet(message, ioSource.boxes)) {
+      ioSource.converted = nullptr;
+      ioAssembly.refused_frames.push_back(RefusedFrame{message.header, message.bounds.size() / 6,
+                                                       sourceName(inKey) + ": " + *reason});
+      if (!fallBack(ioSource)) return false;
+      continue;
+    }
+    ioSource.converted = ioSource.message.get();
+    if (ioSource.accepted != ioSource.message) {
+      ioSource.accepted = ioSource.message;
+      ++ioAssembly.frames_accepted;
+    }
+    if (ioSource.watch.shouldGiveBack(ioSource.boxes.size(), ioSource.boxes.ids.capacity()))
+      shrinkBoxSet(ioSource.boxes);
+  }
+  return true;
 }
 
 std::vector<std::string> SourceSet::expire(const ros::Time& inNow, double inTimeout) {
@@ -144,8 +204,18 @@ std::vector<SourceKey> SourceSet::expire(
 }
 
 const std::vector<uint32_t>& SourceSet::sortedIds(Source& ioSource) {
-  if (ioSource.sorted_ids.size() != ioSource.boxes.size()) {
-    ioSource.sorted_ids = ioSource.boxes.ids;
+  const bool unconverted = ioSource.message && ioSource.converted != ioSource.message.get();
+  const std::size_t count =
+      unconverted ? ioSource.message->bounds.size() / 6 : ioSource.boxes.size();
+  if (ioSource.sorted_ids.size() != count) {
+    if (!unconverted) {
+      ioSource.sorted_ids = ioSource.boxes.ids;
+    } else if (ioSource.message->ids.empty()) {  // numbered 0..n-1: already sorted
+      ioSource.sorted_ids.resize(count);
+      std::iota(ioSource.sorted_ids.begin(), ioSource.sorted_ids.end(), 0u);
+    } else {
+      ioSource.sorted_ids = ioSource.message->ids;
+    }
     std::sort(ioSource.sorted_ids.begin(), ioSource.sorted_ids.end());
   }
   return ioSource.sorted_ids;
@@ -177,9 +247,15 @@ std::string SourceSet::conflict(const SourceIt& inSource, const std::vector<Sour
   return "";
 }
 
-const BoxSet& SourceSet::assemble(const std::vector<uint32_t>& inStaticIds,
-                                  const std::string& inRequiredFrame, BoxSet& outWorld,
-                                  WorldAssembly& outAssembly) {
+World SourceSet::assemble(const std::vector<uint32_t>& inStaticIds,
+                          const std::string& inRequiredFrame, BoxSet& outWorld,
+                          WorldAssembly& outAssembly, bool inNeedBoxes) {
+  outAssembly = WorldAssembly();
+  // Kept frames become boxes wherever the world is a BoxSet: a union, or markers to draw.
+  if (inNeedBoxes || sources_.size() > 1) {
+    for (auto it = sources_.begin(); it != sources_.end();)
+      it = convertKept(it->first, it->second, outAssembly) ? std::next(it) : sources_.erase(it);
+  }
   std::vector<SourceIt> by_join;
   for (auto it = sources_.begin(); it != sources_.end(); ++it) by_join.push_back(it);
   std::sort(by_join.begin(), by_join.end(), [](const SourceIt& a, const SourceIt& b) {
@@ -188,7 +264,6 @@ const BoxSet& SourceSet::assemble(const std::vector<uint32_t>& inStaticIds,
   std::string world_frame = inRequiredFrame;
   std::string world_frame_owner = kStaticSourceName;
   std::vector<SourceIt> merged;
-  outAssembly = WorldAssembly();
   for (const SourceIt& source : by_join) {
     std::string reason = conflict(source, merged, inStaticIds, world_frame, world_frame_owner);
     if (!reason.empty()) {
@@ -206,9 +281,21 @@ const BoxSet& SourceSet::assemble(const std::vector<uint32_t>& inStaticIds,
   outAssembly.header.frame_id = world_frame;
   outAssembly.sources_merged = merged.size();
   outWorld.clear();
-  if (merged.size() == 1) return merged[0]->second.boxes;
+  World world;
+  world.boxes = &outWorld;
+  if (merged.size() == 1) {
+    const Source& only = merged[0]->second;
+    if (only.message && only.converted != only.message.get()) {
+      world.boxes = nullptr;
+      world.message = only.message.get();
+      world.source = merged[0]->first;
+    } else {
+      world.boxes = &only.boxes;
+    }
+    return world;
+  }
   for (const SourceIt& source : merged) appendBoxes(source->second.boxes, outWorld);
-  return outWorld;
+  return world;
 }
 
 }  // namespace sap_broadphase

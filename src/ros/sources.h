@@ -12,6 +12,8 @@
 #include <ros/time.h>
 #include <std_msgs/Header.h>
 
+#include "sap_broadphase/BoxArray.h"
+
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/memory_policy.h"
 
@@ -46,11 +48,31 @@ constexpr const char* kStaticSourceName = "'static_boxes'";
 /// becomes -inf / +inf.
 void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes);
 
+/// A source frame kept as published that failed its checks (NaN, min > max, a repeated id).
+struct RefusedFrame {
+  std_msgs::Header header;  ///< the frame's
+  std::size_t boxes = 0;    ///< its box count
+  std::string reason;       ///< "'boxes' from /a: box 3 (id 17): min_y (3) > max_y (2)"
+};
+
 /// What one merge left out, and why (one refusal per source left out).
 struct WorldAssembly {
   std_msgs::Header header;            ///< newest stamp of the merged sources, their frame id
   std::size_t sources_merged = 0;     ///< sources in the world
   std::vector<std::string> refusals;  ///< "id 7 of 'boxes' from /b is also in 'boxes' from /a"
+  std::vector<RefusedFrame> refused_frames;  ///< kept frames that failed their checks here
+  std::size_t frames_accepted = 0;  ///< kept frames that passed their checks here, first time
+};
+
+/// The world of a frame: a BoxSet, or the one source's frame as published, which the engine
+/// reads where it lies (Broadphase::update of its records) and checks itself.
+struct World {
+  const BoxSet* boxes = nullptr;      ///< the merged boxes, or null
+  const BoxArray* message = nullptr;  ///< else the one source's frame (shape checked), or null
+  SourceKey source;                   ///< with a message: whose it is
+  std::size_t size() const {
+    return boxes ? boxes->size() : message ? message->bounds.size() / 6 : 0;
+  }
 };
 
 /// The latest frame of every source, kept until replaced or timed out, and their union.
@@ -60,6 +82,17 @@ class SourceSet {
   /// the latest frame of inKey, received at inReceived.
   void store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::Header& inHeader,
              const ros::Time& inReceived);
+  /// Keeps inMessage, a frame whose shape is checked and which needs no transform, as the
+  /// latest frame of inKey, unconverted: its boxes are checked and copied only where the
+  /// world needs them as a BoxSet (several sources, markers); alone, the engine reads them.
+  void storeMessage(const SourceKey& inKey, const BoxArrayConstPtr& inMessage,
+                    const ros::Time& inReceived);
+  /// The engine accepted inKey's kept frame: it becomes the one a refusal falls back on.
+  /// True the first time for this frame.
+  bool accept(const SourceKey& inKey);
+  /// The engine refused inKey's kept frame: the source falls back on its last accepted frame,
+  /// or leaves the world when it has none (as a frame refused at conversion never joins).
+  void refuse(const SourceKey& inKey);
   /// Drops the sources whose latest frame is older than inTimeout seconds at inNow (0 = never)
   /// and returns their names.
   std::vector<std::string> expire(const ros::Time& inNow, double inTimeout);
@@ -71,14 +104,15 @@ class SourceSet {
   std::size_t size() const { return sources_.size(); }
 
   /// Builds the world of a frame into outWorld and returns it, or returns the one source's own
-  /// boxes when it is alone (no copy). Sources are taken in the order they appeared (a source
-  /// lives from its first frame until it times out); a source is left out, with a refusal naming
-  /// both sides, when one of its ids is already in the world or in inStaticIds (sorted), or when
-  /// its frame_id differs from the world's (inRequiredFrame when not empty, else the first
-  /// source's).
-  const BoxSet& assemble(const std::vector<uint32_t>& inStaticIds,
-                         const std::string& inRequiredFrame, BoxSet& outWorld,
-                         WorldAssembly& outAssembly);
+  /// boxes or, unless inNeedBoxes, its kept message when it is alone (no copy). Kept messages
+  /// are converted and checked where a BoxSet is needed; one that fails is refused
+  /// (outAssembly.refused_frames) and its source falls back as refuse() says. Sources are taken in
+  /// the order they appeared (a source lives from its first frame until it times out); a source is
+  /// left out, with a refusal naming both sides, when one of its ids is already in the world or in
+  /// inStaticIds (sorted), or when its frame_id differs from the world's (inRequiredFrame when not
+  /// empty, else the first source's).
+  World assemble(const std::vector<uint32_t>& inStaticIds, const std::string& inRequiredFrame,
+                 BoxSet& outWorld, WorldAssembly& outAssembly, bool inNeedBoxes = true);
 
  private:
   struct Source {
@@ -86,12 +120,20 @@ class SourceSet {
     std_msgs::Header header;
     ros::Time received;
     uint64_t joined = 0;  // order in which sources appeared: the older one keeps a shared id
-    std::vector<uint32_t> sorted_ids;  // ids of boxes, sorted; built only when compared
+    std::vector<uint32_t> sorted_ids;  // ids of the frame, sorted; built only when compared
     GiveBackWatch watch;
+    BoxArrayConstPtr message;             // a frame kept as published; boxes hold it once converted
+    BoxArrayConstPtr accepted;            // the last kept frame that passed its checks
+    const BoxArray* converted = nullptr;  // the kept frame boxes hold, if any
   };
   using SourceIt = std::map<SourceKey, Source>::iterator;
   /// The source's ids, sorted (cached until its next frame).
   static const std::vector<uint32_t>& sortedIds(Source& ioSource);
+  /// Converts and checks the kept frame of ioSource into its boxes (once per frame); on a
+  /// refusal falls back as refuse() says. False when the source has no frame left.
+  static bool convertKept(const SourceKey& inKey, Source& ioSource, WorldAssembly& ioAssembly);
+  /// Falls back on the last accepted frame; false when there is none.
+  static bool fallBack(Source& ioSource);
   /// Why inSource cannot join the sources of inMerged, or empty.
   std::string conflict(const SourceIt& inSource, const std::vector<SourceIt>& inMerged,
                        const std::vector<uint32_t>& inStaticIds, const std::string& inWorldFrame,

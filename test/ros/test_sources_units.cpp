@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include <boost/make_shared.hpp>
 #include <gtest/gtest.h>
 #include <tf2/LinearMath/Matrix3x3.h>
 #include <tf2/LinearMath/Quaternion.h>
@@ -35,14 +36,14 @@ TEST(SourceSet, UnionOfLatestFramesNewestStampAndCrossSourcePairs) {
   sources.store({"boxes", "/b", ""}, b, header("world", 12), ros::Time(100, 0));
   BoxSet world;
   WorldAssembly assembly;
-  EXPECT_EQ(bruteForcePairs(sources.assemble({}, "", world, assembly)), PairList({{1, 2}}));
+  EXPECT_EQ(bruteForcePairs(*sources.assemble({}, "", world, assembly).boxes), PairList({{1, 2}}));
   EXPECT_EQ(assembly.sources_merged, 2u);
   EXPECT_TRUE(assembly.refusals.empty());
   EXPECT_EQ(assembly.header.stamp, ros::Time(12, 0));
   EXPECT_EQ(assembly.header.frame_id, "world");
   // The latest frame of /a replaces its earlier one.
   sources.store({"boxes", "/a", ""}, a_again, header("world", 11), ros::Time(101, 0));
-  EXPECT_TRUE(bruteForcePairs(sources.assemble({}, "", world, assembly)).empty());
+  EXPECT_TRUE(bruteForcePairs(*sources.assemble({}, "", world, assembly).boxes).empty());
   EXPECT_EQ(world.size(), 2u);
 }
 
@@ -56,7 +57,7 @@ TEST(SourceSet, SharedIdLeavesTheNewerSourceOutNamingBoth) {
   sources.store({"boxes", "/a", ""}, fresh_a, header("world", 2), ros::Time(2, 0));
   BoxSet world;
   WorldAssembly assembly;
-  const BoxSet& merged = sources.assemble({}, "", world, assembly);
+  const BoxSet& merged = *sources.assemble({}, "", world, assembly).boxes;
   ASSERT_EQ(assembly.refusals.size(), 1u);
   EXPECT_EQ(assembly.refusals[0].rfind("id 7 of 'boxes' from /b is also in 'boxes' from /a", 0), 0u)
       << assembly.refusals[0];
@@ -77,7 +78,7 @@ TEST(SourceSet, OtherFrameRefusedNamingBothFrames) {
   sources.store({"boxes", "/b", ""}, b, header("robot_b", 1), ros::Time(1, 0));
   BoxSet world;
   WorldAssembly assembly;
-  const BoxSet& merged = sources.assemble({}, "", world, assembly);
+  const BoxSet& merged = *sources.assemble({}, "", world, assembly).boxes;
   ASSERT_EQ(assembly.refusals.size(), 1u);
   EXPECT_NE(assembly.refusals[0].find("'robot_b'"), std::string::npos);
   EXPECT_NE(assembly.refusals[0].find("'robot_a'"), std::string::npos);
@@ -98,11 +99,97 @@ TEST(SourceSet, FiltersOfOneSourceCompletedWithDefaults) {
   sources.store({"boxes", "/filtered", ""}, filtered, header("w", 1), ros::Time(1, 0));
   BoxSet world;
   WorldAssembly assembly;
-  const BoxSet& merged = sources.assemble({}, "", world, assembly);
+  const BoxSet& merged = *sources.assemble({}, "", world, assembly).boxes;
   ASSERT_EQ(merged.groups.size(), 3u);
   ASSERT_EQ(merged.masks.size(), 3u);
   EXPECT_FALSE(validate(merged));
   EXPECT_EQ(bruteForcePairs(merged), PairList({{1, 3}}));
+}
+
+BoxArrayConstPtr oneBoxMessage(uint32_t inId, double inLo, double inHi, uint32_t inSeconds) {
+  auto message = boost::make_shared<BoxArray>();
+  message->header = header("world", inSeconds);
+  message->ids = {inId};
+  message->bounds = {inLo, inLo, inLo, inHi, inHi, inHi};
+  return message;
+}
+
+// A frame kept as published is the world itself when it is alone, and is converted and
+// checked where a union (or markers) needs its boxes.
+TEST(SourceSet, KeptMessageAloneIsTheWorldAndJoinsAUnionConverted) {
+  SourceSet sources;
+  const SourceKey a{"boxes", "/a", "world"};
+  const BoxArrayConstPtr a_frame = oneBoxMessage(1, 0.0, 1.0, 5);
+  sources.storeMessage(a, a_frame, ros::Time(5, 0));
+  BoxSet world;
+  WorldAssembly assembly;
+  World alone = sources.assemble({}, "", world, assembly, false);
+  EXPECT_EQ(alone.message, a_frame.get());
+  EXPECT_EQ(alone.boxes, nullptr);
+  EXPECT_EQ(alone.source.publisher, "/a");
+  EXPECT_EQ(alone.size(), 1u);
+  EXPECT_EQ(assembly.frames_accepted, 0u);  // the engine checks it: accept() says it passed
+  EXPECT_TRUE(sources.accept(a));
+  EXPECT_FALSE(sources.accept(a));  // counted once
+  // Markers need boxes: converted, and the same frame is not counted again.
+  World drawn = sources.assemble({}, "", world, assembly, true);
+  ASSERT_NE(drawn.boxes, nullptr);
+  EXPECT_EQ(drawn.boxes->size(), 1u);
+  EXPECT_EQ(assembly.frames_accepted, 0u);
+  // A second source: both as boxes, with their cross pair.
+  sources.storeMessage({"boxes", "/b", "world"}, oneBoxMessage(2, 0.5, 1.5, 6), ros::Time(6, 0));
+  World both = sources.assemble({}, "", world, assembly, false);
+  ASSERT_NE(both.boxes, nullptr);
+  EXPECT_EQ(bruteForcePairs(*both.boxes), PairList({{1, 2}}));
+  EXPECT_EQ(assembly.frames_accepted, 1u);  // /b's frame
+}
+
+TEST(SourceSet, RefusedKeptMessageFallsBackOnTheLastGoodFrame) {
+  SourceSet sources;
+  const SourceKey a{"boxes", "/a", "world"}, b{"boxes", "/b", "world"};
+  sources.storeMessage(a, oneBoxMessage(1, 0.0, 1.0, 1), ros::Time(1, 0));
+  sources.storeMessage(b, oneBoxMessage(2, 0.5, 1.5, 1), ros::Time(1, 0));
+  BoxSet world;
+  WorldAssembly assembly;
+  EXPECT_EQ(bruteForcePairs(*sources.assemble({}, "", world, assembly).boxes), PairList({{1, 2}}));
+  EXPECT_EQ(assembly.frames_accepted, 2u);
+  // /a's next frame has min > max: refused, named, and /a's last good frame stays.
+  sources.storeMessage(a, oneBoxMessage(1, 3.0, 2.0, 2), ros::Time(2, 0));
+  EXPECT_EQ(bruteForcePairs(*sources.assemble({}, "", world, assembly).boxes), PairList({{1, 2}}));
+  ASSERT_EQ(assembly.refused_frames.size(), 1u);
+  EXPECT_EQ(assembly.refused_frames[0].reason,
+            "'boxes' from /a in 'world': box 0 (id 1): min_x (3) > max_x (2)");
+  EXPECT_EQ(assembly.refused_frames[0].header.stamp, ros::Time(2, 0));
+  EXPECT_EQ(assembly.sources_merged, 2u);
+  // Refused by the engine when alone: back to its last good frame, or out without one.
+  SourceSet alone;
+  alone.storeMessage(a, oneBoxMessage(1, 0.0, 1.0, 1), ros::Time(1, 0));
+  EXPECT_TRUE(alone.accept(a));
+  alone.storeMessage(a, oneBoxMessage(1, 3.0, 2.0, 2), ros::Time(2, 0));
+  alone.refuse(a);
+  World kept = alone.assemble({}, "", world, assembly, false);
+  ASSERT_NE(kept.message, nullptr);
+  EXPECT_EQ(kept.message->bounds[0], 0.0);
+  EXPECT_EQ(assembly.header.stamp, ros::Time(1, 0));
+  alone.storeMessage(b, oneBoxMessage(2, 3.0, 2.0, 3), ros::Time(3, 0));
+  alone.refuse(b);  // never accepted: leaves
+  EXPECT_EQ(alone.size(), 1u);
+}
+
+TEST(SourceSet, KeptMessageIdsMeetTheSceneryIds) {
+  SourceSet sources;
+  auto numbered = boost::make_shared<BoxArray>();  // no ids: boxes 0 and 1
+  numbered->header = header("world", 1);
+  numbered->bounds = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3};
+  sources.storeMessage({"boxes", "/a", "world"}, numbered, ros::Time(1, 0));
+  BoxSet world;
+  WorldAssembly assembly;
+  sources.assemble({1, 5}, "", world, assembly, false);
+  ASSERT_EQ(assembly.refusals.size(), 1u);
+  EXPECT_EQ(
+      assembly.refusals[0].rfind("id 1 of 'boxes' from /a in 'world' is also in 'static_boxes'", 0),
+      0u)
+      << assembly.refusals[0];
 }
 
 TEST(SourceSet, SilentSourcesExpire) {

@@ -4,7 +4,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sap_broadphase {
@@ -66,11 +68,41 @@ struct ValidationError {
   std::string message() const;
 };
 
+/// Boxes laid out as records, as a BoxArray message and many physics engines hold them: box i
+/// is bounds[6 i .. 6 i + 5] = min_x min_y min_z max_x max_y max_z. A view: the caller owns the
+/// memory, which must stay unchanged while the engine reads it (Broadphase::update).
+struct InterleavedBoxes {
+  std::size_t count = 0;
+  const double* bounds = nullptr;    ///< 6 x count values
+  const uint32_t* ids = nullptr;     ///< count ids, or null: the boxes are numbered 0..count-1
+  const uint32_t* groups = nullptr;  ///< count groups, or null: kDefaultGroup (see below)
+  const uint32_t* masks = nullptr;   ///< count masks, or null: kDefaultMask (see below)
+  /// True when either filter is given; the other one is then completed with its default.
+  bool hasFilters() const { return groups != nullptr || masks != nullptr; }
+};
+
+/// Copies inBoxes into outBoxes (replaced, capacity reused) in structure-of-arrays layout,
+/// on up to inThreads threads: ids numbered 0..count-1 when none are given, a missing filter
+/// completed with its default when the other is given. Nothing is checked (validate()).
+void copyInterleaved(const InterleavedBoxes& inBoxes, BoxSet& outBoxes, int inThreads);
+
 /// Checks every box: no NaN, min <= max on every axis (infinities allowed), unique ids,
 /// groups/masks either empty or one per box, equal array lengths, at most kMaxBoxes boxes.
 /// Returns the problem of the lowest box index (a box's NaN bounds in the order min_x, min_y,
 /// min_z, max_x, max_y, max_z first, then min > max by axis, then a repeated id), or nothing.
 std::optional<ValidationError> validate(const BoxSet& inBoxes);
+
+/// What Broadphase::update() throws for boxes it validates itself (InterleavedBoxes): the
+/// problem validate() would name.
+class InvalidBoxes : public std::invalid_argument {
+ public:
+  explicit InvalidBoxes(ValidationError inError)
+      : std::invalid_argument(inError.message()), error_(std::move(inError)) {}
+  const ValidationError& error() const { return error_; }
+
+ private:
+  ValidationError error_;
+};
 
 /// True when boxes a and b overlap on all three axes (closed intervals: touching overlaps).
 inline bool boxesOverlap(const BoxSet& inBoxes, std::size_t a, std::size_t b) {

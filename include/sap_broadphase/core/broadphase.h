@@ -27,6 +27,13 @@ class Broadphase {
   /// Computes every overlapping pair of inBoxes (closed intervals, filters honoured), as ids
   /// with a < b in canonical (a, b) order. The reference stays valid until the next update().
   const PairList& update(const BoxSet& inBoxes);
+  /// The same for boxes laid out as records (a BoxArray message's bounds), which the engine
+  /// checks itself as it reads them: the engine keeps a copy of every frame anyway (to know
+  /// what moved), and here that copy is made from inBoxes directly, checked on the way, so the
+  /// caller's memory is read once and no intermediate BoxSet is built. Throws InvalidBoxes
+  /// naming the lowest bad box as validate() does (NaN, min > max, a repeated id, too many
+  /// boxes); the engine is then as after reset(). inBoxes is read only during the call.
+  const PairList& update(const InterleavedBoxes& inBoxes);
   /// Declares scenery: boxes that stay put until replaced (validate() them first). They are
   /// indexed once, here; every later update() reports the pairs among its boxes and between
   /// its boxes and the scenery, never scenery x scenery pairs (as the static bodies of Box2D,
