@@ -41,16 +41,22 @@ bool PairsService::onComputePairs(ComputePairs::Request& inRequest,
   }
   if (config) engine_ = Broadphase(*config);
   outResponse.pairs.header = inRequest.boxes.header;
-  if (auto reason = boxArrayToBoxSet(inRequest.boxes, boxes_)) {
-    ROS_ERROR_THROTTLE(log_period_, "compute_pairs refused: %s", reason->c_str());
-    outResponse.success = false;
-    outResponse.message = *reason;
-    return true;  // the call itself succeeded; the answer says why the boxes were refused
+  std::optional<std::string> refusal = checkBoxArrayShape(inRequest.boxes);
+  if (!refusal) {
+    try {
+      // The engine reads the request's bounds where they lie and checks them as it copies.
+      const PairList& pairs = engine_.update(boxArrayRecords(inRequest.boxes));
+      pairListToPairArray(pairs, inRequest.boxes.header, outResponse.pairs);
+      outResponse.success = true;
+      return true;
+    } catch (const InvalidBoxes& invalid) {
+      refusal = invalid.error().message();
+    }
   }
-  pairListToPairArray(engine_.update(boxes_), inRequest.boxes.header, outResponse.pairs);
-  outResponse.success = true;
-  if (watch_.shouldGiveBack(boxes_.size(), boxes_.ids.capacity())) shrinkBoxSet(boxes_);
-  return true;
+  ROS_ERROR_THROTTLE(log_period_, "compute_pairs refused: %s", refusal->c_str());
+  outResponse.success = false;
+  outResponse.message = *refusal;
+  return true;  // the call itself succeeded; the answer says why the boxes were refused
 }
 
 }  // namespace sap_broadphase

@@ -11,7 +11,6 @@
 #include "sap_broadphase/ComputePairs.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
-#include "sources.h"
 
 namespace sap_broadphase {
 
@@ -28,16 +27,15 @@ class PairsService {
   void reconfigure(const BroadphaseConfig& inEngine);
 
  private:
-  /// Converts, validates and computes on the service's own engine.
+  /// Checks the request's shape and computes on the service's own engine, which reads and
+  /// checks the boxes where they lie.
   bool onComputePairs(ComputePairs::Request& inRequest, ComputePairs::Response& outResponse);
 
   int log_period_;
   ros::CallbackQueue queue_;
   ros::ServiceServer service_;
   std::optional<ros::AsyncSpinner> spinner_;
-  Broadphase engine_;  // used only by the service thread
-  BoxSet boxes_;       // its conversion buffer
-  GiveBackWatch watch_;
+  Broadphase engine_;                               // used only by the service thread
   std::mutex mutex_;                                // guards pending_config_
   std::optional<BroadphaseConfig> pending_config_;  // for the service thread
 };
