@@ -1,8 +1,12 @@
 #include "box_array_checks.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <exception>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <ros/serialization.h>
@@ -49,12 +53,50 @@ bool claimsFit(const uint8_t* inData, std::size_t inSize) {
   return true;
 }
 
+// The engine reading the message's records itself: it refuses what the conversion refuses,
+// in the same words, and otherwise finds the pairs of the converted boxes. Twice: after a
+// clean frame of the same size and numbering, so the bad boxes meet the check made while the
+// records are compared with the last frame, not only the first frame's full check.
+std::string checkRecords(const BoxArray& inMsg, const std::optional<std::string>& inRefusal,
+                         const BoxSet& inConverted) {
+  const std::size_t count = inMsg.bounds.size() / 6;
+  if (count > kMaxEngineBoxes) return "";
+  BoxArray clean = inMsg;
+  for (std::size_t i = 0; i < count; ++i) {
+    double* record = clean.bounds.data() + 6 * i;
+    for (int coordinate = 0; coordinate < 6; ++coordinate)
+      if (std::isnan(record[coordinate])) record[coordinate] = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+      if (record[axis] > record[3 + axis]) std::swap(record[axis], record[3 + axis]);
+  }
+  clean.ids.clear();  // numbered 0..n-1: unique
+  Broadphase engine(BroadphaseConfig{});
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) engine.update(boxArrayRecords(clean));
+    try {
+      const PairList& pairs = engine.update(boxArrayRecords(inMsg));
+      if (inRefusal) return "the engine accepted records the conversion refuses";
+      Broadphase reference(BroadphaseConfig{});
+      if (pairs != reference.update(inConverted)) return "records gave other pairs than the BoxSet";
+    } catch (const InvalidBoxes& refusal) {
+      if (!inRefusal) return "the engine refused records the conversion accepts";
+      if (refusal.error().message() != *inRefusal)
+        return "the engine's refusal is worded otherwise";
+    }
+  }
+  return "";
+}
+
 std::string checkConverted(const BoxArray& inMsg) {
   const auto shape = checkBoxArrayShape(inMsg);
   BoxSet boxes;
   const auto refusal = boxArrayToBoxSet(inMsg, boxes);
   if (shape && !refusal) return "shape error '" + *shape + "' but the conversion accepted";
   if (shape && *refusal != *shape) return "conversion gave a different reason than the shape";
+  if (!shape) {
+    const std::string records = checkRecords(inMsg, refusal, boxes);
+    if (!records.empty()) return records;
+  }
   if (refusal) {
     if (refusal->empty()) return "refusal without a reason";
     if (!shape && !validate(boxes)) return "conversion refused what validate() accepts";
