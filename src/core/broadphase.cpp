@@ -10,8 +10,10 @@
 #include "sap_broadphase/core/broadphase.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -24,6 +26,7 @@
 #include "core/static_index.h"
 #include "core/static_split.h"
 #include "core/sweep_and_prune.h"
+#include "core/thread_choice.h"
 #include "core/tuning.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/memory_policy.h"
@@ -35,13 +38,15 @@ struct Broadphase::Impl {
 
   const BroadphaseConfig config;  // as the user set it
   FrameReport report;
-  FrameHistory history;      // the last frame, and what changed since
-  SweepAndPrune sweep;       // the paper's sweep, with its partition bounds and axes
-  SkinReuse skin;            // kept candidates, motion and learnt costs
-  StaticSplit resting;       // boxes guessed static (index_static_boxes)
-  StaticIndex scenery;       // boxes declared static (setStaticBoxes)
-  PairList pairs;            // the frame's one canonical pair list
-  bool pairs_valid = false;  // pairs hold the last frame's whole answer
+  FrameHistory history;        // the last frame, and what changed since
+  SweepAndPrune sweep;         // the paper's sweep, with its partition bounds and axes
+  SkinReuse skin;              // kept candidates, motion and learnt costs
+  StaticSplit resting;         // boxes guessed static (index_static_boxes)
+  StaticIndex scenery;         // boxes declared static (setStaticBoxes)
+  ThreadChoice thread_choice;  // all cores or one, measured (threads = 0, method auto)
+  int passes_threads = 0;      // threads of the history's passes: the last work's, learnt (0: all)
+  PairList pairs;              // the frame's one canonical pair list
+  bool pairs_valid = false;    // pairs hold the last frame's whole answer
   struct Buffers {
     BoxSet collidable;                // the frame without boxes that can pair with nothing
     SmallFrameWorkspace small_frame;  // the small-frame path's
@@ -56,11 +61,13 @@ struct Broadphase::Impl {
                                      int inThreads);
   FramePlan plan(const BoxSet& inBoxes, const BoxSet& inSwept, const FrameDelta& inDelta,
                  int inThreads);
+  std::optional<ThreadedWork> chooseThreads(FramePlan& ioPlan, std::size_t inSwept);
   void execute(const FramePlan& inPlan, const BoxSet& inBoxes, FrameSpread& ioSwept);
   void addStaticPairs(const BoxSet& inBoxes, int inThreads);
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
   void runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads);
+  int passThreads(int inThreads) const { return passes_threads > 0 ? passes_threads : inThreads; }
 };
 
 // A box with group 0 or mask 0 passes no filter: it is left out before anything else. The
@@ -121,6 +128,23 @@ FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
              "a skin to grow boxes by on a frame that is not swept");
   SAP_ASSERT(plan.threads >= 1 && plan.threads <= inThreads, "the plan's threads out of range");
   return plan;
+}
+
+// With threads and method left to the engine, whether the planned threads beat one thread is
+// measured on this machine, now (thread_choice.h): the work the plan runs on several threads
+// may run on one. Returns the work whose cost the frame then teaches, if any.
+std::optional<ThreadedWork> Broadphase::Impl::chooseThreads(FramePlan& ioPlan,
+                                                            std::size_t inSwept) {
+  if (config.threads != 0 || config.method != Method::kAuto || ioPlan.threads < 2) return {};
+  ThreadedWork work = ThreadedWork::kKeptCandidates;
+  if (ioPlan.work == FrameWork::kSweep)
+    work = ioPlan.sweep_skin > 0.0 ? ThreadedWork::kGrownSweep : ThreadedWork::kSweep;
+  else if (ioPlan.work != FrameWork::kKeptCandidates)
+    return {};
+  ioPlan.threads = thread_choice.choose(work, ioPlan.threads, inSwept);
+  if (ioPlan.threads == 1 && ioPlan.work == FrameWork::kSweep)
+    ioPlan.sweep_path = FramePath::kSequential;
+  return work;
 }
 
 // Runs the plan's strategy: this frame's pairs of the swept boxes (or of inBoxes for brute force)
@@ -223,9 +247,20 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads) {
   skin.startFrame(inDelta);
   const BoxSet& swept = setAsideRestingBoxes(inBoxes, inDelta, inThreads);
-  const FramePlan frame_plan = plan(inBoxes, swept, inDelta, inThreads);
+  FramePlan frame_plan = plan(inBoxes, swept, inDelta, inThreads);
+  const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, swept.size());
   FrameSpread swept_spread(swept);  // measured once, by the first part that needs it
+  const auto work_start = std::chrono::steady_clock::now();
   execute(frame_plan, inBoxes, swept_spread);
+  if (measured) {
+    thread_choice.record(
+        *measured, frame_plan.threads,
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - work_start)
+            .count());
+  }
+  // The next frame's passes over every box (memory-bound) run on as many threads as this work
+  // is learnt to pay on; probes of the other count do not move them.
+  passes_threads = measured ? thread_choice.preferred(*measured, inThreads) : 0;
   if (!config.skin) {  // the costs only feed the automatic skin's choice
     PhaseTimer timer(report.ms_plan);
     skin.learn(frame_plan, swept_spread, pairs.size(), report);
@@ -255,7 +290,7 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
     }();
     const FrameDelta delta = [&] {
       PhaseTimer timer(report.ms_history);
-      return impl.history.compare(boxes, threads);
+      return impl.history.compare(boxes, impl.passThreads(threads));
     }();
     impl.runFrame(boxes, delta, threads);
   }
@@ -284,7 +319,7 @@ const PairList& Broadphase::update(const InterleavedBoxes& inBoxes) {
     std::optional<ValidationError> problem;
     const FrameDelta delta = [&] {
       PhaseTimer timer(report.ms_history);
-      return impl.history.load(inBoxes, threads, problem);
+      return impl.history.load(inBoxes, impl.passThreads(threads), problem);
     }();
     if (problem) {
       reset();  // the kept state described a frame the caller has since replaced

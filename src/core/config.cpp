@@ -256,8 +256,9 @@ constexpr double kLargestCount = 9007199254740992.0;
 std::vector<ConfigField> makeConfigFields() {
   return {
       {"threads", ConfigFieldType::kInteger, "0", 0.0, kLargestInt,
-       "an integer >= 0 (0 = all cores)", "worker threads; 0 = all cores", getInteger<&C::threads>,
-       setInteger<&C::threads>},
+       "an integer >= 0 (0 = all cores)",
+       "worker threads; 0 = all cores, or one where one is measured faster (method auto)",
+       getInteger<&C::threads>, setInteger<&C::threads>},
       {"method", ConfigFieldType::kMethod, "auto", 0.0, 0.0, "auto, parallel, sequential or brute",
        "auto: sequential below parallel_min_boxes or with one thread, else parallel; brute: "
        "every pair tested (the oracle)",

@@ -171,5 +171,27 @@ TEST(Filters, BoxesThatCollideWithNothingAreLeftOut) {
   }
 }
 
+// With threads and method left to the engine, the thread count of each frame's work is learnt
+// from measured times (thread_choice.h), so it varies with the machine's load: the pairs must
+// not, whatever it picks, over enough frames for probes and switches.
+TEST(DefaultThreads, ExactWhileTheThreadCountIsLearnt) {
+  for (bool skin_off : {false, true}) {
+    BroadphaseConfig config;  // threads 0, Method::kAuto
+    config.parallel_min_boxes = 500;
+    if (skin_off) config.skin = 0.0;
+    Broadphase engine(config);
+    SceneConfig moving = movingScene(SceneKind::kUniform, 41);
+    moving.n = 1500;
+    moving.frames = 150;
+    SceneSimulator scene(moving);
+    for (int frame = 0; frame < 150; ++frame) {
+      ASSERT_EQ(engine.update(scene.boxes()), bruteForcePairs(scene.boxes()))
+          << "skin_off " << skin_off << " frame " << frame << " path "
+          << framePathName(engine.stats().path) << " threads " << engine.stats().threads;
+      scene.step();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sap_broadphase
