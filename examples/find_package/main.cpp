@@ -11,7 +11,7 @@
 namespace sap = sap_broadphase;
 
 int main() {
-  sap::BroadphaseConfig config;        // threads = 0: all cores; exact by default
+  sap::BroadphaseConfig config;        // threads = 0: all cores where they pay; exact
   sap::Broadphase broadphase(config);  // keep it across frames: it reuses its state
   for (int frame = 0; frame < 3; ++frame) {
     sap::BoxSet boxes;  // structure of arrays: ids, lo[3], hi[3], groups, masks

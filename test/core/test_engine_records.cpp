@@ -17,6 +17,7 @@ namespace sap_broadphase {
 namespace {
 
 using test_support::engineConfig;
+using test_support::movingScene;
 
 // A frame laid out as a BoxArray message holds it.
 struct Records {
@@ -43,16 +44,6 @@ struct Records {
   }
   double& bound(std::size_t inBox, int inCoordinate) { return bounds[6 * inBox + inCoordinate]; }
 };
-
-SceneConfig movingScene(SceneKind inKind, uint64_t inSeed) {
-  SceneConfig scene;
-  scene.kind = inKind;
-  scene.n = 2500;
-  scene.density = 0.25;
-  scene.seed = inSeed;
-  scene.frames = 60;
-  return scene;
-}
 
 // What the frame sequence does to the boxes at frame inFrame: now and then identical to the
 // last frame, a box added (other ids), a box jumping, two boxes swapped (same count, other
@@ -82,7 +73,7 @@ TEST(RecordFrames, SamePairsAsBoxSetFramesOnEveryPathAndThreadCount) {
         config.parallel_min_boxes = 500;
         config.index_static_boxes = index_static;
         Broadphase from_sets(config), from_records(config);
-        SceneSimulator scene(movingScene(kind, 31 + threads));
+        SceneSimulator scene(movingScene(kind, 31 + threads, 2500, 0.25, 60));
         BoxSet boxes;
         for (int frame = 0; frame < 45; ++frame) {
           boxes = frameOf(scene, frame, boxes);

@@ -14,16 +14,7 @@ namespace sap_broadphase {
 namespace {
 
 using test_support::engineConfig;
-
-SceneConfig movingScene(SceneKind inKind, uint64_t inSeed) {
-  SceneConfig scene;
-  scene.kind = inKind;
-  scene.n = 3000;
-  scene.density = 0.2;
-  scene.seed = inSeed;
-  scene.frames = 80;
-  return scene;
-}
+using test_support::movingScene;
 
 TEST(UnchangedFrame, SecondIdenticalFrameIsReusedAndExact) {
   SceneSimulator scene(movingScene(SceneKind::kUniform, 5));
@@ -180,10 +171,7 @@ TEST(DefaultThreads, ExactWhileTheThreadCountIsLearnt) {
     config.parallel_min_boxes = 500;
     if (skin_off) config.skin = 0.0;
     Broadphase engine(config);
-    SceneConfig moving = movingScene(SceneKind::kUniform, 41);
-    moving.n = 1500;
-    moving.frames = 150;
-    SceneSimulator scene(moving);
+    SceneSimulator scene(movingScene(SceneKind::kUniform, 41, 1500, 0.2, 150));
     for (int frame = 0; frame < 150; ++frame) {
       ASSERT_EQ(engine.update(scene.boxes()), bruteForcePairs(scene.boxes()))
           << "skin_off " << skin_off << " frame " << frame << " path "

@@ -78,6 +78,17 @@ void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
   }
 }
 
+SceneConfig movingScene(SceneKind inKind, uint64_t inSeed, std::size_t inCount, double inDensity,
+                        int inFrames) {
+  SceneConfig scene;
+  scene.kind = inKind;
+  scene.n = inCount;
+  scene.density = inDensity;
+  scene.seed = inSeed;
+  scene.frames = inFrames;
+  return scene;
+}
+
 BroadphaseConfig engineConfig(Method inMethod, int inThreads, int inPrimary, int inSecondary,
                               int inSlabs) {
   BroadphaseConfig config;

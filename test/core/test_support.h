@@ -13,6 +13,7 @@
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
+#include "sap_broadphase/core/scenes.h"
 
 namespace sap_broadphase::test_support {
 
@@ -29,6 +30,10 @@ BoxSet latticeBoxes(std::size_t inCount, int inCells, int inMaxEdge, uint64_t in
 BoxSet shuffledSubset(const BoxSet& inBoxes, double inKeep, bool inSparseIds, uint64_t inSeed);
 /// Gives box i a random group and mask (from a few bits, so some pairs are filtered out).
 void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed);
+
+/// A moving scene of the paper's kinds: inCount boxes at density inDensity, inFrames frames.
+SceneConfig movingScene(SceneKind inKind, uint64_t inSeed, std::size_t inCount = 3000,
+                        double inDensity = 0.2, int inFrames = 80);
 
 /// An engine configuration for one method, thread count, axis pair and third-axis slab count
 /// (0 = the engine's choice, 1 = the paper's single active list).
