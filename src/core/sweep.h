@@ -109,11 +109,11 @@ constexpr uint64_t kSequentialTreeBits = uint64_t{1} << 24;
 
 /// Reusable buffers of the parallel phases.
 struct SweepWorkspace {
-  std::vector<SuccTree> partition_local;  ///< Algorithm 3: toggled within each partition
-  std::vector<SuccTree> partition_start;  ///< Algorithm 3: ⊕-prefix, active at partition start
-  std::vector<uint32_t> lows_before;      ///< Algorithm 3: rank counter at partition start
-  std::vector<SuccTree> pairing;          ///< Algorithm 4: slab_count trees per thread
-  Buffer<uint64_t> partition_entries;     ///< Algorithm 4: endpoints by partition
+  Buffer<uint64_t> slice_objects;      ///< Algorithm 3: per slice, objects with one endpoint in it
+  std::vector<SuccTree> slice_start;   ///< Algorithm 3: ranks active at the slice's start
+  std::vector<uint32_t> lows_before;   ///< Algorithm 3: rank counter at the slice's start
+  std::vector<SuccTree> pairing;       ///< Algorithm 4: slab_count trees per thread
+  Buffer<uint64_t> partition_entries;  ///< Algorithm 4: endpoints by partition
   std::vector<std::size_t> partition_offsets;  ///< start of each partition's entries, m + 1
   std::vector<std::size_t> scatter_counts;     ///< [thread][partition] placement counters
   std::vector<std::size_t> partition_work;     ///< Algorithm 4: measured work per partition
@@ -125,7 +125,7 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
                                  SuccTree& ioActive, CandidateRanges& outRanges);
 
 /// Algorithm 3: the same result computed by inThreads threads on equal slices of the order,
-/// with per-slice SuccTrees joined by an all-prefix symmetric difference.
+/// with per-slice sets (of objects, not ranks) joined by an all-prefix symmetric difference.
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);
 

@@ -58,10 +58,11 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
                                SweepWorkspace& ioWork, CandidateRanges& outRanges) {
   const int slices = std::max(1, inThreads);
   const std::size_t endpoints = 2 * std::size_t{inObjects};
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
   resizeDiscarding(outRanges.of_object, inObjects);
   resizeDiscarding(outRanges.object_of_rank, inObjects);
-  ioWork.partition_local.resize(slices);
-  ioWork.partition_start.resize(slices);
+  resizeDiscarding(ioWork.slice_objects, words * slices);
+  ioWork.slice_start.resize(slices);
   ioWork.lows_before.assign(slices + 1, 0);
   RankRange* ranges = outRanges.of_object.data();
   uint32_t* object_of_rank = outRanges.object_of_rank.data();
@@ -70,49 +71,53 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
     const int slice = omp_get_thread_num();
     const std::size_t begin = endpoints * slice / slices;
     const std::size_t end = endpoints * (slice + 1) / slices;
-    // Lines 4-7: count the lows of each slice, then an exclusive prefix sum gives rank bases.
+    // Lines 4-7 and 12-14 in one pass: count the slice's lows, and build its set of objects
+    // with one endpoint inside (both inside: flipped twice, absent). The paper's set holds
+    // ranks, which for a high whose low lies in another slice are known only once every
+    // slice has handed out its ranks, and each costs a random read then; an object's index
+    // is its endpoint's, so the whole set is built before any rank exists.
+    uint64_t* crossing = &ioWork.slice_objects[words * slice];
+    std::fill(crossing, crossing + words, uint64_t{0});
     uint32_t lows = 0;
-    for (std::size_t k = begin; k < end; ++k) lows += inPrimaryOrder[k] < inObjects;
+    for (std::size_t k = begin; k < end; ++k) {
+      const uint32_t endpoint = inPrimaryOrder[k];
+      const uint32_t is_low = endpoint < inObjects;
+      const uint32_t object = endpoint - (is_low ? 0u : inObjects);
+      crossing[object >> 6] ^= uint64_t{1} << (object & 63);
+      lows += is_low;
+    }
     ioWork.lows_before[slice + 1] = lows;
 #pragma omp barrier
 #pragma omp single
     for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-    // Lines 8-11: ranks. Lines 12-14 build each slice's own tree, the ranks with one endpoint
-    // inside the slice, by flipping leaf bits (both endpoints inside: flipped twice, absent),
-    // then its summaries in one pass: a low's rank is known right here, a high's once every
-    // slice has handed out its ranks.
-    SuccTree& local = ioWork.partition_local[slice];
-    if (local.size() != inObjects) local.resize(inObjects);
+    // Lines 8-11: ranks (the implicit barrier of `single` published the rank bases).
     uint32_t next_rank = ioWork.lows_before[slice];
     for (std::size_t k = begin; k < end; ++k) {
       const uint32_t endpoint = inPrimaryOrder[k];
       if (endpoint < inObjects) {
         ranges[endpoint].rank = next_rank;
-        object_of_rank[next_rank] = endpoint;
-        local.flipLeaf(next_rank++);
+        object_of_rank[next_rank++] = endpoint;
       }
     }
 #pragma omp barrier
-    for (std::size_t k = begin; k < end; ++k) {
-      const uint32_t endpoint = inPrimaryOrder[k];
-      if (endpoint >= inObjects) local.flipLeaf(ranges[endpoint - inObjects].rank);
+    // Line 15: the objects active at the start of the slice, those with an odd number of
+    // endpoints before it, are the ⊕ of all earlier slices' sets; their ranks seed the sweep.
+    SuccTree& active = ioWork.slice_start[slice];
+    if (active.size() != inObjects) active.resize(inObjects);
+    for (std::size_t word = 0; slice > 0 && word < words; ++word) {
+      uint64_t bits = 0;
+      for (int earlier = 0; earlier < slice; ++earlier)
+        bits ^= ioWork.slice_objects[words * earlier + word];
+      while (bits) {
+        const uint32_t object = static_cast<uint32_t>(word * 64 + __builtin_ctzll(bits));
+        active.insert(ranges[object].rank);
+        bits &= bits - 1;
+      }
     }
-    local.rebuildSummaries();
-#pragma omp barrier
-    // Line 15: the active set at the start of the slice is the ⊕ of all earlier slices' trees.
-    SuccTree& active = ioWork.partition_start[slice];
-    if (active.size() != inObjects)
-      active.resize(inObjects);
-    else
-      active.clear();
-    for (int earlier = 0; earlier < slice; ++earlier)
-      active.symmetricDifference(ioWork.partition_local[earlier]);
     // Lines 16-23.
     sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice], active,
                         ranges);
-#pragma omp barrier
-    local.clear();  // leave both trees empty for the next frame
-    active.clear();
+    active.clear();  // leave the tree empty for the next frame
   }
 }
 

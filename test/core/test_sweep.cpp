@@ -1,4 +1,4 @@
-// Candidate generation: Algorithm 3 (parallel, prefix ⊕ of per-slice SuccTrees) gives exactly
+// Candidate generation: Algorithm 3 (parallel, prefix ⊕ of per-slice object sets) gives exactly
 // Algorithm 1's ranks and ranges, and every range covers the object's primary-axis overlaps.
 #include <gtest/gtest.h>
 
