@@ -57,33 +57,14 @@ struct RankedSlabs {
 };
 static_assert(kMaxSlabs - 1 <= 0xFF, "slab numbers are stored in 8 bits");
 
-/// The secondary-axis order with all that pairing reads about each endpoint's box, two 64-bit
-/// words an endpoint, in sweep order: word 0 = rank | kind << 31 | L << 32, word 1 = U.
-/// One gather pass builds it, so no thread looks boxes up at random while sweeping. It fits
-/// in the sort's buffer, which is free by then.
-namespace secondary_stream {
-constexpr uint32_t kHighBit = 0x80000000u;
-inline uint32_t rankAndKind(const uint64_t* inStream, std::size_t inEndpoint) {
-  return static_cast<uint32_t>(inStream[2 * inEndpoint]);
-}
-inline uint32_t low(const uint64_t* inStream, std::size_t inEndpoint) {
-  return static_cast<uint32_t>(inStream[2 * inEndpoint] >> 32);
-}
-inline uint32_t high(const uint64_t* inStream, std::size_t inEndpoint) {
-  return static_cast<uint32_t>(inStream[2 * inEndpoint + 1]);
-}
-}  // namespace secondary_stream
-
-/// Writes the secondary stream (2 words per endpoint, 4n words) from the sorted secondary order.
-void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
-                          const CandidateRanges& inRanges, int inThreads, uint64_t* outStream);
-
 /// What pairing needs to know about the boxes.
 struct PairingInput {
-  const uint64_t* stream = nullptr;          ///< the secondary stream, 2n endpoints
-  uint32_t objects = 0;                      ///< n
-  const uint32_t* object_of_rank = nullptr;  ///< R^-
-  const RankedKeys* keys = nullptr;          ///< outward keys by rank
+  const uint32_t* secondary_order = nullptr;  ///< the 2n endpoints in secondary-axis order
+  const RankRange* ranges = nullptr;          ///< rank and candidate range, by object
+  uint64_t* stream_scratch = nullptr;         ///< room for 4n words, which pairing may overwrite
+  uint32_t objects = 0;                       ///< n
+  const uint32_t* object_of_rank = nullptr;   ///< R^-
+  const RankedKeys* keys = nullptr;           ///< outward keys by rank
   const BoxSet* boxes = nullptr;  ///< exact float64 test for near-touching keys; null in the
                                   ///< keys-only mode, where overlapping keys are reported
   const RankedFilter* filters = nullptr;  ///< null when no box has a group or mask
@@ -107,6 +88,16 @@ constexpr uint32_t kPairingPartitionsPerThread = 4;
 /// 3.6 MiB), where every insert, erase and range walk on the big trees misses the cache.
 constexpr uint64_t kSequentialTreeBits = uint64_t{1} << 24;
 
+/// How the last frame's pairing scatter laid out its entries: the split and thread count it
+/// was for, and how many entries each (partition, thread) segment held.
+struct ScatterLayout {
+  int threads = 0;
+  uint32_t shift = 0;
+  uint32_t partitions = 0;
+  std::vector<std::size_t> segment_used;  ///< [partition * threads + thread]
+  std::vector<double> partition_ms;       ///< measured sweep time of each partition
+};
+
 /// Reusable buffers of the parallel phases.
 struct SweepWorkspace {
   Buffer<uint64_t> slice_objects;      ///< Algorithm 3: per slice, objects with one endpoint in it
@@ -114,10 +105,14 @@ struct SweepWorkspace {
   std::vector<uint32_t> lows_before;   ///< Algorithm 3: rank counter at the slice's start
   std::vector<SuccTree> pairing;       ///< Algorithm 4: slab_count trees per thread
   Buffer<uint64_t> partition_entries;  ///< Algorithm 4: endpoints by partition
-  std::vector<std::size_t> partition_offsets;  ///< start of each partition's entries, m + 1
-  std::vector<std::size_t> scatter_counts;     ///< [thread][partition] placement counters
-  std::vector<std::size_t> partition_work;     ///< Algorithm 4: measured work per partition
-  std::vector<uint32_t> partition_order;       ///< Algorithm 4: partitions by decreasing work
+  /// Algorithm 4: each partition's entries are one segment per thread (the thread's slice of
+  /// the secondary order), [segment_begin, segment_end), [partition * threads + thread].
+  std::vector<std::size_t> segment_begin;
+  std::vector<std::size_t> segment_end;
+  std::vector<std::size_t> scatter_counts;  ///< [thread][partition] counters and limits
+  std::vector<std::size_t> partition_work;  ///< Algorithm 4: estimated work per partition
+  std::vector<uint32_t> partition_order;    ///< Algorithm 4: partitions by decreasing work
+  ScatterLayout last_layout;                ///< Algorithm 4: the last frame's scatter
 };
 
 /// Algorithm 1, lines 5-14: ranks and candidate ranges from the primary-axis order, one thread.

@@ -141,6 +141,33 @@ TEST(EngineScenes, GrowingAndShrinkingAcrossTheAutoThreshold) {
   expectFramesMatch(frames, "growing and shrinking");
 }
 
+TEST(EngineScenes, PairingLayoutOfTheLastFrameOutgrownAndReused) {
+  // The parallel pairing scatters into segments sized from the last frame when its rank split
+  // is the same: a nearly repeated frame fits, a frame far denser (candidate ranges many times
+  // longer) outgrows them and is scattered again from counts, a sparser one fits loosely.
+  // Same box count throughout, so the split stays the same; several partitions per thread. A
+  // world of 0 repeats the last frame with one box moved (an unchanged frame is not swept).
+  const std::size_t n = 6000;
+  std::vector<BoxSet> frames;
+  for (double world : {30.0, 0.0, 9.0, 0.0, 30.0, 60.0, 9.0, 5.0, 30.0, 0.0, 9.0}) {
+    if (world > 0) {
+      frames.push_back(test_support::randomBoxes(n, world, 1.5, static_cast<uint64_t>(world)));
+    } else {
+      frames.push_back(frames.back());
+      frames.back().lo[0][0] -= 0.25;
+    }
+  }
+  std::vector<PairList> oracles;
+  for (const BoxSet& frame : frames) oracles.push_back(bruteForcePairs(frame));
+  for (int threads : {1, 2, 3, 4}) {
+    Broadphase broadphase(engineConfig(Method::kParallel, threads, 0, 1));
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      ASSERT_TRUE(samePairs(oracles[f], broadphase.update(frames[f])))
+          << "frame " << f << ", " << threads << " threads";
+    }
+  }
+}
+
 TEST(EngineScenes, ResetForgetsTemporalStateOnly) {
   const BoxSet first = test_support::randomBoxes(5000, 12.0, 1.0, 1);
   const BoxSet second = test_support::randomBoxes(5000, 12.0, 1.0, 2);
