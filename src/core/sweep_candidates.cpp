@@ -9,28 +9,48 @@
 namespace sap_broadphase {
 namespace {
 
+// Endpoints between a record's prefetch and its use: the records are read and written in
+// primary order, at random.
+constexpr std::size_t kRecordPrefetchAhead = 16;
+
+inline bool containsBit(const uint64_t* inBits, uint32_t inIndex) {
+  return (inBits[inIndex >> 6] >> (inIndex & 63)) & 1u;
+}
+
 // Sweeps order[inBegin, inEnd) of the primary axis from the active set ioActive and the rank
-// counter inLowsBefore, writing L and U (Algorithm 1, lines 6-14 without rank assignment).
+// counter inLowsBefore (Algorithm 1, lines 6-14), handing out ranks as it goes: a low's rank
+// is the count of lows before it. The rank of a box whose low lies in this slice and whose
+// high lies beyond it (inCrossing, when given) was written before the sweep, for the slices
+// that meet its high, and is left alone here.
 void sweepCandidateSlice(const uint32_t* inOrder, uint32_t inObjects, std::size_t inBegin,
-                         std::size_t inEnd, uint32_t inLowsBefore, SuccTree& ioActive,
-                         RankRange* ioRanges) {
+                         std::size_t inEnd, uint32_t inLowsBefore, const uint64_t* inCrossing,
+                         SuccTree& ioActive, CandidateRanges& ioRanges) {
+  RankRange* ranges = ioRanges.of_object.data();
+  uint32_t* object_of_rank = ioRanges.object_of_rank.data();
   uint32_t lows_seen = inLowsBefore;
   // Ranks are handed out in sweep order, so an insert never lowers the minimum: it only
   // changes when the minimum itself leaves, and is cached in between.
   uint32_t minimum = ioActive.min();
   for (std::size_t k = inBegin; k < inEnd; ++k) {
+    if (k + kRecordPrefetchAhead < inEnd) {
+      const uint32_t ahead = inOrder[k + kRecordPrefetchAhead];
+      __builtin_prefetch(&ranges[ahead - (ahead < inObjects ? 0u : inObjects)], 1);
+    }
     const uint32_t endpoint = inOrder[k];
     if (endpoint < inObjects) {
-      RankRange& range = ioRanges[endpoint];
-      if (minimum == SuccTree::kNone) minimum = range.rank;
+      RankRange& range = ranges[endpoint];
+      const uint32_t rank = lows_seen++;
+      if (!inCrossing || !containsBit(inCrossing, endpoint)) range.rank = rank;
+      object_of_rank[rank] = endpoint;
+      if (minimum == SuccTree::kNone) minimum = rank;
       range.low = minimum;
-      ioActive.insert(range.rank);
-      ++lows_seen;
+      ioActive.insert(rank);
     } else {
-      RankRange& range = ioRanges[endpoint - inObjects];
+      RankRange& range = ranges[endpoint - inObjects];
+      const uint32_t rank = range.rank;
       range.high = lows_seen;
-      ioActive.erase(range.rank);
-      if (range.rank == minimum) minimum = ioActive.next(range.rank);
+      ioActive.erase(rank);
+      if (rank == minimum) minimum = ioActive.next(rank);
     }
   }
 }
@@ -41,17 +61,9 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
                                  SuccTree& ioActive, CandidateRanges& outRanges) {
   resizeDiscarding(outRanges.of_object, inObjects);
   resizeDiscarding(outRanges.object_of_rank, inObjects);
-  uint32_t next_rank = 0;
-  for (std::size_t k = 0; k < 2 * std::size_t{inObjects}; ++k) {
-    const uint32_t endpoint = inPrimaryOrder[k];
-    if (endpoint < inObjects) {
-      outRanges.of_object[endpoint].rank = next_rank;
-      outRanges.object_of_rank[next_rank++] = endpoint;
-    }
-  }
   ioActive.resize(inObjects);
-  sweepCandidateSlice(inPrimaryOrder, inObjects, 0, 2 * std::size_t{inObjects}, 0, ioActive,
-                      outRanges.of_object.data());
+  sweepCandidateSlice(inPrimaryOrder, inObjects, 0, 2 * std::size_t{inObjects}, 0, nullptr,
+                      ioActive, outRanges);
 }
 
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
@@ -65,7 +77,6 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
   ioWork.slice_start.resize(slices);
   ioWork.lows_before.assign(slices + 1, 0);
   RankRange* ranges = outRanges.of_object.data();
-  uint32_t* object_of_rank = outRanges.object_of_rank.data();
 #pragma omp parallel num_threads(slices)
   {
     const int slice = omp_get_thread_num();
@@ -90,14 +101,19 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
 #pragma omp barrier
 #pragma omp single
     for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-    // Lines 8-11: ranks (the implicit barrier of `single` published the rank bases).
+    // Lines 8-11, for the boxes that leave the slice (low inside, high beyond: in the set)
+    // only, which later slices need before their sweeps; the sweep ranks the others. A box's
+    // record is written by the thread that reads it next (this one, in its sweep), except for
+    // these few: two threads writing the same records would pass their cache lines between
+    // the cores.
+    // Lows and highs alternate at random: no branch on the kind, only on the rare leaving box.
     uint32_t next_rank = ioWork.lows_before[slice];
     for (std::size_t k = begin; k < end; ++k) {
       const uint32_t endpoint = inPrimaryOrder[k];
-      if (endpoint < inObjects) {
-        ranges[endpoint].rank = next_rank;
-        object_of_rank[next_rank++] = endpoint;
-      }
+      const uint32_t is_low = endpoint < inObjects;
+      const uint32_t object = endpoint - (is_low ? 0u : inObjects);
+      if (is_low & containsBit(crossing, object)) ranges[object].rank = next_rank;
+      next_rank += is_low;
     }
 #pragma omp barrier
     // Line 15: the objects active at the start of the slice, those with an odd number of
@@ -114,9 +130,9 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
         bits &= bits - 1;
       }
     }
-    // Lines 16-23.
-    sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice], active,
-                        ranges);
+    // Lines 16-23, with the ranks of the boxes that start in the slice.
+    sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice], crossing,
+                        active, outRanges);
     active.clear();  // leave the tree empty for the next frame
   }
 }
