@@ -55,6 +55,78 @@ void sweepCandidateSlice(const uint32_t* inOrder, uint32_t inObjects, std::size_
   }
 }
 
+// Slice inSlice of inSlices of the primary order: [outBegin, outEnd).
+inline void sliceBounds(uint32_t inObjects, int inSlice, int inSlices, std::size_t& outBegin,
+                        std::size_t& outEnd) {
+  const std::size_t endpoints = 2 * std::size_t{inObjects};
+  outBegin = endpoints * inSlice / inSlices;
+  outEnd = endpoints * (inSlice + 1) / inSlices;
+}
+
+// Algorithm 3, lines 4-7 and 12-14 in one pass: counts the slice's lows, and builds its set of
+// objects with one endpoint inside (both inside: flipped twice, absent). The paper's set holds
+// ranks, which for a high whose low lies in another slice are known only once every slice has
+// handed out its ranks, and each costs a random read then; an object's index is its
+// endpoint's, so the whole set is built before any rank exists.
+void countAndCollectCrossing(const uint32_t* inOrder, uint32_t inObjects, int inSlice, int inSlices,
+                             SweepWorkspace& ioWork) {
+  std::size_t begin = 0, end = 0;
+  sliceBounds(inObjects, inSlice, inSlices, begin, end);
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
+  uint64_t* crossing = &ioWork.slice_objects[words * inSlice];
+  std::fill(crossing, crossing + words, uint64_t{0});
+  uint32_t lows = 0;
+  for (std::size_t k = begin; k < end; ++k) {
+    const uint32_t endpoint = inOrder[k];
+    const uint32_t is_low = endpoint < inObjects;
+    const uint32_t object = endpoint - (is_low ? 0u : inObjects);
+    crossing[object >> 6] ^= uint64_t{1} << (object & 63);
+    lows += is_low;
+  }
+  ioWork.lows_before[inSlice + 1] = lows;
+}
+
+// Algorithm 3, lines 8-11, for the boxes that leave the slice (low inside, high beyond: in the
+// set) only, which later slices need before their sweeps; the sweep ranks the others. A box's
+// record is written by the thread that reads it next (this one, in its sweep), except for
+// these few: two threads writing the same records would pass their cache lines between the
+// cores. Lows and highs alternate at random: no branch on the kind, only on the rare leaving
+// box.
+void rankLeavingBoxes(const uint32_t* inOrder, uint32_t inObjects, int inSlice, int inSlices,
+                      const SweepWorkspace& inWork, RankRange* ioRanges) {
+  std::size_t begin = 0, end = 0;
+  sliceBounds(inObjects, inSlice, inSlices, begin, end);
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
+  const uint64_t* crossing = &inWork.slice_objects[words * inSlice];
+  uint32_t next_rank = inWork.lows_before[inSlice];
+  for (std::size_t k = begin; k < end; ++k) {
+    const uint32_t endpoint = inOrder[k];
+    const uint32_t is_low = endpoint < inObjects;
+    const uint32_t object = endpoint - (is_low ? 0u : inObjects);
+    if (is_low & containsBit(crossing, object)) ioRanges[object].rank = next_rank;
+    next_rank += is_low;
+  }
+}
+
+// Algorithm 3, line 15: the objects active at the start of slice inSlice, those with an odd
+// number of endpoints before it, are the ⊕ of all earlier slices' sets; their ranks (written
+// by rankLeavingBoxes) seed the slice's active set.
+void seedActiveFromEarlierSlices(uint32_t inObjects, int inSlice, const SweepWorkspace& inWork,
+                                 const RankRange* inRanges, SuccTree& outActive) {
+  if (outActive.size() != inObjects) outActive.resize(inObjects);
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
+  for (std::size_t word = 0; inSlice > 0 && word < words; ++word) {
+    uint64_t bits = 0;
+    for (int earlier = 0; earlier < inSlice; ++earlier)
+      bits ^= inWork.slice_objects[words * earlier + word];
+    while (bits) {
+      const uint32_t object = static_cast<uint32_t>(word * 64 + __builtin_ctzll(bits));
+      outActive.insert(inRanges[object].rank);
+      bits &= bits - 1;
+    }
+  }
+}
+
 }  // namespace
 
 void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObjects,
@@ -69,7 +141,6 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges) {
   const int slices = std::max(1, inThreads);
-  const std::size_t endpoints = 2 * std::size_t{inObjects};
   const std::size_t words = (std::size_t{inObjects} + 63) / 64;
   resizeDiscarding(outRanges.of_object, inObjects);
   resizeDiscarding(outRanges.object_of_rank, inObjects);
@@ -79,61 +150,28 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
   RankRange* ranges = outRanges.of_object.data();
 #pragma omp parallel num_threads(slices)
   {
-    const int slice = omp_get_thread_num();
-    const std::size_t begin = endpoints * slice / slices;
-    const std::size_t end = endpoints * (slice + 1) / slices;
-    // Lines 4-7 and 12-14 in one pass: count the slice's lows, and build its set of objects
-    // with one endpoint inside (both inside: flipped twice, absent). The paper's set holds
-    // ranks, which for a high whose low lies in another slice are known only once every
-    // slice has handed out its ranks, and each costs a random read then; an object's index
-    // is its endpoint's, so the whole set is built before any rank exists.
-    uint64_t* crossing = &ioWork.slice_objects[words * slice];
-    std::fill(crossing, crossing + words, uint64_t{0});
-    uint32_t lows = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      const uint32_t endpoint = inPrimaryOrder[k];
-      const uint32_t is_low = endpoint < inObjects;
-      const uint32_t object = endpoint - (is_low ? 0u : inObjects);
-      crossing[object >> 6] ^= uint64_t{1} << (object & 63);
-      lows += is_low;
-    }
-    ioWork.lows_before[slice + 1] = lows;
+    // Slice t is thread t's; a team smaller than asked for (inside another parallel region)
+    // has each thread take every team-th slice.
+    const int first_slice = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    for (int slice = first_slice; slice < slices; slice += team)
+      countAndCollectCrossing(inPrimaryOrder, inObjects, slice, slices, ioWork);
 #pragma omp barrier
 #pragma omp single
     for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-    // Lines 8-11, for the boxes that leave the slice (low inside, high beyond: in the set)
-    // only, which later slices need before their sweeps; the sweep ranks the others. A box's
-    // record is written by the thread that reads it next (this one, in its sweep), except for
-    // these few: two threads writing the same records would pass their cache lines between
-    // the cores.
-    // Lows and highs alternate at random: no branch on the kind, only on the rare leaving box.
-    uint32_t next_rank = ioWork.lows_before[slice];
-    for (std::size_t k = begin; k < end; ++k) {
-      const uint32_t endpoint = inPrimaryOrder[k];
-      const uint32_t is_low = endpoint < inObjects;
-      const uint32_t object = endpoint - (is_low ? 0u : inObjects);
-      if (is_low & containsBit(crossing, object)) ranges[object].rank = next_rank;
-      next_rank += is_low;
-    }
+    for (int slice = first_slice; slice < slices; slice += team)
+      rankLeavingBoxes(inPrimaryOrder, inObjects, slice, slices, ioWork, ranges);
 #pragma omp barrier
-    // Line 15: the objects active at the start of the slice, those with an odd number of
-    // endpoints before it, are the ⊕ of all earlier slices' sets; their ranks seed the sweep.
-    SuccTree& active = ioWork.slice_start[slice];
-    if (active.size() != inObjects) active.resize(inObjects);
-    for (std::size_t word = 0; slice > 0 && word < words; ++word) {
-      uint64_t bits = 0;
-      for (int earlier = 0; earlier < slice; ++earlier)
-        bits ^= ioWork.slice_objects[words * earlier + word];
-      while (bits) {
-        const uint32_t object = static_cast<uint32_t>(word * 64 + __builtin_ctzll(bits));
-        active.insert(ranges[object].rank);
-        bits &= bits - 1;
-      }
+    for (int slice = first_slice; slice < slices; slice += team) {
+      SuccTree& active = ioWork.slice_start[slice];
+      seedActiveFromEarlierSlices(inObjects, slice, ioWork, ranges, active);
+      // Lines 16-23, with the ranks of the boxes that start in the slice.
+      std::size_t begin = 0, end = 0;
+      sliceBounds(inObjects, slice, slices, begin, end);
+      sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice],
+                          &ioWork.slice_objects[words * slice], active, outRanges);
+      active.clear();  // leave the tree empty for the next frame
     }
-    // Lines 16-23, with the ranks of the boxes that start in the slice.
-    sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice], crossing,
-                        active, outRanges);
-    active.clear();  // leave the tree empty for the next frame
   }
 }
 

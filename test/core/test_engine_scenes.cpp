@@ -1,6 +1,7 @@
 // The engine against the oracle on the paper's scenes, and over frame sequences: one Broadphase
 // reused while boxes move, and while boxes are added, removed, reordered and renamed.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <string>
 #include <vector>
@@ -166,6 +167,35 @@ TEST(EngineScenes, PairingLayoutOfTheLastFrameOutgrownAndReused) {
           << "frame " << f << ", " << threads << " threads";
     }
   }
+}
+
+TEST(EngineScenes, UpdateInsideAnotherParallelRegion) {
+  // Nested regions inactive (the default): every parallel phase gets a team of one thread
+  // however many it asks for, and must still cover all of its slices.
+  const int saved_levels = omp_get_max_active_levels();
+  omp_set_max_active_levels(1);
+  SceneConfig config;
+  config.kind = SceneKind::kBallCluster;
+  config.n = 6000;
+  config.seed = 12;
+  config.frames = 100;
+  std::vector<BoxSet> frames;
+  std::vector<PairList> oracles;
+  for (int frame : {10, 11, 12, 30}) {
+    frames.push_back(makeSceneFrame(config, frame));
+    oracles.push_back(bruteForcePairs(frames.back()));
+  }
+  int mismatches = 0;
+#pragma omp parallel num_threads(2) reduction(+ : mismatches)
+  for (int threads : {2, 3}) {
+    BroadphaseConfig engine = engineConfig(Method::kParallel, threads, 0, 1);
+    engine.skin = 0.0;  // every frame swept
+    Broadphase broadphase(engine);
+    for (std::size_t f = 0; f < frames.size(); ++f)
+      mismatches += !samePairs(oracles[f], broadphase.update(frames[f]));
+  }
+  omp_set_max_active_levels(saved_levels);
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(EngineScenes, ResetForgetsTemporalStateOnly) {
