@@ -109,7 +109,7 @@ struct SweepWorkspace {
   /// the secondary order), [segment_begin, segment_end), [partition * threads + thread].
   std::vector<std::size_t> segment_begin;
   std::vector<std::size_t> segment_end;
-  std::vector<std::size_t> scatter_counts;  ///< [thread][partition] counters and limits
+  std::vector<std::size_t> scatter_counts;  ///< [slice][partition] counters and limits
   std::vector<std::size_t> partition_work;  ///< Algorithm 4: estimated work per partition
   std::vector<uint32_t> partition_order;    ///< Algorithm 4: partitions by decreasing work
   ScatterLayout last_layout;                ///< Algorithm 4: the last frame's scatter
@@ -131,11 +131,13 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
 
 /// Algorithm 4: rank space split into partitions of at most kPairingPartitionRanks ranks (and at
 /// least kPairingPartitionsPerThread per thread), each swept by one thread with its own
-/// SuccTrees, handed out largest measured work first; each pair is found in exactly one
-/// partition, without locks or reduction. Unlike the paper, where every thread reads
-/// all 2n endpoints, one scatter pass first hands each partition only the endpoints that touch
-/// it (those whose rank or candidate range falls in it), in sweep order, packed in 8 bytes:
-/// partitions then fit in cache and there may be many more of them than threads.
+/// SuccTrees, handed out largest work first (the sweep time each took in the last frame with
+/// this split, else an estimate); each pair is found in exactly one partition, without locks
+/// or reduction. Unlike the paper, where every thread reads all 2n endpoints, a scatter first
+/// hands each partition only the endpoints that touch it (those whose rank or candidate range
+/// falls in it), in sweep order, packed in 8 bytes: partitions then fit in cache and there may
+/// be many more of them than threads. On coherent frames the scatter is one pass straight
+/// into room sized from the last frame's segments.
 /// outPairsPerThread[t] receives thread t's pairs.
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread);
