@@ -106,21 +106,6 @@ void SuccTree::refreshAncestors(uint32_t inWordIndex) {
   }
 }
 
-void SuccTree::rebuildSummaries() {
-  for (std::size_t level = 1; level < levels_.size(); ++level) {
-    const std::vector<uint64_t>& below = levels_[level - 1];
-    std::vector<uint64_t>& above = levels_[level];
-    for (std::size_t word = 0; word < above.size(); ++word) {
-      const std::size_t first_child = word * kWordBits;
-      const std::size_t children = std::min<std::size_t>(kWordBits, below.size() - first_child);
-      uint64_t non_empty = 0;
-      for (std::size_t child = 0; child < children; ++child)
-        non_empty |= uint64_t{below[first_child + child] != 0} << child;
-      above[word] = non_empty;
-    }
-  }
-}
-
 void SuccTree::symmetricDifference(const SuccTree& inOther) {
   const std::vector<uint64_t>& other_leaves = inOther.levels_[0];
   std::vector<uint64_t>& leaves = levels_[0];

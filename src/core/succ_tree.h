@@ -49,12 +49,6 @@ class SuccTree {
   template <typename Visit>
   void forEachInRange(uint32_t inBegin, uint32_t inEnd, Visit&& inVisit) const;
 
-  /// Flips inValue's leaf bit only, leaving the levels above stale: for building a tree by many
-  /// flips, followed by one rebuildSummaries() before any other operation.
-  void flipLeaf(uint32_t inValue) { levels_[0][inValue >> 6] ^= uint64_t{1} << (inValue & 63); }
-  /// Recomputes every level above the leaves from the leaves, in O(size / 64).
-  void rebuildSummaries();
-
   /// this := this ⊕ inOther (symmetric difference); both must have the same size.
   void symmetricDifference(const SuccTree& inOther);
   /// this := inOther (same size; reuses storage).

@@ -57,33 +57,14 @@ struct RankedSlabs {
 };
 static_assert(kMaxSlabs - 1 <= 0xFF, "slab numbers are stored in 8 bits");
 
-/// The secondary-axis order with all that pairing reads about each endpoint's box, two 64-bit
-/// words an endpoint, in sweep order: word 0 = rank | kind << 31 | L << 32, word 1 = U.
-/// One gather pass builds it, so no thread looks boxes up at random while sweeping. It fits
-/// in the sort's buffer, which is free by then.
-namespace secondary_stream {
-constexpr uint32_t kHighBit = 0x80000000u;
-inline uint32_t rankAndKind(const uint64_t* inStream, std::size_t inEndpoint) {
-  return static_cast<uint32_t>(inStream[2 * inEndpoint]);
-}
-inline uint32_t low(const uint64_t* inStream, std::size_t inEndpoint) {
-  return static_cast<uint32_t>(inStream[2 * inEndpoint] >> 32);
-}
-inline uint32_t high(const uint64_t* inStream, std::size_t inEndpoint) {
-  return static_cast<uint32_t>(inStream[2 * inEndpoint + 1]);
-}
-}  // namespace secondary_stream
-
-/// Writes the secondary stream (2 words per endpoint, 4n words) from the sorted secondary order.
-void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
-                          const CandidateRanges& inRanges, int inThreads, uint64_t* outStream);
-
 /// What pairing needs to know about the boxes.
 struct PairingInput {
-  const uint64_t* stream = nullptr;          ///< the secondary stream, 2n endpoints
-  uint32_t objects = 0;                      ///< n
-  const uint32_t* object_of_rank = nullptr;  ///< R^-
-  const RankedKeys* keys = nullptr;          ///< outward keys by rank
+  const uint32_t* secondary_order = nullptr;  ///< the 2n endpoints in secondary-axis order
+  const RankRange* ranges = nullptr;          ///< rank and candidate range, by object
+  uint64_t* stream_scratch = nullptr;         ///< room for 4n words, which pairing may overwrite
+  uint32_t objects = 0;                       ///< n
+  const uint32_t* object_of_rank = nullptr;   ///< R^-
+  const RankedKeys* keys = nullptr;           ///< outward keys by rank
   const BoxSet* boxes = nullptr;  ///< exact float64 test for near-touching keys; null in the
                                   ///< keys-only mode, where overlapping keys are reported
   const RankedFilter* filters = nullptr;  ///< null when no box has a group or mask
@@ -107,17 +88,31 @@ constexpr uint32_t kPairingPartitionsPerThread = 4;
 /// 3.6 MiB), where every insert, erase and range walk on the big trees misses the cache.
 constexpr uint64_t kSequentialTreeBits = uint64_t{1} << 24;
 
+/// How the last frame's pairing scatter laid out its entries: the split and thread count it
+/// was for, and how many entries each (partition, thread) segment held.
+struct ScatterLayout {
+  int threads = 0;
+  uint32_t shift = 0;
+  uint32_t partitions = 0;
+  std::vector<std::size_t> segment_used;  ///< [partition * threads + thread]
+  std::vector<double> partition_ms;       ///< measured sweep time of each partition
+};
+
 /// Reusable buffers of the parallel phases.
 struct SweepWorkspace {
-  std::vector<SuccTree> partition_local;  ///< Algorithm 3: toggled within each partition
-  std::vector<SuccTree> partition_start;  ///< Algorithm 3: ⊕-prefix, active at partition start
-  std::vector<uint32_t> lows_before;      ///< Algorithm 3: rank counter at partition start
-  std::vector<SuccTree> pairing;          ///< Algorithm 4: slab_count trees per thread
-  Buffer<uint64_t> partition_entries;     ///< Algorithm 4: endpoints by partition
-  std::vector<std::size_t> partition_offsets;  ///< start of each partition's entries, m + 1
-  std::vector<std::size_t> scatter_counts;     ///< [thread][partition] placement counters
-  std::vector<std::size_t> partition_work;     ///< Algorithm 4: measured work per partition
-  std::vector<uint32_t> partition_order;       ///< Algorithm 4: partitions by decreasing work
+  Buffer<uint64_t> slice_objects;      ///< Algorithm 3: per slice, objects with one endpoint in it
+  std::vector<SuccTree> slice_start;   ///< Algorithm 3: ranks active at the slice's start
+  std::vector<uint32_t> lows_before;   ///< Algorithm 3: rank counter at the slice's start
+  std::vector<SuccTree> pairing;       ///< Algorithm 4: slab_count trees per thread
+  Buffer<uint64_t> partition_entries;  ///< Algorithm 4: endpoints by partition
+  /// Algorithm 4: each partition's entries are one segment per thread (the thread's slice of
+  /// the secondary order), [segment_begin, segment_end), [partition * threads + thread].
+  std::vector<std::size_t> segment_begin;
+  std::vector<std::size_t> segment_end;
+  std::vector<std::size_t> scatter_counts;  ///< [slice][partition] counters and limits
+  std::vector<std::size_t> partition_work;  ///< Algorithm 4: estimated work per partition
+  std::vector<uint32_t> partition_order;    ///< Algorithm 4: partitions by decreasing work
+  ScatterLayout last_layout;                ///< Algorithm 4: the last frame's scatter
 };
 
 /// Algorithm 1, lines 5-14: ranks and candidate ranges from the primary-axis order, one thread.
@@ -125,7 +120,7 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
                                  SuccTree& ioActive, CandidateRanges& outRanges);
 
 /// Algorithm 3: the same result computed by inThreads threads on equal slices of the order,
-/// with per-slice SuccTrees joined by an all-prefix symmetric difference.
+/// with per-slice sets (of objects, not ranks) joined by an all-prefix symmetric difference.
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);
 
@@ -136,11 +131,13 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
 
 /// Algorithm 4: rank space split into partitions of at most kPairingPartitionRanks ranks (and at
 /// least kPairingPartitionsPerThread per thread), each swept by one thread with its own
-/// SuccTrees, handed out largest measured work first; each pair is found in exactly one
-/// partition, without locks or reduction. Unlike the paper, where every thread reads
-/// all 2n endpoints, one scatter pass first hands each partition only the endpoints that touch
-/// it (those whose rank or candidate range falls in it), in sweep order, packed in 8 bytes:
-/// partitions then fit in cache and there may be many more of them than threads.
+/// SuccTrees, handed out largest work first (the sweep time each took in the last frame with
+/// this split, else an estimate); each pair is found in exactly one partition, without locks
+/// or reduction. Unlike the paper, where every thread reads all 2n endpoints, a scatter first
+/// hands each partition only the endpoints that touch it (those whose rank or candidate range
+/// falls in it), in sweep order, packed in 8 bytes: partitions then fit in cache and there may
+/// be many more of them than threads. On coherent frames the scatter is one pass straight
+/// into room sized from the last frame's segments.
 /// outPairsPerThread[t] receives thread t's pairs.
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread);

@@ -123,9 +123,10 @@ void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, FrameSpread& ioSpread, i
 void SweepAndPrune::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads,
                          FrameReport& ioReport) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
-  buildSecondaryStream(sweep_order_.data(), n, ranges_, inThreads, endpoint_words_.data());
   PairingInput input;
-  input.stream = endpoint_words_.data();
+  input.secondary_order = sweep_order_.data();
+  input.ranges = ranges_.of_object.data();
+  input.stream_scratch = endpoint_words_.data();  // the sort's words are free by now
   input.objects = n;
   input.object_of_rank = ranges_.object_of_rank.data();
   input.keys = ranked_keys_.data();

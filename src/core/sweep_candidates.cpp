@@ -9,28 +9,120 @@
 namespace sap_broadphase {
 namespace {
 
+// Endpoints between a record's prefetch and its use: the records are read and written in
+// primary order, at random.
+constexpr std::size_t kRecordPrefetchAhead = 16;
+
+inline bool containsBit(const uint64_t* inBits, uint32_t inIndex) {
+  return (inBits[inIndex >> 6] >> (inIndex & 63)) & 1u;
+}
+
 // Sweeps order[inBegin, inEnd) of the primary axis from the active set ioActive and the rank
-// counter inLowsBefore, writing L and U (Algorithm 1, lines 6-14 without rank assignment).
+// counter inLowsBefore (Algorithm 1, lines 6-14), handing out ranks as it goes: a low's rank
+// is the count of lows before it. The rank of a box whose low lies in this slice and whose
+// high lies beyond it (inCrossing, when given) was written before the sweep, for the slices
+// that meet its high, and is left alone here.
 void sweepCandidateSlice(const uint32_t* inOrder, uint32_t inObjects, std::size_t inBegin,
-                         std::size_t inEnd, uint32_t inLowsBefore, SuccTree& ioActive,
-                         RankRange* ioRanges) {
+                         std::size_t inEnd, uint32_t inLowsBefore, const uint64_t* inCrossing,
+                         SuccTree& ioActive, CandidateRanges& ioRanges) {
+  RankRange* ranges = ioRanges.of_object.data();
+  uint32_t* object_of_rank = ioRanges.object_of_rank.data();
   uint32_t lows_seen = inLowsBefore;
   // Ranks are handed out in sweep order, so an insert never lowers the minimum: it only
   // changes when the minimum itself leaves, and is cached in between.
   uint32_t minimum = ioActive.min();
   for (std::size_t k = inBegin; k < inEnd; ++k) {
+    if (k + kRecordPrefetchAhead < inEnd) {
+      const uint32_t ahead = inOrder[k + kRecordPrefetchAhead];
+      __builtin_prefetch(&ranges[ahead - (ahead < inObjects ? 0u : inObjects)], 1);
+    }
     const uint32_t endpoint = inOrder[k];
     if (endpoint < inObjects) {
-      RankRange& range = ioRanges[endpoint];
-      if (minimum == SuccTree::kNone) minimum = range.rank;
+      RankRange& range = ranges[endpoint];
+      const uint32_t rank = lows_seen++;
+      if (!inCrossing || !containsBit(inCrossing, endpoint)) range.rank = rank;
+      object_of_rank[rank] = endpoint;
+      if (minimum == SuccTree::kNone) minimum = rank;
       range.low = minimum;
-      ioActive.insert(range.rank);
-      ++lows_seen;
+      ioActive.insert(rank);
     } else {
-      RankRange& range = ioRanges[endpoint - inObjects];
+      RankRange& range = ranges[endpoint - inObjects];
+      const uint32_t rank = range.rank;
       range.high = lows_seen;
-      ioActive.erase(range.rank);
-      if (range.rank == minimum) minimum = ioActive.next(range.rank);
+      ioActive.erase(rank);
+      if (rank == minimum) minimum = ioActive.next(rank);
+    }
+  }
+}
+
+// Slice inSlice of inSlices of the primary order: [outBegin, outEnd).
+inline void sliceBounds(uint32_t inObjects, int inSlice, int inSlices, std::size_t& outBegin,
+                        std::size_t& outEnd) {
+  const std::size_t endpoints = 2 * std::size_t{inObjects};
+  outBegin = endpoints * inSlice / inSlices;
+  outEnd = endpoints * (inSlice + 1) / inSlices;
+}
+
+// Algorithm 3, lines 4-7 and 12-14 in one pass: counts the slice's lows, and builds its set of
+// objects with one endpoint inside (both inside: flipped twice, absent). The paper's set holds
+// ranks, which for a high whose low lies in another slice are known only once every slice has
+// handed out its ranks, and each costs a random read then; an object's index is its
+// endpoint's, so the whole set is built before any rank exists.
+void countAndCollectCrossing(const uint32_t* inOrder, uint32_t inObjects, int inSlice, int inSlices,
+                             SweepWorkspace& ioWork) {
+  std::size_t begin = 0, end = 0;
+  sliceBounds(inObjects, inSlice, inSlices, begin, end);
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
+  uint64_t* crossing = &ioWork.slice_objects[words * inSlice];
+  std::fill(crossing, crossing + words, uint64_t{0});
+  uint32_t lows = 0;
+  for (std::size_t k = begin; k < end; ++k) {
+    const uint32_t endpoint = inOrder[k];
+    const uint32_t is_low = endpoint < inObjects;
+    const uint32_t object = endpoint - (is_low ? 0u : inObjects);
+    crossing[object >> 6] ^= uint64_t{1} << (object & 63);
+    lows += is_low;
+  }
+  ioWork.lows_before[inSlice + 1] = lows;
+}
+
+// Algorithm 3, lines 8-11, for the boxes that leave the slice (low inside, high beyond: in the
+// set) only, which later slices need before their sweeps; the sweep ranks the others. A box's
+// record is written by the thread that reads it next (this one, in its sweep), except for
+// these few: two threads writing the same records would pass their cache lines between the
+// cores. Lows and highs alternate at random: no branch on the kind, only on the rare leaving
+// box.
+void rankLeavingBoxes(const uint32_t* inOrder, uint32_t inObjects, int inSlice, int inSlices,
+                      const SweepWorkspace& inWork, RankRange* ioRanges) {
+  std::size_t begin = 0, end = 0;
+  sliceBounds(inObjects, inSlice, inSlices, begin, end);
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
+  const uint64_t* crossing = &inWork.slice_objects[words * inSlice];
+  uint32_t next_rank = inWork.lows_before[inSlice];
+  for (std::size_t k = begin; k < end; ++k) {
+    const uint32_t endpoint = inOrder[k];
+    const uint32_t is_low = endpoint < inObjects;
+    const uint32_t object = endpoint - (is_low ? 0u : inObjects);
+    if (is_low & containsBit(crossing, object)) ioRanges[object].rank = next_rank;
+    next_rank += is_low;
+  }
+}
+
+// Algorithm 3, line 15: the objects active at the start of slice inSlice, those with an odd
+// number of endpoints before it, are the ⊕ of all earlier slices' sets; their ranks (written
+// by rankLeavingBoxes) seed the slice's active set.
+void seedActiveFromEarlierSlices(uint32_t inObjects, int inSlice, const SweepWorkspace& inWork,
+                                 const RankRange* inRanges, SuccTree& outActive) {
+  if (outActive.size() != inObjects) outActive.resize(inObjects);
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
+  for (std::size_t word = 0; inSlice > 0 && word < words; ++word) {
+    uint64_t bits = 0;
+    for (int earlier = 0; earlier < inSlice; ++earlier)
+      bits ^= inWork.slice_objects[words * earlier + word];
+    while (bits) {
+      const uint32_t object = static_cast<uint32_t>(word * 64 + __builtin_ctzll(bits));
+      outActive.insert(inRanges[object].rank);
+      bits &= bits - 1;
     }
   }
 }
@@ -41,78 +133,45 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
                                  SuccTree& ioActive, CandidateRanges& outRanges) {
   resizeDiscarding(outRanges.of_object, inObjects);
   resizeDiscarding(outRanges.object_of_rank, inObjects);
-  uint32_t next_rank = 0;
-  for (std::size_t k = 0; k < 2 * std::size_t{inObjects}; ++k) {
-    const uint32_t endpoint = inPrimaryOrder[k];
-    if (endpoint < inObjects) {
-      outRanges.of_object[endpoint].rank = next_rank;
-      outRanges.object_of_rank[next_rank++] = endpoint;
-    }
-  }
   ioActive.resize(inObjects);
-  sweepCandidateSlice(inPrimaryOrder, inObjects, 0, 2 * std::size_t{inObjects}, 0, ioActive,
-                      outRanges.of_object.data());
+  sweepCandidateSlice(inPrimaryOrder, inObjects, 0, 2 * std::size_t{inObjects}, 0, nullptr,
+                      ioActive, outRanges);
 }
 
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges) {
   const int slices = std::max(1, inThreads);
-  const std::size_t endpoints = 2 * std::size_t{inObjects};
+  const std::size_t words = (std::size_t{inObjects} + 63) / 64;
   resizeDiscarding(outRanges.of_object, inObjects);
   resizeDiscarding(outRanges.object_of_rank, inObjects);
-  ioWork.partition_local.resize(slices);
-  ioWork.partition_start.resize(slices);
+  resizeDiscarding(ioWork.slice_objects, words * slices);
+  ioWork.slice_start.resize(slices);
   ioWork.lows_before.assign(slices + 1, 0);
   RankRange* ranges = outRanges.of_object.data();
-  uint32_t* object_of_rank = outRanges.object_of_rank.data();
 #pragma omp parallel num_threads(slices)
   {
-    const int slice = omp_get_thread_num();
-    const std::size_t begin = endpoints * slice / slices;
-    const std::size_t end = endpoints * (slice + 1) / slices;
-    // Lines 4-7: count the lows of each slice, then an exclusive prefix sum gives rank bases.
-    uint32_t lows = 0;
-    for (std::size_t k = begin; k < end; ++k) lows += inPrimaryOrder[k] < inObjects;
-    ioWork.lows_before[slice + 1] = lows;
+    // Slice t is thread t's; a team smaller than asked for (inside another parallel region)
+    // has each thread take every team-th slice.
+    const int first_slice = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+    for (int slice = first_slice; slice < slices; slice += team)
+      countAndCollectCrossing(inPrimaryOrder, inObjects, slice, slices, ioWork);
 #pragma omp barrier
 #pragma omp single
     for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-    // Lines 8-11: ranks. Lines 12-14 build each slice's own tree, the ranks with one endpoint
-    // inside the slice, by flipping leaf bits (both endpoints inside: flipped twice, absent),
-    // then its summaries in one pass: a low's rank is known right here, a high's once every
-    // slice has handed out its ranks.
-    SuccTree& local = ioWork.partition_local[slice];
-    if (local.size() != inObjects) local.resize(inObjects);
-    uint32_t next_rank = ioWork.lows_before[slice];
-    for (std::size_t k = begin; k < end; ++k) {
-      const uint32_t endpoint = inPrimaryOrder[k];
-      if (endpoint < inObjects) {
-        ranges[endpoint].rank = next_rank;
-        object_of_rank[next_rank] = endpoint;
-        local.flipLeaf(next_rank++);
-      }
+    for (int slice = first_slice; slice < slices; slice += team)
+      rankLeavingBoxes(inPrimaryOrder, inObjects, slice, slices, ioWork, ranges);
+#pragma omp barrier
+    for (int slice = first_slice; slice < slices; slice += team) {
+      SuccTree& active = ioWork.slice_start[slice];
+      seedActiveFromEarlierSlices(inObjects, slice, ioWork, ranges, active);
+      // Lines 16-23, with the ranks of the boxes that start in the slice.
+      std::size_t begin = 0, end = 0;
+      sliceBounds(inObjects, slice, slices, begin, end);
+      sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice],
+                          &ioWork.slice_objects[words * slice], active, outRanges);
+      active.clear();  // leave the tree empty for the next frame
     }
-#pragma omp barrier
-    for (std::size_t k = begin; k < end; ++k) {
-      const uint32_t endpoint = inPrimaryOrder[k];
-      if (endpoint >= inObjects) local.flipLeaf(ranges[endpoint - inObjects].rank);
-    }
-    local.rebuildSummaries();
-#pragma omp barrier
-    // Line 15: the active set at the start of the slice is the ⊕ of all earlier slices' trees.
-    SuccTree& active = ioWork.partition_start[slice];
-    if (active.size() != inObjects)
-      active.resize(inObjects);
-    else
-      active.clear();
-    for (int earlier = 0; earlier < slice; ++earlier)
-      active.symmetricDifference(ioWork.partition_local[earlier]);
-    // Lines 16-23.
-    sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice], active,
-                        ranges);
-#pragma omp barrier
-    local.clear();  // leave both trees empty for the next frame
-    active.clear();
   }
 }
 

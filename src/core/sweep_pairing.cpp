@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/buffers.h"
+#include "core/phase_timer.h"
 #include "core/sweep.h"
 
 namespace sap_broadphase {
@@ -30,6 +31,58 @@ inline uint64_t lowEntry(uint32_t inRank, uint32_t inLocalBegin, uint32_t inLoca
 }
 inline uint64_t highEntry(uint32_t inRank) {
   return inRank | kEntryHighBit;
+}
+
+// The secondary-axis order with all that pairing reads about each endpoint's box, two 64-bit
+// words an endpoint, in sweep order: word 0 = rank | kind << 31 | L << 32, word 1 = U. Built
+// where a pass reads every endpoint more than once (the one-thread sweep of the whole order,
+// a scatter that counts before it places), so that those passes read it in order instead of
+// looking boxes up at random. It fits in the sort's buffer, which is free by then.
+namespace secondary_stream {
+constexpr uint32_t kHighBit = 0x80000000u;
+inline uint32_t rankAndKind(const uint64_t* inStream, std::size_t inEndpoint) {
+  return static_cast<uint32_t>(inStream[2 * inEndpoint]);
+}
+inline uint32_t low(const uint64_t* inStream, std::size_t inEndpoint) {
+  return static_cast<uint32_t>(inStream[2 * inEndpoint] >> 32);
+}
+inline uint32_t high(const uint64_t* inStream, std::size_t inEndpoint) {
+  return static_cast<uint32_t>(inStream[2 * inEndpoint + 1]);
+}
+}  // namespace secondary_stream
+
+// One endpoint as pairing sees it: its box's rank with the kind in the top bit, and the box's
+// candidate range [L, U).
+struct Endpoint {
+  uint32_t rank_and_kind;
+  uint32_t low;
+  uint32_t high;
+};
+
+// Endpoint inK of the secondary order, from the box's record (a random read).
+inline Endpoint endpointOfOrder(const PairingInput& inInput, std::size_t inK) {
+  const uint32_t endpoint = inInput.secondary_order[inK];
+  const bool is_high = endpoint >= inInput.objects;
+  const RankRange& range = inInput.ranges[endpoint - (is_high ? inInput.objects : 0u)];
+  return {range.rank | (is_high ? secondary_stream::kHighBit : 0u), range.low, range.high};
+}
+
+// Endpoint inK of the secondary stream (an ordered read).
+inline Endpoint endpointOfStream(const uint64_t* inStream, std::size_t inK) {
+  return {secondary_stream::rankAndKind(inStream, inK), secondary_stream::low(inStream, inK),
+          secondary_stream::high(inStream, inK)};
+}
+
+// Writes the secondary stream of the whole order, inThreads threads.
+void buildSecondaryStream(const PairingInput& inInput, int inThreads) {
+  const std::size_t endpoints = 2 * std::size_t{inInput.objects};
+  uint64_t* stream = inInput.stream_scratch;
+#pragma omp parallel for num_threads(inThreads) schedule(static)
+  for (std::size_t k = 0; k < endpoints; ++k) {
+    const Endpoint endpoint = endpointOfOrder(inInput, k);
+    stream[2 * k] = endpoint.rank_and_kind | (uint64_t{endpoint.low} << 32);
+    stream[2 * k + 1] = endpoint.high;
+  }
 }
 
 // Keys overlap on every axis. Without branches: all six comparisons, combined with bitwise
@@ -209,7 +262,7 @@ struct RankPartitions {
   uint32_t begin(uint32_t inPartition) const { return inPartition << shift; }
 };
 
-// All ones when a secondary-stream word names a high endpoint, else 0.
+// All ones when an endpoint is a high endpoint, else 0.
 inline uint32_t highMask(uint32_t inRankAndKind) {
   static_assert(secondary_stream::kHighBit == 0x80000000u, "the kind is the top bit");
   return 0u - (inRankAndKind >> 31);
@@ -217,94 +270,214 @@ inline uint32_t highMask(uint32_t inRankAndKind) {
 
 // The rank partitions an endpoint matters to: its own (insert, erase) and, for a low endpoint,
 // every partition its candidate range [L, U) reaches (which includes its own: L <= R < U).
-// Lows and highs alternate at random in the stream, so both are computed without a branch.
-inline void partitionsOf(const uint64_t* inStream, std::size_t inK, const RankPartitions& inSplit,
+// Lows and highs alternate at random in the order, so both are computed without a branch.
+inline void partitionsOf(const Endpoint& inEndpoint, const RankPartitions& inSplit,
                          uint32_t& outFirst, uint32_t& outLast) {
-  const uint32_t rank_and_kind = secondary_stream::rankAndKind(inStream, inK);
-  const uint32_t rank = rank_and_kind & ~secondary_stream::kHighBit;
+  const uint32_t rank = inEndpoint.rank_and_kind & ~secondary_stream::kHighBit;
   // All ones for a high endpoint: the selections are masks, since the compiler turns a
   // conditional expression back into a branch.
-  const uint32_t high = highMask(rank_and_kind);
-  const uint32_t low_first = std::min(secondary_stream::low(inStream, inK), rank);
-  const uint32_t low_last = std::max(secondary_stream::high(inStream, inK), rank + 1) - 1;
+  const uint32_t high = highMask(inEndpoint.rank_and_kind);
+  const uint32_t low_first = std::min(inEndpoint.low, rank);
+  const uint32_t low_last = std::max(inEndpoint.high, rank + 1) - 1;
   outFirst = inSplit.of((rank & high) | (low_first & ~high));
   outLast = inSplit.of((rank & high) | (low_last & ~high));
 }
 
-// The entry of stream endpoint inK for partition inPartition (branch-free, as above).
-inline uint64_t entryFor(const uint64_t* inStream, std::size_t inK, uint32_t inPartition,
+// The entry of an endpoint for partition inPartition (branch-free, as above).
+inline uint64_t entryFor(const Endpoint& inEndpoint, uint32_t inPartition,
                          const RankPartitions& inSplit) {
-  const uint32_t rank_and_kind = secondary_stream::rankAndKind(inStream, inK);
-  const uint32_t rank = rank_and_kind & ~secondary_stream::kHighBit;
+  const uint32_t rank = inEndpoint.rank_and_kind & ~secondary_stream::kHighBit;
   const uint32_t partition_begin = inSplit.begin(inPartition);
   const uint32_t partition_end = partition_begin + inSplit.size();
-  const uint32_t begin = std::max(secondary_stream::low(inStream, inK), partition_begin);
-  const uint32_t end = std::min(secondary_stream::high(inStream, inK), partition_end);
+  const uint32_t begin = std::max(inEndpoint.low, partition_begin);
+  const uint32_t end = std::min(inEndpoint.high, partition_end);
   const uint64_t low_entry =
       lowEntry(rank, begin - partition_begin, std::max(begin, end) - partition_begin);
-  const uint64_t high = uint64_t{0} - (rank_and_kind >> 31);  // all ones for a high endpoint
+  const uint64_t high = uint64_t{0} - (inEndpoint.rank_and_kind >> 31);  // all ones: high
   return (highEntry(rank) & high) | (low_entry & ~high);
 }
 
-// Copies each endpoint of the stream to the entry lists of the partitions it matters to,
-// keeping sweep order within each (threads take contiguous slices; counts, then placement).
-// Also measures each partition's work, its entries plus the candidate ranks its low entries
-// span, into ioWork.partition_work.
-void scatterToPartitions(const PairingInput& inInput, int inThreads, const RankPartitions& inSplit,
-                         SweepWorkspace& ioWork) {
-  const std::size_t endpoints = 2 * std::size_t{inInput.objects};
-  const uint64_t* stream = inInput.stream;
+// Slice inSlice of inSlices of the secondary order, [outBegin, outEnd): the same every frame
+// for the same n and slice count, so that a segment's size carries over from frame to frame.
+// Slice t is thread t's; a team smaller than asked for (inside another parallel region) has
+// each thread take every team-th slice, so the layout never depends on the team's size.
+inline void sliceOf(uint32_t inObjects, int inSlice, int inSlices, std::size_t& outBegin,
+                    std::size_t& outEnd) {
+  const std::size_t endpoints = 2 * std::size_t{inObjects};
+  outBegin = endpoints * inSlice / inSlices;
+  outEnd = endpoints * (inSlice + 1) / inSlices;
+}
+
+// Each slice's counters sit a cache line past the previous slice's (no false sharing).
+inline std::size_t counterStride(uint32_t inPartitions) {
+  return 2 * std::size_t{inPartitions} + kCacheLineBytes / sizeof(std::size_t);
+}
+
+// Scatter from the exact counts: the secondary stream, a counting pass over it, then the
+// placement pass. Segments are packed without gaps. Also estimates each partition's work, its
+// entries plus the candidate ranks its low entries span, into ioWork.partition_work.
+void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                    SweepWorkspace& ioWork) {
+  buildSecondaryStream(inInput, inSlices);
+  const uint64_t* stream = inInput.stream_scratch;
   const uint32_t partitions = inSplit.count;
   std::vector<std::size_t>& counts = ioWork.scatter_counts;
-  // Each thread's counters sit a cache line past the previous thread's (no false sharing):
-  // entry counts at [0, partitions), work at [partitions, 2 * partitions).
-  const std::size_t stride = 2 * std::size_t{partitions} + kCacheLineBytes / sizeof(std::size_t);
-  counts.assign(std::size_t(inThreads) * stride, 0);
-  ioWork.partition_offsets.assign(partitions + 1, 0);
+  const std::size_t stride = counterStride(partitions);
+  counts.assign(std::size_t(inSlices) * stride, 0);
   ioWork.partition_work.assign(partitions, 0);
-#pragma omp parallel num_threads(inThreads)
+#pragma omp parallel num_threads(inSlices)
   {
-    const int thread = omp_get_thread_num();
     const int team = omp_get_num_threads();
-    const std::size_t begin = endpoints * thread / team;
-    const std::size_t end = endpoints * (thread + 1) / team;
-    std::size_t* my_counts = &counts[std::size_t(thread) * stride];
-    std::size_t* my_work = my_counts + partitions;
     uint32_t first = 0, last = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      partitionsOf(stream, k, inSplit, first, last);
-      ++my_counts[first];
-      for (uint32_t p = first + 1; p <= last; ++p) ++my_counts[p];  // rare: ranges are short
-      // A low endpoint's candidate ranks, charged to the partition where its range starts.
-      const uint32_t span = secondary_stream::high(stream, k) - secondary_stream::low(stream, k);
-      my_work[first] += span & ~highMask(secondary_stream::rankAndKind(stream, k));
+    for (int slice = omp_get_thread_num(); slice < inSlices; slice += team) {
+      std::size_t begin = 0, end = 0;
+      sliceOf(inInput.objects, slice, inSlices, begin, end);
+      // Entry counts at [0, partitions), work at [partitions, 2 * partitions).
+      std::size_t* my_counts = &counts[std::size_t(slice) * stride];
+      std::size_t* my_work = my_counts + partitions;
+      for (std::size_t k = begin; k < end; ++k) {
+        const Endpoint endpoint = endpointOfStream(stream, k);
+        partitionsOf(endpoint, inSplit, first, last);
+        ++my_counts[first];
+        for (uint32_t p = first + 1; p <= last; ++p) ++my_counts[p];  // rare: ranges are short
+        // A low endpoint's candidate ranks, charged to the partition where its range starts.
+        my_work[first] += (endpoint.high - endpoint.low) & ~highMask(endpoint.rank_and_kind);
+      }
     }
 #pragma omp barrier
 #pragma omp single
     {
       std::size_t offset = 0;
       for (uint32_t p = 0; p < partitions; ++p) {
-        ioWork.partition_offsets[p] = offset;
+        const std::size_t partition_begin = offset;
         std::size_t work = 0;
-        for (int t = 0; t < team; ++t) {
-          std::size_t& slot = counts[std::size_t(t) * stride + p];
+        for (int slice = 0; slice < inSlices; ++slice) {
+          std::size_t& slot = counts[std::size_t(slice) * stride + p];
           const std::size_t size = slot;
+          ioWork.segment_begin[std::size_t(p) * inSlices + slice] = offset;
           slot = offset;
           offset += size;
-          work += counts[std::size_t(t) * stride + partitions + p];
+          work += counts[std::size_t(slice) * stride + partitions + p];
         }
-        ioWork.partition_work[p] = work + (offset - ioWork.partition_offsets[p]);
+        ioWork.partition_work[p] = work + (offset - partition_begin);
       }
-      ioWork.partition_offsets[partitions] = offset;
       resizeDiscarding(ioWork.partition_entries, offset);
     }
     uint64_t* out = ioWork.partition_entries.data();
-    for (std::size_t k = begin; k < end; ++k) {
-      partitionsOf(stream, k, inSplit, first, last);
-      for (uint32_t p = first; p <= last; ++p)
-        out[my_counts[p]++] = entryFor(stream, k, p, inSplit);
+    for (int slice = omp_get_thread_num(); slice < inSlices; slice += team) {
+      std::size_t begin = 0, end = 0;
+      sliceOf(inInput.objects, slice, inSlices, begin, end);
+      std::size_t* my_counts = &counts[std::size_t(slice) * stride];
+      for (std::size_t k = begin; k < end; ++k) {
+        const Endpoint endpoint = endpointOfStream(stream, k);
+        partitionsOf(endpoint, inSplit, first, last);
+        for (uint32_t p = first; p <= last; ++p)
+          out[my_counts[p]++] = entryFor(endpoint, p, inSplit);
+      }
+      for (uint32_t p = 0; p < partitions; ++p)
+        ioWork.segment_end[std::size_t(p) * inSlices + slice] = my_counts[p];
     }
   }
+}
+
+// Room a segment gets beyond its size in the last frame: coherent frames change each
+// segment's size by a few percent at most.
+inline std::size_t segmentRoom(std::size_t inLastSize) {
+  return inLastSize + inLastSize / 16 + 64;
+}
+
+// Endpoints between a record's prefetch and its use in the one-pass scatter.
+constexpr std::size_t kScatterPrefetchAhead = 16;
+
+// Scatters slice inSlice straight from the secondary order and the boxes' records into the
+// segments' room. Returns false when a segment outgrew its room.
+bool scatterSliceIntoRoom(const PairingInput& inInput, int inSlice, int inSlices,
+                          const RankPartitions& inSplit, std::size_t* ioCursor,
+                          SweepWorkspace& ioWork) {
+  const uint32_t partitions = inSplit.count;
+  const std::size_t segments = std::size_t(partitions) * inSlices;
+  // Next free entry at [0, partitions), end of the segment's room at [partitions, 2 *
+  // partitions).
+  std::size_t* cursor = ioCursor;
+  std::size_t* limit = ioCursor + partitions;
+  for (uint32_t p = 0; p < partitions; ++p) {
+    const std::size_t segment = std::size_t(p) * inSlices + inSlice;
+    cursor[p] = ioWork.segment_begin[segment];
+    limit[p] = segment + 1 < segments ? ioWork.segment_begin[segment + 1]
+                                      : ioWork.partition_entries.size();
+  }
+  std::size_t begin = 0, end = 0;
+  sliceOf(inInput.objects, inSlice, inSlices, begin, end);
+  uint64_t* out = ioWork.partition_entries.data();
+  const uint32_t objects = inInput.objects;
+  uint32_t first = 0, last = 0;
+  bool fits = true;
+  for (std::size_t k = begin; k < end && fits; ++k) {
+    // The records are read in secondary order, at random: fetch them ahead.
+    if (k + kScatterPrefetchAhead < end) {
+      const uint32_t ahead = inInput.secondary_order[k + kScatterPrefetchAhead];
+      __builtin_prefetch(&inInput.ranges[ahead - (ahead >= objects ? objects : 0u)]);
+    }
+    const Endpoint endpoint = endpointOfOrder(inInput, k);
+    partitionsOf(endpoint, inSplit, first, last);
+    for (uint32_t p = first; p <= last; ++p) {
+      if (cursor[p] == limit[p]) {
+        fits = false;
+        break;
+      }
+      out[cursor[p]++] = entryFor(endpoint, p, inSplit);
+    }
+  }
+  for (uint32_t p = 0; p < partitions; ++p)
+    ioWork.segment_end[std::size_t(p) * inSlices + inSlice] = cursor[p];
+  return fits;
+}
+
+// Scatter in one pass, straight from the secondary order and the boxes' records, into
+// segments sized from the last frame's (no stream, no counting pass). Returns false, with the
+// entries incomplete, when a segment outgrew its room: then the caller scatters counted.
+bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                           SweepWorkspace& ioWork) {
+  const std::size_t segments = std::size_t(inSplit.count) * inSlices;
+  std::size_t offset = 0;
+  for (std::size_t s = 0; s < segments; ++s) {
+    ioWork.segment_begin[s] = offset;
+    offset += segmentRoom(ioWork.last_layout.segment_used[s]);
+  }
+  resizeDiscarding(ioWork.partition_entries, offset);
+  const std::size_t stride = counterStride(inSplit.count);
+  ioWork.scatter_counts.assign(std::size_t(inSlices) * stride, 0);
+  bool fits = true;
+#pragma omp parallel num_threads(inSlices) reduction(&& : fits)
+  for (int slice = omp_get_thread_num(); slice < inSlices; slice += omp_get_num_threads()) {
+    std::size_t* cursor = &ioWork.scatter_counts[std::size_t(slice) * stride];
+    fits = scatterSliceIntoRoom(inInput, slice, inSlices, inSplit, cursor, ioWork) && fits;
+  }
+  return fits;
+}
+
+// Copies each endpoint of the secondary order to the entry segments of the partitions it
+// matters to, keeping sweep order within each (thread t's segment of a partition holds the
+// entries of its slice of the order, so the segments in thread order are in sweep order).
+// When the last frame had the same split, straight into its layout; otherwise, or when a
+// segment outgrows it, counted.
+void scatterToPartitions(const PairingInput& inInput, int inThreads, const RankPartitions& inSplit,
+                         SweepWorkspace& ioWork) {
+  const std::size_t segments = std::size_t(inSplit.count) * inThreads;
+  ioWork.segment_begin.resize(segments);
+  ioWork.segment_end.resize(segments);
+  ScatterLayout& layout = ioWork.last_layout;
+  const bool same_split = layout.threads == inThreads && layout.shift == inSplit.shift &&
+                          layout.partitions == inSplit.count;
+  if (!same_split || !scatterIntoLastLayout(inInput, inThreads, inSplit, ioWork))
+    scatterCounted(inInput, inThreads, inSplit, ioWork);
+  if (!same_split) layout.partition_ms.assign(inSplit.count, 0.0);
+  layout.threads = inThreads;
+  layout.shift = inSplit.shift;
+  layout.partitions = inSplit.count;
+  layout.segment_used.resize(segments);
+  for (std::size_t s = 0; s < segments; ++s)
+    layout.segment_used[s] = ioWork.segment_end[s] - ioWork.segment_begin[s];
 }
 
 // Makes trees [inFirst, inFirst + inCount) of ioTrees empty trees over inSize ranks.
@@ -333,53 +506,65 @@ RankPartitions partitionRanks(uint32_t inObjects, int inThreads) {
   return split;
 }
 
-// Sweeps partition inPartition of the scattered entries with ioTrees (slab_count trees of the
-// partition's size, left empty again by the sweep).
-void sweepPartition(const PairingInput& inInput, const SweepWorkspace& inWork,
-                    const RankPartitions& inSplit, uint32_t inPartition, SuccTree* ioTrees,
-                    PairChunks& outPairs) {
+// Sweeps partition inPartition of the scattered entries, segment after segment, with ioTrees
+// (slab_count trees of the partition's size, left empty again by the sweep), and records how
+// long it took.
+void sweepPartition(const PairingInput& inInput, SweepWorkspace& ioWork,
+                    const RankPartitions& inSplit, int inThreads, uint32_t inPartition,
+                    SuccTree* ioTrees, PairChunks& outPairs) {
+  const Clock::time_point start = Clock::now();
   const uint32_t rank_begin = inSplit.begin(inPartition);
   const uint32_t rank_end = std::min(inInput.objects, rank_begin + inSplit.size());
-  const std::size_t begin = inWork.partition_offsets[inPartition];
-  const std::size_t end = inWork.partition_offsets[inPartition + 1];
   PartitionSweep sweep(inInput, rank_begin, rank_end, ioTrees, outPairs);
-  sweep.run(PartitionReader{inWork.partition_entries.data() + begin, end - begin});
+  for (int t = 0; t < inThreads; ++t) {
+    const std::size_t segment = std::size_t(inPartition) * inThreads + t;
+    const std::size_t begin = ioWork.segment_begin[segment];
+    const std::size_t end = ioWork.segment_end[segment];
+    sweep.run(PartitionReader{ioWork.partition_entries.data() + begin, end - begin});
+  }
+  ioWork.last_layout.partition_ms[inPartition] = millisecondsSince(start);
+}
+
+// The order the partitions are handed out in: largest work first, so that the last ones
+// handed out are the small ones and the threads finish together (longest-processing-time-first
+// on a dynamic schedule). The work is the partition's measured sweep time in the last frame
+// where there was one with this split (frames change little from one to the next), else the
+// estimate of the counting scatter.
+void orderPartitions(const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+  std::vector<uint32_t>& order = ioWork.partition_order;
+  order.resize(inSplit.count);
+  std::iota(order.begin(), order.end(), 0u);
+  const std::vector<double>& measured = ioWork.last_layout.partition_ms;
+  if (std::all_of(measured.begin(), measured.end(), [](double inMs) { return inMs > 0.0; })) {
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t inA, uint32_t inB) { return measured[inA] > measured[inB]; });
+  } else {
+    const std::vector<std::size_t>& estimate = ioWork.partition_work;
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t inA, uint32_t inB) { return estimate[inA] > estimate[inB]; });
+  }
 }
 
 }  // namespace
-
-void buildSecondaryStream(const uint32_t* inSecondaryOrder, uint32_t inObjects,
-                          const CandidateRanges& inRanges, int inThreads, uint64_t* outStream) {
-  const std::size_t endpoints = 2 * std::size_t{inObjects};
-  const RankRange* ranges = inRanges.of_object.data();
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (std::size_t k = 0; k < endpoints; ++k) {
-    const uint32_t endpoint = inSecondaryOrder[k];
-    const bool is_high = endpoint >= inObjects;
-    const RankRange& range = ranges[is_high ? endpoint - inObjects : endpoint];
-    const uint32_t rank_and_kind = range.rank | (is_high ? secondary_stream::kHighBit : 0u);
-    outStream[2 * k] = rank_and_kind | (uint64_t{range.low} << 32);
-    outStream[2 * k + 1] = range.high;
-  }
-}
 
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
   const uint32_t n = inInput.objects;
   if (n <= kPairingPartitionRanks ||
       uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= kSequentialTreeBits) {
+    buildSecondaryStream(inInput, 1);
     prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
     PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
-    sweep.run(WholeStreamReader{inInput.stream, 2 * std::size_t{n}, n});
+    sweep.run(WholeStreamReader{inInput.stream_scratch, 2 * std::size_t{n}, n});
     return;
   }
   // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
-  // stream; on the big trees every insert, erase and range walk would miss the cache.
+  // order; on the big trees every insert, erase and range walk would miss the cache.
   const RankPartitions split = partitionRanks(n, 1);
   scatterToPartitions(inInput, 1, split, ioWork);
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
   for (uint32_t p = 0; p < split.count; ++p)
-    sweepPartition(inInput, ioWork, split, p, ioWork.pairing.data(), outPairs);
+    sweepPartition(inInput, ioWork, split, 1, p, ioWork.pairing.data(), outPairs);
 }
 
 void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
@@ -387,14 +572,7 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   const int threads = std::max(1, inThreads);
   const RankPartitions split = partitionRanks(inInput.objects, threads);  // Δ and m
   scatterToPartitions(inInput, threads, split, ioWork);
-  // Largest measured work first: the last partitions handed out are the small ones, so the
-  // threads finish together (longest-processing-time-first on a dynamic schedule).
-  std::vector<uint32_t>& order = ioWork.partition_order;
-  order.resize(split.count);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](uint32_t inA, uint32_t inB) {
-    return ioWork.partition_work[inA] > ioWork.partition_work[inB];
-  });
+  orderPartitions(split, ioWork);
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, split.size());
   outPairsPerThread.resize(threads);
@@ -406,7 +584,7 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
     pairs.clear();
 #pragma omp for schedule(dynamic, 1)
     for (uint32_t k = 0; k < split.count; ++k)
-      sweepPartition(inInput, ioWork, split, order[k], trees, pairs);
+      sweepPartition(inInput, ioWork, split, threads, ioWork.partition_order[k], trees, pairs);
   }
 }
 

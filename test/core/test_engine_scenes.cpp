@@ -1,6 +1,7 @@
 // The engine against the oracle on the paper's scenes, and over frame sequences: one Broadphase
 // reused while boxes move, and while boxes are added, removed, reordered and renamed.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <string>
 #include <vector>
@@ -139,6 +140,62 @@ TEST(EngineScenes, GrowingAndShrinkingAcrossTheAutoThreshold) {
     frames.push_back(test_support::randomBoxes(n, 24.0, 1.0, n + 3));
   }
   expectFramesMatch(frames, "growing and shrinking");
+}
+
+TEST(EngineScenes, PairingLayoutOfTheLastFrameOutgrownAndReused) {
+  // The parallel pairing scatters into segments sized from the last frame when its rank split
+  // is the same: a nearly repeated frame fits, a frame far denser (candidate ranges many times
+  // longer) outgrows them and is scattered again from counts, a sparser one fits loosely.
+  // Same box count throughout, so the split stays the same; several partitions per thread. A
+  // world of 0 repeats the last frame with one box moved (an unchanged frame is not swept).
+  const std::size_t n = 6000;
+  std::vector<BoxSet> frames;
+  for (double world : {30.0, 0.0, 9.0, 0.0, 30.0, 60.0, 9.0, 5.0, 30.0, 0.0, 9.0}) {
+    if (world > 0) {
+      frames.push_back(test_support::randomBoxes(n, world, 1.5, static_cast<uint64_t>(world)));
+    } else {
+      frames.push_back(frames.back());
+      frames.back().lo[0][0] -= 0.25;
+    }
+  }
+  std::vector<PairList> oracles;
+  for (const BoxSet& frame : frames) oracles.push_back(bruteForcePairs(frame));
+  for (int threads : {1, 2, 3, 4}) {
+    Broadphase broadphase(engineConfig(Method::kParallel, threads, 0, 1));
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      ASSERT_TRUE(samePairs(oracles[f], broadphase.update(frames[f])))
+          << "frame " << f << ", " << threads << " threads";
+    }
+  }
+}
+
+TEST(EngineScenes, UpdateInsideAnotherParallelRegion) {
+  // Nested regions inactive (the default): every parallel phase gets a team of one thread
+  // however many it asks for, and must still cover all of its slices.
+  const int saved_levels = omp_get_max_active_levels();
+  omp_set_max_active_levels(1);
+  SceneConfig config;
+  config.kind = SceneKind::kBallCluster;
+  config.n = 6000;
+  config.seed = 12;
+  config.frames = 100;
+  std::vector<BoxSet> frames;
+  std::vector<PairList> oracles;
+  for (int frame : {10, 11, 12, 30}) {
+    frames.push_back(makeSceneFrame(config, frame));
+    oracles.push_back(bruteForcePairs(frames.back()));
+  }
+  int mismatches = 0;
+#pragma omp parallel num_threads(2) reduction(+ : mismatches)
+  for (int threads : {2, 3}) {
+    BroadphaseConfig engine = engineConfig(Method::kParallel, threads, 0, 1);
+    engine.skin = 0.0;  // every frame swept
+    Broadphase broadphase(engine);
+    for (std::size_t f = 0; f < frames.size(); ++f)
+      mismatches += !samePairs(oracles[f], broadphase.update(frames[f]));
+  }
+  omp_set_max_active_levels(saved_levels);
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(EngineScenes, ResetForgetsTemporalStateOnly) {

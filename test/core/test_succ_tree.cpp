@@ -226,7 +226,8 @@ TEST(SuccTree, SymmetricDifferenceMatchesTheModel) {
 }
 
 TEST(SuccTree, AllPrefixSymmetricDifferenceOfPartitions) {
-  // Algorithm 3's use: per-slice toggles, then prefix ⊕ gives the set active at each slice start.
+  // The paper's Algorithm 3: per-slice toggles, then prefix ⊕ gives the set active at each
+  // slice start.
   TestRandom random(23);
   const uint32_t size = 20000;
   const int slices = 7;

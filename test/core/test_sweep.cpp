@@ -1,6 +1,7 @@
-// Candidate generation: Algorithm 3 (parallel, prefix ⊕ of per-slice SuccTrees) gives exactly
+// Candidate generation: Algorithm 3 (parallel, prefix ⊕ of per-slice object sets) gives exactly
 // Algorithm 1's ranks and ranges, and every range covers the object's primary-axis overlaps.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -93,6 +94,28 @@ TEST(Candidates, ParallelEqualsSequentialForEveryThreadCount) {
       }
     }
   }
+}
+
+TEST(Candidates, ParallelInsideAnotherParallelRegion) {
+  // Nested regions inactive (the default): the inner team has one thread, which must then
+  // take every slice itself.
+  const int saved_levels = omp_get_max_active_levels();
+  omp_set_max_active_levels(1);
+  const uint32_t objects = 5000;
+  const std::vector<uint32_t> order = primaryOrder(objects, 300, 99);
+  SuccTree active;
+  CandidateRanges sequential;
+  computeCandidatesSequential(order.data(), objects, active, sequential);
+  int mismatches = 0;
+#pragma omp parallel num_threads(2) reduction(+ : mismatches)
+  for (int threads : {2, 3, 4}) {
+    SweepWorkspace work;
+    CandidateRanges parallel;
+    computeCandidatesParallel(order.data(), objects, threads, work, parallel);
+    mismatches += !sameRanges(sequential, parallel);
+  }
+  omp_set_max_active_levels(saved_levels);
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(Candidates, ZeroObjectsWithAFreshWorkspace) {

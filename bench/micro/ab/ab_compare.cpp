@@ -4,8 +4,11 @@
 // LIBRARY a build of ab_engine.cpp with the engine (ab_build.sh), METHOD 0 auto, 1 parallel,
 // 2 sequential.
 //
-//   ab_compare [--scene uniform|ball|plane] [--n N] [--density D] [--speed S] [--frames F]
-//              [--runs R] [--skin auto|off] ENGINE...
+//   ab_compare [--scene uniform|ball|plane] [--first FRAME] [--n N] [--density D] [--speed S]
+//              [--frames F] [--runs R] [--skin auto|off] ENGINE...
+//
+// --first starts at that frame of the scene (default: 75 for the ball, the start of the
+// paper's intense frames; 225 for the plane, its crossing; 0 for the uniform scene).
 //
 // Prints per engine: a fresh engine's first frame (median over runs), the steady frame
 // (median and minimum over the later frames of all runs), the process CPU time of a steady
@@ -97,6 +100,7 @@ int main(int argc, char** argv) {
   scene.n = 1u << 17;
   scene.seed = 1;
   int first_frame = 0, frames = 8, runs = 3, skin_off = 1;
+  int first_frame_override = -1;  // --first: the scene's frame to start from
   std::vector<Engine> engines;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -111,6 +115,8 @@ int main(int argc, char** argv) {
         scene.plane_axis = 1;
         first_frame = 225;  // the crossing, frames 225..275 of 500
       }
+    } else if (arg == "--first" && has_value) {
+      first_frame_override = std::atoi(argv[++a]);
     } else if (arg == "--n" && has_value) {
       scene.n = std::strtoull(argv[++a], nullptr, 10);
     } else if (arg == "--density" && has_value) {
@@ -137,6 +143,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: ab_compare [options] LABEL=LIBRARY:METHOD:THREADS...\n");
     return 2;
   }
+  if (first_frame_override >= 0) first_frame = first_frame_override;
   bool same_pairs = true;
   for (int run = 0; run < runs; ++run) {
     SceneSimulator simulator(scene);
