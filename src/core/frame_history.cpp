@@ -75,25 +75,6 @@ BoundArrays boundArrays(const BoxSet& inBoxes, std::size_t inBegin) {
   return arrays;
 }
 
-// The same arrays of the history's copy, to write a block into.
-struct BoxSetArrays {
-  double* at[6];
-  BoundArrays constant() const {
-    BoundArrays arrays;
-    for (int array = 0; array < 6; ++array) arrays.at[array] = at[array];
-    return arrays;
-  }
-};
-
-BoxSetArrays mutableBoundArrays(BoxSet& ioBoxes, std::size_t inBegin) {
-  BoxSetArrays arrays;
-  for (int axis = 0; axis < 3; ++axis) {
-    arrays.at[axis] = ioBoxes.lo[axis].data() + inBegin;
-    arrays.at[3 + axis] = ioBoxes.hi[axis].data() + inBegin;
-  }
-  return arrays;
-}
-
 // inCount boxes, at most kBlock: outUnchanged[k] = 1 when every bound is bit for bit the one
 // before (0.0 to -0.0 is a change of size 0), and the largest change of one bound.
 BlockChanges compareBounds(const BoundArrays& inNow, const BoundArrays& inBefore,
@@ -217,12 +198,14 @@ FrameHistory::RecordsLoaded FrameHistory::compareAndLoadBoxByBox(const Interleav
         std::copy(block.ids, block.ids + count, last_.ids.begin() + begin);
         ++other_ids;
       }
-      const BoxSetArrays copy = mutableBoundArrays(last_, begin);
-      const BlockChanges changes =
-          compareBounds(boundArrays(block), copy.constant(), count, unchanged_.data() + begin);
+      const BlockChanges changes = compareBounds(boundArrays(block), boundArrays(last_, begin),
+                                                 count, unchanged_.data() + begin);
       if (changes.changed_boxes > 0) {
-        for (int array = 0; array < 6; ++array)
-          std::memcpy(copy.at[array], block.bounds[array], count * sizeof(double));
+        for (int axis = 0; axis < 3; ++axis) {
+          std::copy(block.bounds[axis], block.bounds[axis] + count, last_.lo[axis].begin() + begin);
+          std::copy(block.bounds[3 + axis], block.bounds[3 + axis] + count,
+                    last_.hi[axis].begin() + begin);
+        }
         moved += changes.changed_boxes;
       }
       max_displacement = std::max(max_displacement, changes.max_displacement);

@@ -161,7 +161,7 @@ bool FrameWorker::takeDeliveries() {
     }
     if (!ingest_.convert(key, *delivery.msg, converted_)) continue;
     std_msgs::Header header = delivery.msg->header;
-    if (!ingest_.fixedFrame().empty()) header.frame_id = ingest_.fixedFrame();  // moved there
+    header.frame_id = ingest_.fixedFrame();  // moved there
     sources_.store(key, converted_, header, delivery.received);
     status_.countProcessed();
     changed = true;

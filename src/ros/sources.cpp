@@ -161,7 +161,7 @@ bool SourceSet::fallBack(Source& ioSource) {
 }
 
 bool SourceSet::convertKept(const SourceKey& inKey, Source& ioSource, WorldAssembly& ioAssembly) {
-  while (ioSource.message && ioSource.converted != ioSource.message.get()) {
+  while (ioSource.unconverted()) {
     const BoxArray& message = *ioSource.message;
     if (auto reason = boxArrayToBoxSet(message, ioSource.boxes)) {
       ioSource.converted = nullptr;
@@ -204,7 +204,7 @@ std::vector<SourceKey> SourceSet::expire(
 }
 
 const std::vector<uint32_t>& SourceSet::sortedIds(Source& ioSource) {
-  const bool unconverted = ioSource.message && ioSource.converted != ioSource.message.get();
+  const bool unconverted = ioSource.unconverted();
   const std::size_t count =
       unconverted ? ioSource.message->bounds.size() / 6 : ioSource.boxes.size();
   if (ioSource.sorted_ids.size() != count) {
@@ -285,7 +285,7 @@ World SourceSet::assemble(const std::vector<uint32_t>& inStaticIds,
   world.boxes = &outWorld;
   if (merged.size() == 1) {
     const Source& only = merged[0]->second;
-    if (only.message && only.converted != only.message.get()) {
+    if (only.unconverted()) {
       world.boxes = nullptr;
       world.message = only.message.get();
       world.source = merged[0]->first;

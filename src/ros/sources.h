@@ -125,6 +125,8 @@ class SourceSet {
     BoxArrayConstPtr message;             // a frame kept as published; boxes hold it once converted
     BoxArrayConstPtr accepted;            // the last kept frame that passed its checks
     const BoxArray* converted = nullptr;  // the kept frame boxes hold, if any
+    /// A frame kept as published that boxes do not hold yet.
+    bool unconverted() const { return message && converted != message.get(); }
   };
   using SourceIt = std::map<SourceKey, Source>::iterator;
   /// The source's ids, sorted (cached until its next frame).

@@ -2,10 +2,10 @@
 #include <cmath>
 #include <limits>
 
-#include <boost/make_shared.hpp>
 #include <gtest/gtest.h>
 #include <tf2/LinearMath/Matrix3x3.h>
 #include <tf2/LinearMath/Quaternion.h>
+#include <boost/make_shared.hpp>
 
 #include "sap_broadphase/core/brute_force.h"
 #include "sources.h"
