@@ -13,7 +13,7 @@ const char* const kUsage =
     "usage: sap_bench [--experiment NAME[,NAME...]]... [options]\n"
     "  --experiment, -e NAME  experiment(s) to run; 'all' (default) runs every one\n"
     "  --list                 list the experiments and exit\n"
-    "  --out DIR              folder for CSV, .gp and .png files (default bench_out)\n"
+    "  --out DIR              folder for CSV and .png files (default bench_out)\n"
     "  --quick                small sizes and few frames (smoke tests, CI)\n"
     "  --max-n N              cap every box count at N (accepts 2^K)\n"
     "  --min-n N              drop sweep sizes below N (accepts 2^K)\n"

@@ -19,7 +19,7 @@ struct Options {
   int frames = 0;                        ///< frames per run (0 = default)
   int threads = 0;                       ///< threads of the parallel engine (0 = all cores)
   uint64_t seed = 1;                     ///< scene seed
-  bool plots = true;                     ///< write gnuplot scripts and run gnuplot
+  bool plots = true;                     ///< render PNG plots with gnuplot
   bool list = false;                     ///< print the experiment list and exit
 
   /// Runs for a configuration: --runs, else inDefault (quick: at most 2).

@@ -15,8 +15,9 @@ void publish(const Options& inOptions, const Table& inTable, const std::string& 
   } else {
     std::cout << "wrote " << csv << "\n";
   }
+  if (!inOptions.plots) return;
   for (const Figure& figure : inFigures) {
-    const std::string png = writeFigure(inOptions.out_dir, figure, inOptions.plots);
+    const std::string png = renderFigure(inOptions.out_dir, figure);
     if (!png.empty()) std::cout << "wrote " << png << "\n";
   }
 }

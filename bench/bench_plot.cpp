@@ -1,10 +1,10 @@
-// Writing gnuplot scripts with inline data and rendering them.
+// Rendering figures through gnuplot: the script, data inline, goes down a pipe, so only the
+// PNG is left beside the experiment's CSV.
 #include "bench_plot.h"
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <iterator>
 #include <sstream>
@@ -109,36 +109,34 @@ void writePanel(std::ostream& ioScript, const Panel& inPanel, std::size_t inPane
 
 }  // namespace
 
-std::string writeFigure(const std::string& inDir, const Figure& inFigure, bool inRunGnuplot) {
-  const std::string stem = inDir + "/" + inFigure.name;
+std::string renderFigure(const std::string& inDir, const Figure& inFigure) {
+  const std::string png = inDir + "/" + inFigure.name + ".png";
+  if (!gnuplotAvailable()) {
+    std::cerr << "sap_bench: gnuplot not found, no " << png << "\n";
+    return "";
+  }
   const std::size_t panels = inFigure.panels.size();
   const std::size_t columns = inFigure.columns > 0 ? inFigure.columns : panels;
   const std::size_t rows = (panels + columns - 1) / columns;
-  std::ofstream script(stem + ".gp");
-  if (!script) {
-    std::cerr << "sap_bench: cannot write " << stem << ".gp\n";
-    return "";
-  }
-  script << "# Made by sap_bench; render with: gnuplot " << inFigure.name << ".gp\n"
-         << "set terminal pngcairo size " << 560 * columns << "," << 420 * rows
+  std::ostringstream script;
+  script << "set terminal pngcairo size " << 560 * columns << "," << 420 * rows
          << " noenhanced font \"sans,10\"\n"
-         << "set output " << quoted(inFigure.name + ".png") << "\n"
+         << "set output " << quoted(png) << "\n"
          << "set grid\nset key outside below horizontal\nset style fill transparent solid 0.6 "
             "noborder\n";
   for (std::size_t p = 0; p < panels; ++p) writeData(script, inFigure.panels[p], p);
   script << "set multiplot layout " << rows << "," << columns << "\n";
   for (std::size_t p = 0; p < panels; ++p) writePanel(script, inFigure.panels[p], p);
   script << "unset multiplot\n";
-  script.close();
-  if (!inRunGnuplot || !gnuplotAvailable()) return "";
-  // Run inside inDir so the script's relative output name lands next to it.
-  const std::string command =
-      "cd " + quoted(inDir) + " && gnuplot " + quoted(inFigure.name + ".gp") + " 2>&1";
-  if (std::system(command.c_str()) != 0) {
-    std::cerr << "sap_bench: gnuplot failed on " << stem << ".gp\n";
+  FILE* gnuplot = popen("gnuplot", "w");
+  const std::string text = script.str();
+  const bool written = gnuplot && std::fwrite(text.data(), 1, text.size(), gnuplot) == text.size();
+  const bool finished = gnuplot && pclose(gnuplot) == 0;
+  if (!written || !finished) {
+    std::cerr << "sap_bench: gnuplot failed on " << png << "\n";
     return "";
   }
-  return stem + ".png";
+  return png;
 }
 
 }  // namespace sap_bench

@@ -1,5 +1,5 @@
-// PNG plots through gnuplot: each figure becomes a self-contained NAME.gp (data inline) and,
-// when gnuplot is on PATH, NAME.png next to the CSVs.
+// PNG plots through gnuplot: each figure becomes NAME.png next to the experiment's CSV when
+// gnuplot is on PATH.
 #pragma once
 
 #include <string>
@@ -58,8 +58,8 @@ struct Figure {
   int columns = 0;  ///< 0: all panels in one row
 };
 
-/// Writes DIR/NAME.gp and, when inRunGnuplot and gnuplot exists, renders DIR/NAME.png.
-/// Returns the PNG path, or an empty string when no PNG was made.
-std::string writeFigure(const std::string& inDir, const Figure& inFigure, bool inRunGnuplot);
+/// Renders DIR/NAME.png with gnuplot. Returns its path, or an empty string (and a line on
+/// stderr) when gnuplot is missing or fails.
+std::string renderFigure(const std::string& inDir, const Figure& inFigure);
 
 }  // namespace sap_bench

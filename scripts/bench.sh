@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The benchmarks (docs/BENCHMARKS.md). Installs the optional peers (CGAL, Bullet, FCL) and
 # gnuplot when missing, builds the workspace, runs every sap_bench experiment into
-# bench/results/<machine>/ (CSV, gnuplot scripts, PNG, log) and the Google Benchmark
-# microbenchmarks into the same folder.
+# bench/results/<machine>/ (a CSV and the PNGs per experiment, machine.txt) and the Google
+# Benchmark microbenchmarks (microbench.csv) into the same folder; each run overwrites the
+# last. The tables go to stdout.
 #
 # Usage: scripts/bench.sh [--quick] [--out DIR] [--no-install] [--no-micro] [-- SAP_BENCH_ARGS...]
 #   --quick       small sizes and few frames (minutes); results go to build/bench_quick/<machine>/
@@ -74,16 +75,14 @@ rm -f "$out/machine.txt"
 quick_flag=()
 [ "$quick" -eq 1 ] && quick_flag=(--quick)
 echo "bench.sh: results in $out"
-"$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e "$EXPERIMENTS" "${bench_args[@]}" \
-  | tee "$out/sap_bench.log"
+"$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e "$EXPERIMENTS" "${bench_args[@]}"
 # Memory in a process of its own, so earlier experiments' heap does not hide the peak.
-"$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e memory "${bench_args[@]}" \
-  | tee -a "$out/sap_bench.log"
+"$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e memory "${bench_args[@]}"
 
 if [ "$micro" -eq 1 ] && [ -x "$bin/sap_microbench" ]; then
-  micro_args=(--benchmark_out="$out/microbench.json" --benchmark_out_format=json)
+  micro_args=(--benchmark_out="$out/microbench.csv" --benchmark_out_format=csv)
   # Quick: the small sizes only, briefly.
   [ "$quick" -eq 1 ] && micro_args+=(--benchmark_min_time=0.01 "--benchmark_filter=[/:](1024|8192|32768|65536|131072)(/|$)|SuccTreeRange")
-  "$bin/sap_microbench" "${micro_args[@]}" | tee "$out/microbench.txt"
+  "$bin/sap_microbench" "${micro_args[@]}"
 fi
 echo "bench.sh: done; results in $out"

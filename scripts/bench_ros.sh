@@ -5,10 +5,10 @@
 # transports on the same frames, case by case: tcp (the node started here, another process)
 # and nodelet (sap_ros_latency loads BroadphaseNodelet into its own process: publisher, node
 # and measuring subscriber share it and pass the messages as pointers).
-# Results: bench/results/<machine>/ros_latency.csv and ros_latency_frames.csv, the table in
-# ros_latency.log, load and conditions in ros_latency_conditions.txt; the build and ROS logs
-# go to build/bench_ros_logs/. Stops every process it started, by PID, on exit or interrupt;
-# every step is time-bound.
+# Results: bench/results/<machine>/ros_latency.csv and ros_latency_frames.csv, load and
+# conditions in ros_latency_conditions.txt; the table on stdout and in
+# build/bench_ros_logs/ros_latency.log beside the build and ROS logs. Stops every process it
+# started, by PID, on exit or interrupt; every step is time-bound.
 #
 # Usage: scripts/bench_ros.sh [--quick] [--out DIR] [--limit S] [-- SAP_ROS_LATENCY_ARGS...]
 #   --quick     n = 2^12, 2^14, d = 0.05, few frames; results go to build/bench_quick/<machine>/
@@ -95,10 +95,10 @@ args=(--out "$out")
 rc=0
 # In the background so that the EXIT trap can stop it too, then waited for.
 timeout -s INT -k 10 "$limit" "$bin/sap_ros_latency" "${args[@]}" "${extra[@]}" \
-  >"$out/ros_latency.log" &
+  >"$logs/ros_latency.log" &
 PIDS+=($!)
 wait "${PIDS[-1]}" || rc=$?
-cat "$out/ros_latency.log"
+cat "$logs/ros_latency.log"
 echo "uptime after: $(uptime)" >>"$conditions"
 cat "$conditions"
 if [ "$rc" -ne 0 ]; then
