@@ -3,8 +3,10 @@
 
 #include <sys/utsname.h>
 
+#include <ctime>
 #include <fstream>
 #include <thread>
+#include <vector>
 
 namespace sap_bench {
 
@@ -30,6 +32,30 @@ std::string loadAverage() {
   std::string one, five, fifteen;
   if (!(file >> one >> five >> fifteen)) return "?";
   return one + " " + five + " " + fifteen;
+}
+
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+void recordExperimentRun(const std::string& inDir, const std::string& inName,
+                         const std::string& inConditions) {
+  const std::string path = inDir + "/machine.txt";
+  const std::string prefix = "experiment " + inName + ": ";
+  std::vector<std::string> kept;
+  std::ifstream previous(path);
+  for (std::string line; std::getline(previous, line);) {
+    if (line.rfind(prefix, 0) != 0) kept.push_back(line);
+  }
+  previous.close();
+  std::ofstream file(path, std::ios::trunc);
+  for (const std::string& line : kept) file << line << "\n";
+  file << prefix << inConditions << "\n";
 }
 
 }  // namespace sap_bench

@@ -1,12 +1,12 @@
 // sap_bench: the paper's experiments, the accuracy/speed trade-off and the peers.
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include "bench_machine.h"
 #include "bench_options.h"
 #include "bench_output.h"
 #include "bench_stats.h"
+#include "bench_table.h"
 #include "experiments.h"
 #include "sap_broadphase/core/broadphase.h"
 
@@ -83,19 +83,19 @@ int main(int argc, char** argv) {
     std::cerr << "sap_bench: cannot create " << options.out_dir << "\n";
     return 1;
   }
-  const std::string header = "sap_bench: " + machineSummary() + ", threads: " +
-                             std::to_string(sap_broadphase::resolveThreadCount(options.threads)) +
-                             (options.quick ? ", quick" : "") + ", load at start: " + loadAverage();
-  std::cout << header << "\n";
-  std::ofstream machine(options.out_dir + "/machine.txt", std::ios::app);
-  machine << header << "\n";
+  const std::string setting = machineSummary() + ", threads: " +
+                              std::to_string(sap_broadphase::resolveThreadCount(options.threads)) +
+                              (options.quick ? ", quick" : "");
+  std::cout << "sap_bench: " << setting << ", load: " << loadAverage() << "\n";
   for (const Experiment* experiment : chosen) {
     std::cerr << "== " << experiment->name << ": " << experiment->summary << "\n";
+    const std::string start = utcNow() + ", " + setting + ", load at start: " + loadAverage();
     Stopwatch clock;
     experiment->run(options);
     std::cerr << "== " << experiment->name << " done in " << clock.ms() / 1000.0 << " s\n";
-    machine << experiment->name << ": " << clock.ms() / 1000.0
-            << " s, load after: " << loadAverage() << "\n";
+    recordExperimentRun(
+        options.out_dir, experiment->name,
+        start + ", " + fmt(clock.ms() / 1000.0) + " s, load after: " + loadAverage());
   }
   return 0;
 }
