@@ -11,7 +11,7 @@ namespace sap_bench {
 /// What the user asked for; zero/empty values mean "the experiment's default".
 struct Options {
   std::vector<std::string> experiments;  ///< names to run, in order ("all" expands)
-  std::string out_dir = "bench_out";     ///< CSV, gnuplot scripts and PNGs go here
+  std::string out_dir = "bench_out";     ///< CSVs, PNGs and machine.txt go here
   bool quick = false;                    ///< small sizes, few frames: smoke tests and CI
   std::size_t max_n = 0;                 ///< cap on box counts (0 = none)
   std::size_t min_n = 0;                 ///< floor on box counts in size sweeps (0 = none)
