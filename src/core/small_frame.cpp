@@ -6,6 +6,7 @@
 // the result is exact. Floats halve the bytes a block reads and double the lanes of a vector.
 #include "core/small_frame.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,10 +40,9 @@ double relativeExtent(FrameSpread& ioSpread, int inAxis) {
 // order, inAxis first. Keys are measured from the frame's key origin, as the sweep's are: a
 // robot's few thousand boxes in UTM or Earth-centred coordinates would otherwise share their
 // float32 values and all become candidates of one another.
-void prepareSweep(const BoxSet& inBoxes, FrameSpread& ioSpread, int inAxis,
+void prepareSweep(const BoxSet& inBoxes, const KeyOrigin& origin, int inAxis,
                   SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
-  const KeyOrigin origin = keyOriginOf(ioSpread, 1);
   resizeDiscarding(ioWork.order, n);
   resizeDiscarding(ioWork.scratch, n);
   const double* sweep_low = inBoxes.lo[inAxis].data();
@@ -56,8 +56,8 @@ void prepareSweep(const BoxSet& inBoxes, FrameSpread& ioSpread, int inAxis,
     const int axis = (inAxis + slot) % 3;
     const double* low = inBoxes.lo[axis].data();
     const double* high = inBoxes.hi[axis].data();
-    std::vector<float>& sorted_low = ioWork.lo[slot];
-    std::vector<float>& sorted_high = ioWork.hi[slot];
+    Buffer<float>& sorted_low = ioWork.lo[slot];
+    Buffer<float>& sorted_high = ioWork.hi[slot];
     resizeDiscarding(sorted_low, n + kBlock);
     resizeDiscarding(sorted_high, n + kBlock);
     for (uint32_t k = 0; k < n; ++k) {
@@ -70,77 +70,79 @@ void prepareSweep(const BoxSet& inBoxes, FrameSpread& ioSpread, int inAxis,
   }
 }
 
-// Confirms a float hit between sweep positions inFirst and inSecond on the float64 input.
-inline void reportIfExact(const BoxSet& inBoxes, const uint32_t* inBoxOf, uint32_t inFirst,
-                          uint32_t inSecond, PairList& outPairs) {
-  const uint32_t a = inBoxOf[inFirst];
-  const uint32_t b = inBoxOf[inSecond];
-  if (boxesOverlap(inBoxes, a, b) && filtersAllow(inBoxes, a, b))
-    outPairs.push_back(makeIdPair(inBoxes.ids[a], inBoxes.ids[b]));
-}
+// The sweep-order float bounds of one run of candidates: all boxes (no grid) or the boxes of
+// one grid cell; axis 0 is the sweep axis, each low array padded with kBlock NaNs.
+struct SweepArrays {
+  const float* lo[3];
+  const float* hi[3];
+  uint32_t count;
+};
 
 // The sweep in blocks of kBlock candidates: sorted lows make the first low past the end of
-// box i the end of its candidates, and the NaN padding ends the last box's. Each block's test
-// is branch-free (bitwise, not short-circuit), so mispredictions stay with the rare hits and
-// the compiler may vectorise the lanes with whatever the target has.
-void sweepPortable(const BoxSet& inBoxes, const SmallFrameWorkspace& inWork, PairList& outPairs) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  const float* lo0 = inWork.lo[0].data();
-  const float* hi0 = inWork.hi[0].data();
-  const float* lo1 = inWork.lo[1].data();
-  const float* hi1 = inWork.hi[1].data();
-  const float* lo2 = inWork.lo[2].data();
-  const float* hi2 = inWork.hi[2].data();
-  for (uint32_t i = 0; i < n; ++i) {
-    const float low0 = lo0[i], high0 = hi0[i], low1 = lo1[i], high1 = hi1[i];
-    const float low2 = lo2[i], high2 = hi2[i];
+// box i the end of its candidates, and the NaN padding ends the last box's. The sweep-axis
+// test low_i <= hi_j holds for every j > i (sorted lows, outward keys: lo_j <= hi_j), so only
+// lo_j <= hi_i is tested on that axis. Each block's test is branch-free (bitwise, not
+// short-circuit), so mispredictions stay with the rare hits and the compiler may vectorise the
+// lanes with whatever the target has. inReport(i, j) receives each float hit.
+template <typename Report>
+void sweepPortable(const SweepArrays& inArrays, Report&& inReport) {
+  const float* lo0 = inArrays.lo[0];
+  const float* hi0 = inArrays.hi[0];
+  const float* lo1 = inArrays.lo[1];
+  const float* hi1 = inArrays.hi[1];
+  const float* lo2 = inArrays.lo[2];
+  const float* hi2 = inArrays.hi[2];
+  for (uint32_t i = 0; i < inArrays.count; ++i) {
+    const float high0 = hi0[i], low1 = lo1[i], high1 = hi1[i], low2 = lo2[i], high2 = hi2[i];
     for (uint32_t j = i + 1; lo0[j] <= high0; j += kBlock) {
       unsigned lanes = 0;
       for (uint32_t lane = 0; lane < kBlock; ++lane) {
         const uint32_t k = j + lane;
-        const bool hit = (lo0[k] <= high0) & (low0 <= hi0[k]) & (lo1[k] <= high1) &
-                         (low1 <= hi1[k]) & (lo2[k] <= high2) & (low2 <= hi2[k]);
+        const bool hit = (lo0[k] <= high0) & (lo1[k] <= high1) & (low1 <= hi1[k]) &
+                         (lo2[k] <= high2) & (low2 <= hi2[k]);
         lanes |= unsigned{hit} << lane;
       }
-      for (; lanes != 0; lanes &= lanes - 1)
-        reportIfExact(inBoxes, inWork.box_of.data(), i, j + __builtin_ctz(lanes), outPairs);
+      for (; lanes != 0; lanes &= lanes - 1) inReport(i, j + __builtin_ctz(lanes));
     }
   }
 }
 
 #if SAP_SMALL_FRAME_AVX2
-// The same sweep with each block's six compares as AVX2 instructions; a block may extend past
+// The same sweep with each block's five compares as AVX2 instructions; a block may extend past
 // the last candidate, whose extra lanes fail the sweep-axis test (or meet NaN padding).
-__attribute__((target("avx2"))) void sweepAvx2(const BoxSet& inBoxes,
-                                               const SmallFrameWorkspace& inWork,
-                                               PairList& outPairs) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  const float* lo0 = inWork.lo[0].data();
-  const float* hi0 = inWork.hi[0].data();
-  const float* lo1 = inWork.lo[1].data();
-  const float* hi1 = inWork.hi[1].data();
-  const float* lo2 = inWork.lo[2].data();
-  const float* hi2 = inWork.hi[2].data();
-  for (uint32_t i = 0; i < n; ++i) {
+template <typename Report>
+__attribute__((target("avx2"))) void sweepAvx2(const SweepArrays& inArrays, Report&& inReport) {
+  const float* lo0 = inArrays.lo[0];
+  const float* hi0 = inArrays.hi[0];
+  const float* lo1 = inArrays.lo[1];
+  const float* hi1 = inArrays.hi[1];
+  const float* lo2 = inArrays.lo[2];
+  const float* hi2 = inArrays.hi[2];
+  for (uint32_t i = 0; i < inArrays.count; ++i) {
     const float end = hi0[i];
-    const __m256 high0 = _mm256_set1_ps(end), low0 = _mm256_set1_ps(lo0[i]);
+    const __m256 high0 = _mm256_set1_ps(end);
     const __m256 high1 = _mm256_set1_ps(hi1[i]), low1 = _mm256_set1_ps(lo1[i]);
     const __m256 high2 = _mm256_set1_ps(hi2[i]), low2 = _mm256_set1_ps(lo2[i]);
     for (uint32_t j = i + 1; lo0[j] <= end; j += kBlock) {
-      __m256 hit = _mm256_and_ps(_mm256_cmp_ps(_mm256_loadu_ps(lo0 + j), high0, _CMP_LE_OQ),
-                                 _mm256_cmp_ps(low0, _mm256_loadu_ps(hi0 + j), _CMP_LE_OQ));
+      __m256 hit = _mm256_cmp_ps(_mm256_loadu_ps(lo0 + j), high0, _CMP_LE_OQ);
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_loadu_ps(lo1 + j), high1, _CMP_LE_OQ));
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(low1, _mm256_loadu_ps(hi1 + j), _CMP_LE_OQ));
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_loadu_ps(lo2 + j), high2, _CMP_LE_OQ));
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(low2, _mm256_loadu_ps(hi2 + j), _CMP_LE_OQ));
       for (auto lanes = static_cast<unsigned>(_mm256_movemask_ps(hit)); lanes != 0;
            lanes &= lanes - 1)
-        reportIfExact(inBoxes, inWork.box_of.data(), i, j + __builtin_ctz(lanes), outPairs);
+        inReport(i, j + __builtin_ctz(lanes));
     }
   }
 }
-
 #endif
+
+// Confirms a float hit between boxes inFirst and inSecond on the float64 input.
+inline void reportIfExact(const BoxSet& inBoxes, uint32_t inFirst, uint32_t inSecond,
+                          PairList& outPairs) {
+  if (boxesOverlap(inBoxes, inFirst, inSecond) && filtersAllow(inBoxes, inFirst, inSecond))
+    outPairs.push_back(makeIdPair(inBoxes.ids[inFirst], inBoxes.ids[inSecond]));
+}
 
 bool cpuHasAvx2() {
 #if SAP_SMALL_FRAME_AVX2
@@ -151,14 +153,157 @@ bool cpuHasAvx2() {
 #endif
 }
 
-template <typename Sweep>
+template <typename Report>
+void sweepWith(bool inAvx2, const SweepArrays& inArrays, Report&& inReport) {
+#if SAP_SMALL_FRAME_AVX2
+  if (inAvx2) return sweepAvx2(inArrays, inReport);
+#endif
+  (void)inAvx2;
+  sweepPortable(inArrays, inReport);
+}
+
+// One axis of the cell grid laid over the two axes other than the sweep axis: equal cells
+// over the span of the finite bounds. A value's cell is monotone in the value (clamped at both
+// ends, so infinite bounds fall in the first or last cell), so two intervals that overlap both
+// contain the larger of their lows, and both reach its cell.
+struct GridAxis {
+  float base = 0.0f;
+  float scale = 0.0f;  ///< cells per unit
+  uint32_t cells = 1;
+
+  uint32_t of(float inValue) const {
+    if (cells == 1) return 0;
+    const float position = (inValue - base) * scale;
+    const float last = static_cast<float>(cells - 1);
+    return static_cast<uint32_t>(position > 0.0f ? std::min(position, last) : 0.0f);
+  }
+};
+
+// The cells of the grid on inAxis: as many as keep about kSmallFrameBoxesPerCell boxes in a
+// cell of an even scene, and no more than keep a cell kSmallFrameCellsPerExtent times wider
+// than the mean box (a box then spans one cell, rarely two, so few are copied into two).
+GridAxis gridAxis(FrameSpread& ioSpread, const KeyOrigin& inOrigin, int inAxis,
+                  std::size_t inBoxes) {
+  GridAxis grid;
+  const AxisSpread& spread = ioSpread.axis(inAxis, 1);
+  const double span = spread.span();
+  const double relative = relativeExtent(ioSpread, inAxis);
+  const double by_count = std::sqrt(static_cast<double>(inBoxes) / kSmallFrameBoxesPerCell);
+  const double by_extent = 1.0 / (kSmallFrameCellsPerExtent * relative);
+  const double cells = std::min({by_count, by_extent, double{kSmallFrameMaxCellsPerAxis}});
+  if (!(cells >= 2.0) || !std::isfinite(span)) return grid;
+  grid.cells = static_cast<uint32_t>(cells);
+  grid.base = static_cast<float>(spread.lowest - inOrigin.origin[inAxis]);
+  grid.scale = static_cast<float>(grid.cells / span);
+  if (!(grid.scale > 0.0f) || !std::isfinite(grid.scale)) grid = GridAxis();
+  return grid;
+}
+
+// The cells a box of sweep position inPosition reaches, packed as four bytes: first and last
+// cell on grid axis 0, then on grid axis 1.
+uint32_t cellRange(const SmallFrameWorkspace& inWork, const GridAxis (&inGrid)[2],
+                   uint32_t inPosition) {
+  return inGrid[0].of(inWork.lo[1][inPosition]) | inGrid[0].of(inWork.hi[1][inPosition]) << 8 |
+         inGrid[1].of(inWork.lo[2][inPosition]) << 16 |
+         inGrid[1].of(inWork.hi[2][inPosition]) << 24;
+}
+
+template <typename Visit>
+void forEachCell(uint32_t inRange, uint32_t inCells1, Visit&& inVisit) {
+  for (uint32_t a = inRange & 0xFF; a <= ((inRange >> 8) & 0xFF); ++a)
+    for (uint32_t b = (inRange >> 16) & 0xFF; b <= inRange >> 24; ++b) inVisit(a * inCells1 + b);
+}
+
+// Copies each box, in sweep order, into every cell it reaches; each cell's run stays sorted by
+// low key and is followed by kBlock NaNs, as the whole sweep's arrays are.
+void fillCells(const GridAxis (&inGrid)[2], uint32_t inBoxes, SmallFrameWorkspace& ioWork) {
+  const uint32_t cells = inGrid[0].cells * inGrid[1].cells;
+  Buffer<uint32_t>& start = ioWork.cell_start;
+  start.assign(cells + 1, 0);
+  resizeDiscarding(ioWork.cell_range, inBoxes);
+  for (uint32_t k = 0; k < inBoxes; ++k) {
+    const uint32_t range = cellRange(ioWork, inGrid, k);
+    ioWork.cell_range[k] = range;
+    forEachCell(range, inGrid[1].cells, [&](uint32_t cell) { ++start[cell + 1]; });
+  }
+  for (uint32_t cell = 0; cell < cells; ++cell) start[cell + 1] += start[cell] + kBlock;
+  const uint32_t entries = start[cells];
+  for (int slot = 0; slot < 3; ++slot) {
+    resizeDiscarding(ioWork.cell_lo[slot], entries);
+    resizeDiscarding(ioWork.cell_hi[slot], entries);
+  }
+  resizeDiscarding(ioWork.cell_box, entries);
+  resizeDiscarding(ioWork.cell_cursor, cells);
+  std::copy(start.begin(), start.end() - 1, ioWork.cell_cursor.begin());
+  for (uint32_t k = 0; k < inBoxes; ++k) {
+    forEachCell(ioWork.cell_range[k], inGrid[1].cells, [&](uint32_t cell) {
+      const uint32_t entry = ioWork.cell_cursor[cell]++;
+      for (int slot = 0; slot < 3; ++slot) {
+        ioWork.cell_lo[slot][entry] = ioWork.lo[slot][k];
+        ioWork.cell_hi[slot][entry] = ioWork.hi[slot][k];
+      }
+      ioWork.cell_box[entry] = ioWork.box_of[k];
+    });
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (uint32_t cell = 0; cell < cells; ++cell) {
+    for (uint32_t entry = ioWork.cell_cursor[cell]; entry < start[cell + 1]; ++entry) {
+      for (int slot = 0; slot < 3; ++slot)
+        ioWork.cell_lo[slot][entry] = ioWork.cell_hi[slot][entry] = nan;
+      ioWork.cell_box[entry] = 0;
+    }
+  }
+}
+
+// Sweeps each cell of the grid; a float hit is reported only in the cell of the larger lows
+// (the one cell both boxes reach that is a function of the pair alone), so a pair two boxes
+// share several cells is reported once.
+void sweepCells(const BoxSet& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
+                const SmallFrameWorkspace& inWork, PairList& outPairs) {
+  const uint32_t cells1 = inGrid[1].cells;
+  for (uint32_t cell = 0; cell + 1 < inWork.cell_start.size(); ++cell) {
+    const uint32_t first = inWork.cell_start[cell];
+    SweepArrays arrays;
+    for (int slot = 0; slot < 3; ++slot) {
+      arrays.lo[slot] = inWork.cell_lo[slot].data() + first;
+      arrays.hi[slot] = inWork.cell_hi[slot].data() + first;
+    }
+    arrays.count = inWork.cell_start[cell + 1] - first - kBlock;
+    const uint32_t* box = inWork.cell_box.data() + first;
+    sweepWith(inAvx2, arrays, [&](uint32_t i, uint32_t j) {
+      const uint32_t owner = inGrid[0].of(std::max(arrays.lo[1][i], arrays.lo[1][j])) * cells1 +
+                             inGrid[1].of(std::max(arrays.lo[2][i], arrays.lo[2][j]));
+      if (owner == cell) reportIfExact(inBoxes, box[i], box[j], outPairs);
+    });
+  }
+}
+
 void pairWith(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-              PairList& outPairs, Sweep&& inSweep) {
+              PairList& outPairs, bool inAvx2) {
   outPairs.clear();
   if (inBoxes.size() < 2) return;
   SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the small frame reads the spread of other boxes");
-  prepareSweep(inBoxes, ioSpread, chooseSmallFrameAxis(ioSpread), ioWork);
-  inSweep(inBoxes, ioWork, outPairs);
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  const int axis = chooseSmallFrameAxis(ioSpread);
+  const KeyOrigin origin = keyOriginOf(ioSpread, 1);
+  prepareSweep(inBoxes, origin, axis, ioWork);
+  const GridAxis grid[2] = {gridAxis(ioSpread, origin, (axis + 1) % 3, n),
+                            gridAxis(ioSpread, origin, (axis + 2) % 3, n)};
+  ioWork.grid_cells = grid[0].cells * grid[1].cells;
+  if (ioWork.grid_cells > 1) {
+    fillCells(grid, n, ioWork);
+    sweepCells(inBoxes, grid, inAvx2, ioWork, outPairs);
+  } else {
+    SweepArrays arrays;
+    for (int slot = 0; slot < 3; ++slot) {
+      arrays.lo[slot] = ioWork.lo[slot].data();
+      arrays.hi[slot] = ioWork.hi[slot].data();
+    }
+    arrays.count = n;
+    const uint32_t* box = ioWork.box_of.data();
+    sweepWith(inAvx2, arrays,
+              [&](uint32_t i, uint32_t j) { reportIfExact(inBoxes, box[i], box[j], outPairs); });
+  }
   sortPairsCanonical(outPairs, ioWork.pair_scratch);
 }
 
@@ -183,10 +328,7 @@ bool smallFrameUsesAvx2() {
 
 void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
                     PairList& outPairs) {
-#if SAP_SMALL_FRAME_AVX2
-  if (cpuHasAvx2()) return pairWith(inBoxes, ioSpread, ioWork, outPairs, sweepAvx2);
-#endif
-  pairWith(inBoxes, ioSpread, ioWork, outPairs, sweepPortable);
+  pairWith(inBoxes, ioSpread, ioWork, outPairs, cpuHasAvx2());
 }
 
 void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
@@ -197,7 +339,7 @@ void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList
 void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork,
                             PairList& outPairs) {
   FrameSpread spread(inBoxes);
-  pairWith(inBoxes, spread, ioWork, outPairs, sweepPortable);
+  pairWith(inBoxes, spread, ioWork, outPairs, false);
 }
 
 }  // namespace sap_broadphase

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/axis_spread.h"
+#include "core/buffers.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
 
@@ -28,18 +29,39 @@ constexpr std::size_t kSmallFrameMaxBoxesOneThread = std::size_t{1} << 14;
 /// 6.99 / 8.04, 20.0 / 15.4 ms); 2^14 keeps the margin for denser scenes.
 constexpr std::size_t kSmallFrameMaxBoxesParallel = std::size_t{1} << 14;
 
-/// Buffers of pairSmallFrame, reused from frame to frame (grown, never shrunk).
+/// The cell grid of a small frame (small_frame.cpp): boxes are laid into a grid over the two
+/// axes other than the sweep axis and each cell is swept alone, so a box meets only the
+/// candidates of its own cells instead of every box whose interval it crosses on the sweep
+/// axis. Cells per grid axis: at most sqrt(n / kSmallFrameBoxesPerCell) (a cell's fixed cost
+/// amortised over enough boxes), at most 1 / (kSmallFrameCellsPerExtent × the mean extent
+/// relative to the span) (few boxes copied into two cells), and at most
+/// kSmallFrameMaxCellsPerAxis (a cell index in a byte).
+constexpr double kSmallFrameBoxesPerCell = 128.0;
+constexpr double kSmallFrameCellsPerExtent = 4.0;
+constexpr uint32_t kSmallFrameMaxCellsPerAxis = 64;
+
+/// Buffers of pairSmallFrame, reused from frame to frame (grown, never shrunk; growth does not
+/// zero them).
 struct SmallFrameWorkspace {
-  std::vector<uint64_t> order;    ///< (low key << 32 | box) on the sweep axis, then sorted
-  std::vector<uint64_t> scratch;  ///< the radix sort's second buffer
+  Buffer<uint64_t> order;    ///< (low key << 32 | box) on the sweep axis, then sorted
+  Buffer<uint64_t> scratch;  ///< the radix sort's second buffer
   /// Float32 bounds rounded outward (sort_keys.h) relative to the frame's key origin
   /// (key_origin.h), in sweep order, structure of arrays: axis
   /// 0 is the sweep axis. Low arrays are padded with NaN so a block of candidates may read
   /// past the last box: NaN compares false, so padding never overlaps anything.
-  std::vector<float> lo[3];
-  std::vector<float> hi[3];
-  std::vector<uint32_t> box_of;  ///< box index of each sweep position
+  Buffer<float> lo[3];
+  Buffer<float> hi[3];
+  Buffer<uint32_t> box_of;  ///< box index of each sweep position
+  /// The grid's cells, one after the other, each as the whole sweep's arrays are (sorted by
+  /// low key, padded with kBlock NaNs): cell c's run begins at cell_start[c].
+  Buffer<float> cell_lo[3];
+  Buffer<float> cell_hi[3];
+  Buffer<uint32_t> cell_box;     ///< box index of each cell entry
+  Buffer<uint32_t> cell_start;   ///< first entry of each cell, then the total
+  Buffer<uint32_t> cell_cursor;  ///< next free entry of each cell while filling
+  Buffer<uint32_t> cell_range;   ///< the cells each sweep position reaches (packed)
   PairSortScratch pair_scratch;
+  uint32_t grid_cells = 1;  ///< cells of the last frame's grid (1: one sweep of all boxes)
 };
 
 /// The sweep axis of a small frame: the one whose mean box extent is smallest relative to the

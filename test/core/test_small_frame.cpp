@@ -1,0 +1,137 @@
+// The small frame's cell grid: boxes laid into cells over the two axes other than the sweep
+// axis, each cell swept alone, each pair reported in one cell only. Every case checks that the
+// grid really ran (more than one cell) and that both sweeps give exactly the oracle's pairs.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "core/small_frame.h"
+#include "sap_broadphase/core/brute_force.h"
+#include "test_support.h"
+
+namespace sap_broadphase {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void addBox(BoxSet& ioBoxes, const double (&inLow)[3], const double (&inHigh)[3]) {
+  ioBoxes.add(static_cast<uint32_t>(ioBoxes.size()), inLow, inHigh);
+}
+
+// Both sweeps, twice each on one workspace (the second run reuses its buffers), on a grid.
+void expectGridMatches(const BoxSet& inBoxes, const std::string& inLabel) {
+  const PairList oracle = bruteForcePairs(inBoxes);
+  SmallFrameWorkspace work;
+  PairList pairs;
+  for (int run = 0; run < 2; ++run) {
+    pairSmallFrame(inBoxes, work, pairs);
+    EXPECT_GT(work.grid_cells, 1u) << inLabel << ": the grid did not run";
+    EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << " (dispatched)";
+    pairSmallFramePortable(inBoxes, work, pairs);
+    EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << " (portable)";
+  }
+}
+
+TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
+  for (std::size_t n : {600u, 2000u, 9000u}) {
+    for (double edge : {0.5, 2.0, 6.0}) {
+      const BoxSet boxes = test_support::randomBoxes(n, 100.0, edge, n + 3);
+      expectGridMatches(boxes, std::to_string(n) + " boxes, edge " + std::to_string(edge));
+    }
+  }
+}
+
+// Boxes reaching across many cells, or infinitely far on a grid axis (first to last cell), and
+// boxes beyond the finite span: each pair once, however many cells the two boxes share.
+TEST(SmallFrameGrid, WideAndInfiniteBoxesReachEveryCell) {
+  BoxSet boxes = test_support::randomBoxes(4000, 100.0, 1.0, 41);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double at : {10.0, 50.0, 90.0}) {
+      double low[3] = {at, at, at}, high[3] = {at + 1, at + 1, at + 1};
+      low[axis] = -kInf;
+      high[axis] = kInf;
+      addBox(boxes, low, high);
+      low[axis] = -5.0;  // wider than the span, but finite
+      high[axis] = 105.0;
+      addBox(boxes, low, high);
+    }
+  }
+  addBox(boxes, {-kInf, -kInf, -kInf}, {kInf, kInf, kInf});
+  addBox(boxes, {20, -kInf, 30}, {21, -kInf, 31});  // a plane at -inf
+  addBox(boxes, {20, kInf, 30}, {21, kInf, 31});    // a plane at +inf
+  addBox(boxes, {20, kInf, 30}, {22, kInf, 32});
+  expectGridMatches(boxes, "wide and infinite");
+}
+
+// Integer lattice boxes: many faces touch exactly, some on the grid's cell edges, many have
+// zero extent; closed intervals make every touch a pair.
+TEST(SmallFrameGrid, TouchingFacesOnCellEdges) {
+  for (uint64_t seed : {1u, 2u}) {
+    expectGridMatches(test_support::latticeBoxes(6000, 64, 2, seed), "lattice");
+  }
+}
+
+// A scene spanning exactly [-64, 64] on each axis, so 2500 boxes make a 4-cell grid axis
+// whose cell edges are exact floats, 0 among them: boxes ending at -0.0 touch boxes starting
+// at 0.0 on each grid axis, right on a cell edge, and must pair across it.
+TEST(SmallFrameGrid, SignedZerosOnACellEdge) {
+  BoxSet boxes = test_support::randomBoxes(2500, 120.0, 1.0, 51);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      boxes.lo[axis][i] -= 60.0;
+      boxes.hi[axis][i] -= 60.0;
+    }
+  }
+  addBox(boxes, {-64, -64, -64}, {-63, -63, -63});
+  addBox(boxes, {63, 63, 63}, {64, 64, 64});
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double at : {-20.0, 5.0}) {
+      double low[3] = {at, at, at}, high[3] = {at + 1, at + 1, at + 1};
+      low[axis] = -1.0;
+      high[axis] = -0.0;
+      addBox(boxes, low, high);
+      low[axis] = 0.0;
+      high[axis] = 1.0;
+      addBox(boxes, low, high);
+      low[axis] = -0.0;
+      high[axis] = 0.0;
+      addBox(boxes, low, high);
+    }
+  }
+  expectGridMatches(boxes, "signed zeros");
+}
+
+// Identical boxes (equal keys on every axis) in clumps across the scene: every pair of a
+// clump, including clumps that straddle cell edges.
+TEST(SmallFrameGrid, IdenticalBoxesInClumps) {
+  BoxSet boxes = test_support::randomBoxes(3000, 100.0, 1.0, 61);
+  for (double at : {0.0, 25.0, 33.3, 50.0, 99.0}) {
+    for (int copy = 0; copy < 12; ++copy) addBox(boxes, {at, at, at}, {at + 2, at + 2, at + 2});
+  }
+  expectGridMatches(boxes, "identical clumps");
+}
+
+// Group and mask filters decide after the grid's float test, in whichever cell owns the pair.
+TEST(SmallFrameGrid, Filters) {
+  BoxSet boxes = test_support::randomBoxes(5000, 80.0, 4.0, 71);
+  test_support::addRandomFilters(boxes, 72);
+  for (std::size_t i = 0; i < boxes.size(); i += 13) boxes.groups[i] = 0;
+  expectGridMatches(boxes, "filters");
+}
+
+// Cells of every small count (0 to a few blocks), so that a cell's NaN padding ends each
+// block: a clustered scene with empty, nearly empty and full cells.
+TEST(SmallFrameGrid, CellsOfEveryOccupancy) {
+  BoxSet boxes = test_support::randomBoxes(3000, 20.0, 0.5, 81);
+  const BoxSet sparse = test_support::randomBoxes(300, 100.0, 0.5, 82);
+  for (std::size_t i = 0; i < sparse.size(); ++i) {
+    const double low[3] = {sparse.lo[0][i], sparse.lo[1][i], sparse.lo[2][i]};
+    const double high[3] = {sparse.hi[0][i], sparse.hi[1][i], sparse.hi[2][i]};
+    addBox(boxes, low, high);
+  }
+  expectGridMatches(boxes, "clustered");
+}
+
+}  // namespace
+}  // namespace sap_broadphase
