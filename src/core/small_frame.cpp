@@ -36,42 +36,8 @@ double relativeExtent(FrameSpread& ioSpread, int inAxis) {
   return spread.meanExtent() / span;
 }
 
-// Sorts the boxes by low key on inAxis and lays their outward float bounds out in sweep
-// order, inAxis first. Keys are measured from the frame's key origin, as the sweep's are: a
-// robot's few thousand boxes in UTM or Earth-centred coordinates would otherwise share their
-// float32 values and all become candidates of one another.
-void prepareSweep(const BoxSet& inBoxes, const KeyOrigin& origin, int inAxis,
-                  SmallFrameWorkspace& ioWork) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  resizeDiscarding(ioWork.order, n);
-  resizeDiscarding(ioWork.scratch, n);
-  const double* sweep_low = inBoxes.lo[inAxis].data();
-  for (uint32_t i = 0; i < n; ++i)
-    ioWork.order[i] = packKeyIndex(origin.low(inAxis, sweep_low[i]), i);
-  const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
-  resizeDiscarding(ioWork.box_of, n);
-  for (uint32_t k = 0; k < n; ++k) ioWork.box_of[k] = static_cast<uint32_t>(sorted[k]);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (int slot = 0; slot < 3; ++slot) {
-    const int axis = (inAxis + slot) % 3;
-    const double* low = inBoxes.lo[axis].data();
-    const double* high = inBoxes.hi[axis].data();
-    Buffer<float>& sorted_low = ioWork.lo[slot];
-    Buffer<float>& sorted_high = ioWork.hi[slot];
-    resizeDiscarding(sorted_low, n + kBlock);
-    resizeDiscarding(sorted_high, n + kBlock);
-    for (uint32_t k = 0; k < n; ++k) {
-      const uint32_t box = ioWork.box_of[k];
-      sorted_low[k] = keyToFloat(origin.low(axis, low[box]));
-      sorted_high[k] = keyToFloat(origin.high(axis, high[box]));
-    }
-    std::fill(sorted_low.begin() + n, sorted_low.end(), nan);
-    std::fill(sorted_high.begin() + n, sorted_high.end(), nan);
-  }
-}
-
-// The sweep-order float bounds of one run of candidates: all boxes (no grid) or the boxes of
-// one grid cell; axis 0 is the sweep axis, each low array padded with kBlock NaNs.
+// The sweep-order float bounds of one run of candidates, the boxes of one grid cell; axis 0 is
+// the sweep axis, each low array padded with kBlock NaNs.
 struct SweepArrays {
   const float* lo[3];
   const float* hi[3];
@@ -86,12 +52,8 @@ struct SweepArrays {
 // lanes with whatever the target has. inReport(i, j) receives each float hit.
 template <typename Report>
 void sweepPortable(const SweepArrays& inArrays, Report&& inReport) {
-  const float* lo0 = inArrays.lo[0];
-  const float* hi0 = inArrays.hi[0];
-  const float* lo1 = inArrays.lo[1];
-  const float* hi1 = inArrays.hi[1];
-  const float* lo2 = inArrays.lo[2];
-  const float* hi2 = inArrays.hi[2];
+  const float *lo0 = inArrays.lo[0], *lo1 = inArrays.lo[1], *lo2 = inArrays.lo[2];
+  const float *hi0 = inArrays.hi[0], *hi1 = inArrays.hi[1], *hi2 = inArrays.hi[2];
   for (uint32_t i = 0; i < inArrays.count; ++i) {
     const float high0 = hi0[i], low1 = lo1[i], high1 = hi1[i], low2 = lo2[i], high2 = hi2[i];
     for (uint32_t j = i + 1; lo0[j] <= high0; j += kBlock) {
@@ -112,12 +74,8 @@ void sweepPortable(const SweepArrays& inArrays, Report&& inReport) {
 // the last candidate, whose extra lanes fail the sweep-axis test (or meet NaN padding).
 template <typename Report>
 __attribute__((target("avx2"))) void sweepAvx2(const SweepArrays& inArrays, Report&& inReport) {
-  const float* lo0 = inArrays.lo[0];
-  const float* hi0 = inArrays.hi[0];
-  const float* lo1 = inArrays.lo[1];
-  const float* hi1 = inArrays.hi[1];
-  const float* lo2 = inArrays.lo[2];
-  const float* hi2 = inArrays.hi[2];
+  const float *lo0 = inArrays.lo[0], *lo1 = inArrays.lo[1], *lo2 = inArrays.lo[2];
+  const float *hi0 = inArrays.hi[0], *hi1 = inArrays.hi[1], *hi2 = inArrays.hi[2];
   for (uint32_t i = 0; i < inArrays.count; ++i) {
     const float end = hi0[i];
     const __m256 high0 = _mm256_set1_ps(end);
@@ -199,65 +157,158 @@ GridAxis gridAxis(FrameSpread& ioSpread, const KeyOrigin& inOrigin, int inAxis,
   return grid;
 }
 
-// The cells a box of sweep position inPosition reaches, packed as four bytes: first and last
-// cell on grid axis 0, then on grid axis 1.
-uint32_t cellRange(const SmallFrameWorkspace& inWork, const GridAxis (&inGrid)[2],
-                   uint32_t inPosition) {
-  return inGrid[0].of(inWork.lo[1][inPosition]) | inGrid[0].of(inWork.hi[1][inPosition]) << 8 |
-         inGrid[1].of(inWork.lo[2][inPosition]) << 16 |
-         inGrid[1].of(inWork.hi[2][inPosition]) << 24;
-}
-
 template <typename Visit>
 void forEachCell(uint32_t inRange, uint32_t inCells1, Visit&& inVisit) {
   for (uint32_t a = inRange & 0xFF; a <= ((inRange >> 8) & 0xFF); ++a)
     for (uint32_t b = (inRange >> 16) & 0xFF; b <= inRange >> 24; ++b) inVisit(a * inCells1 + b);
 }
 
-// Copies each box, in sweep order, into every cell it reaches; each cell's run stays sorted by
-// low key and is followed by kBlock NaNs, as the whole sweep's arrays are.
-void fillCells(const GridAxis (&inGrid)[2], uint32_t inBoxes, SmallFrameWorkspace& ioWork) {
+// Each box's outward float bounds relative to the key origin, six in a row: low and high on
+// inAxes[0] (the sweep axis), then on inAxes[1] and inAxes[2]. Keys are measured from the
+// frame's key origin, as the sweep's are: a robot's few thousand boxes in UTM or Earth-centred
+// coordinates would otherwise share their float32 values and all become candidates of one
+// another.
+void outwardBoundsPortable(const BoxSet& inBoxes, const KeyOrigin& inOrigin, const int (&inAxes)[3],
+                           uint32_t inFirst, float* outBounds) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  for (uint32_t i = inFirst; i < n; ++i) {
+    float* bounds = outBounds + 6 * std::size_t{i};
+    for (int slot = 0; slot < 3; ++slot) {
+      const int axis = inAxes[slot];
+      bounds[2 * slot] = keyToFloat(inOrigin.low(axis, inBoxes.lo[axis][i]));
+      bounds[2 * slot + 1] = keyToFloat(inOrigin.high(axis, inBoxes.hi[axis][i]));
+    }
+  }
+}
+
+#if SAP_SMALL_FRAME_AVX2
+// KeyOrigin::low (inLow) or high of four values at once, as floats: inValues - inOrigin as a
+// double and its rounding error (TwoSum), rounded to the nearest float, then one float down
+// (up) where that float lies above (below) the exact difference. One float down from +-0 is
+// the least negative denormal; from +inf (a finite difference beyond the floats) the largest
+// float.
+__attribute__((target("avx2"))) __m128 outwardFloats(__m256d inValues, __m256d inOrigin,
+                                                     bool inLow) {
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d difference = _mm256_sub_pd(inValues, inOrigin);
+  const __m256d back = _mm256_sub_pd(difference, inValues);
+  const __m256d error = _mm256_add_pd(_mm256_sub_pd(inValues, _mm256_sub_pd(difference, back)),
+                                      _mm256_sub_pd(_mm256_sub_pd(zero, inOrigin), back));
+  const __m128 nearest = _mm256_cvtpd_ps(difference);
+  const __m256d widened = _mm256_cvtps_pd(nearest);
+  const __m256d same = _mm256_cmp_pd(widened, difference, _CMP_EQ_OQ);
+  const __m256d wrong =
+      inLow ? _mm256_or_pd(_mm256_cmp_pd(widened, difference, _CMP_GT_OQ),
+                           _mm256_and_pd(same, _mm256_cmp_pd(error, zero, _CMP_LT_OQ)))
+            : _mm256_or_pd(_mm256_cmp_pd(widened, difference, _CMP_LT_OQ),
+                           _mm256_and_pd(same, _mm256_cmp_pd(error, zero, _CMP_GT_OQ)));
+  const __m128i step_lanes = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+      _mm256_castpd_si256(wrong), _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0)));
+  const __m128i bits = _mm_castps_si128(nearest);
+  const __m128i toward_larger = _mm_or_si128(_mm_srai_epi32(bits, 31), _mm_set1_epi32(1));
+  const __m128i delta = inLow ? _mm_sub_epi32(_mm_setzero_si128(), toward_larger) : toward_larger;
+  const __m128i is_zero =
+      _mm_cmpeq_epi32(_mm_and_si128(bits, _mm_set1_epi32(0x7FFFFFFF)), _mm_setzero_si128());
+  const __m128i from_zero = _mm_set1_epi32(inLow ? static_cast<int>(0x80000001u) : 1);
+  const __m128i stepped = _mm_blendv_epi8(_mm_add_epi32(bits, delta), from_zero, is_zero);
+  return _mm_castsi128_ps(_mm_blendv_epi8(bits, stepped, step_lanes));
+}
+
+// outwardBoundsPortable, four boxes at a time; the last few boxes on the portable loop.
+__attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxSet& inBoxes,
+                                                       const KeyOrigin& inOrigin,
+                                                       const int (&inAxes)[3], float* outBounds) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  uint32_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    alignas(16) float lanes[6][4];
+    for (int slot = 0; slot < 3; ++slot) {
+      const int axis = inAxes[slot];
+      const __m256d origin = _mm256_set1_pd(inOrigin.origin[axis]);
+      _mm_store_ps(lanes[2 * slot],
+                   outwardFloats(_mm256_loadu_pd(inBoxes.lo[axis].data() + i), origin, true));
+      _mm_store_ps(lanes[2 * slot + 1],
+                   outwardFloats(_mm256_loadu_pd(inBoxes.hi[axis].data() + i), origin, false));
+    }
+    for (uint32_t box = 0; box < 4; ++box)
+      for (int bound = 0; bound < 6; ++bound)
+        outBounds[6 * std::size_t{i + box} + bound] = lanes[bound][box];
+  }
+  outwardBoundsPortable(inBoxes, inOrigin, inAxes, i, outBounds);
+}
+#endif
+
+// One pass over the boxes in input order: their outward float bounds (six in a row, inAxis
+// first), the sort key of each low on inAxis, the cells each box reaches (packed as four
+// bytes: first and last cell on grid axis 0, then on grid axis 1) and each cell's count.
+void measureBoxes(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
+                  const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  resizeDiscarding(ioWork.order, n);
+  resizeDiscarding(ioWork.scratch, n);
+  resizeDiscarding(ioWork.bounds, 6 * std::size_t{n});
+  resizeDiscarding(ioWork.cell_range, n);
+  ioWork.cell_start.assign(inGrid[0].cells * inGrid[1].cells + 1, 0);
+  const int axes[3] = {inAxis, (inAxis + 1) % 3, (inAxis + 2) % 3};
+#if SAP_SMALL_FRAME_AVX2
+  if (inAvx2)
+    outwardBoundsAvx2(inBoxes, inOrigin, axes, ioWork.bounds.data());
+  else
+#endif
+    outwardBoundsPortable(inBoxes, inOrigin, axes, 0, ioWork.bounds.data());
+  (void)inAvx2;
+  for (uint32_t i = 0; i < n; ++i) {
+    const float* bounds = ioWork.bounds.data() + 6 * std::size_t{i};
+    ioWork.order[i] = packKeyIndex(floatKeyFlat(bounds[0]), i);
+    const uint32_t range = inGrid[0].of(bounds[2]) | inGrid[0].of(bounds[3]) << 8 |
+                           inGrid[1].of(bounds[4]) << 16 | inGrid[1].of(bounds[5]) << 24;
+    ioWork.cell_range[i] = range;
+    forEachCell(range, inGrid[1].cells, [&](uint32_t cell) { ++ioWork.cell_start[cell + 1]; });
+  }
+}
+
+// Sorts the boxes by low key on the sweep axis and copies each, in that order, into every cell
+// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs.
+void fillCells(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
+               const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, ioWork);
+  const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
   const uint32_t cells = inGrid[0].cells * inGrid[1].cells;
   Buffer<uint32_t>& start = ioWork.cell_start;
-  start.assign(cells + 1, 0);
-  resizeDiscarding(ioWork.cell_range, inBoxes);
-  for (uint32_t k = 0; k < inBoxes; ++k) {
-    const uint32_t range = cellRange(ioWork, inGrid, k);
-    ioWork.cell_range[k] = range;
-    forEachCell(range, inGrid[1].cells, [&](uint32_t cell) { ++start[cell + 1]; });
-  }
   for (uint32_t cell = 0; cell < cells; ++cell) start[cell + 1] += start[cell] + kBlock;
   const uint32_t entries = start[cells];
   for (int slot = 0; slot < 3; ++slot) {
-    resizeDiscarding(ioWork.cell_lo[slot], entries);
-    resizeDiscarding(ioWork.cell_hi[slot], entries);
+    resizeDiscarding(ioWork.lo[slot], entries);
+    resizeDiscarding(ioWork.hi[slot], entries);
   }
-  resizeDiscarding(ioWork.cell_box, entries);
+  resizeDiscarding(ioWork.box_of, entries);
   resizeDiscarding(ioWork.cell_cursor, cells);
   std::copy(start.begin(), start.end() - 1, ioWork.cell_cursor.begin());
-  for (uint32_t k = 0; k < inBoxes; ++k) {
-    forEachCell(ioWork.cell_range[k], inGrid[1].cells, [&](uint32_t cell) {
+  for (uint32_t k = 0; k < n; ++k) {
+    const auto box = static_cast<uint32_t>(sorted[k]);
+    const float* bounds = ioWork.bounds.data() + 6 * std::size_t{box};
+    forEachCell(ioWork.cell_range[box], inGrid[1].cells, [&](uint32_t cell) {
       const uint32_t entry = ioWork.cell_cursor[cell]++;
       for (int slot = 0; slot < 3; ++slot) {
-        ioWork.cell_lo[slot][entry] = ioWork.lo[slot][k];
-        ioWork.cell_hi[slot][entry] = ioWork.hi[slot][k];
+        ioWork.lo[slot][entry] = bounds[2 * slot];
+        ioWork.hi[slot][entry] = bounds[2 * slot + 1];
       }
-      ioWork.cell_box[entry] = ioWork.box_of[k];
+      ioWork.box_of[entry] = box;
     });
   }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (uint32_t cell = 0; cell < cells; ++cell) {
     for (uint32_t entry = ioWork.cell_cursor[cell]; entry < start[cell + 1]; ++entry) {
-      for (int slot = 0; slot < 3; ++slot)
-        ioWork.cell_lo[slot][entry] = ioWork.cell_hi[slot][entry] = nan;
-      ioWork.cell_box[entry] = 0;
+      for (int slot = 0; slot < 3; ++slot) ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
+      ioWork.box_of[entry] = 0;
     }
   }
 }
 
 // Sweeps each cell of the grid; a float hit is reported only in the cell of the larger lows
-// (the one cell both boxes reach that is a function of the pair alone), so a pair two boxes
-// share several cells is reported once.
+// (the one cell both boxes reach that is a function of the pair alone), so a pair whose boxes
+// share several cells is reported once. Without a grid, the one cell holds every box.
 void sweepCells(const BoxSet& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
                 const SmallFrameWorkspace& inWork, PairList& outPairs) {
   const uint32_t cells1 = inGrid[1].cells;
@@ -265,11 +316,11 @@ void sweepCells(const BoxSet& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
     const uint32_t first = inWork.cell_start[cell];
     SweepArrays arrays;
     for (int slot = 0; slot < 3; ++slot) {
-      arrays.lo[slot] = inWork.cell_lo[slot].data() + first;
-      arrays.hi[slot] = inWork.cell_hi[slot].data() + first;
+      arrays.lo[slot] = inWork.lo[slot].data() + first;
+      arrays.hi[slot] = inWork.hi[slot].data() + first;
     }
     arrays.count = inWork.cell_start[cell + 1] - first - kBlock;
-    const uint32_t* box = inWork.cell_box.data() + first;
+    const uint32_t* box = inWork.box_of.data() + first;
     sweepWith(inAvx2, arrays, [&](uint32_t i, uint32_t j) {
       const uint32_t owner = inGrid[0].of(std::max(arrays.lo[1][i], arrays.lo[1][j])) * cells1 +
                              inGrid[1].of(std::max(arrays.lo[2][i], arrays.lo[2][j]));
@@ -286,24 +337,11 @@ void pairWith(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace&
   const auto n = static_cast<uint32_t>(inBoxes.size());
   const int axis = chooseSmallFrameAxis(ioSpread);
   const KeyOrigin origin = keyOriginOf(ioSpread, 1);
-  prepareSweep(inBoxes, origin, axis, ioWork);
   const GridAxis grid[2] = {gridAxis(ioSpread, origin, (axis + 1) % 3, n),
                             gridAxis(ioSpread, origin, (axis + 2) % 3, n)};
   ioWork.grid_cells = grid[0].cells * grid[1].cells;
-  if (ioWork.grid_cells > 1) {
-    fillCells(grid, n, ioWork);
-    sweepCells(inBoxes, grid, inAvx2, ioWork, outPairs);
-  } else {
-    SweepArrays arrays;
-    for (int slot = 0; slot < 3; ++slot) {
-      arrays.lo[slot] = ioWork.lo[slot].data();
-      arrays.hi[slot] = ioWork.hi[slot].data();
-    }
-    arrays.count = n;
-    const uint32_t* box = ioWork.box_of.data();
-    sweepWith(inAvx2, arrays,
-              [&](uint32_t i, uint32_t j) { reportIfExact(inBoxes, box[i], box[j], outPairs); });
-  }
+  fillCells(inBoxes, origin, axis, grid, inAvx2, ioWork);
+  sweepCells(inBoxes, grid, inAvx2, ioWork, outPairs);
   sortPairsCanonical(outPairs, ioWork.pair_scratch);
 }
 

@@ -46,20 +46,19 @@ struct SmallFrameWorkspace {
   Buffer<uint64_t> order;    ///< (low key << 32 | box) on the sweep axis, then sorted
   Buffer<uint64_t> scratch;  ///< the radix sort's second buffer
   /// Float32 bounds rounded outward (sort_keys.h) relative to the frame's key origin
-  /// (key_origin.h), in sweep order, structure of arrays: axis
-  /// 0 is the sweep axis. Low arrays are padded with NaN so a block of candidates may read
-  /// past the last box: NaN compares false, so padding never overlaps anything.
+  /// (key_origin.h), six per box in input order: low and high on the sweep axis, then on the
+  /// two grid axes.
+  Buffer<float> bounds;
+  /// The grid's cells one after the other, each a run of its boxes sorted by low key on the
+  /// sweep axis (a box reaching several cells is in each), structure of arrays of the bounds
+  /// with axis 0 the sweep axis. Each run is followed by kBlock NaNs, so a block of candidates
+  /// may read past its last box: NaN compares false, so padding never overlaps anything.
   Buffer<float> lo[3];
   Buffer<float> hi[3];
-  Buffer<uint32_t> box_of;  ///< box index of each sweep position
-  /// The grid's cells, one after the other, each as the whole sweep's arrays are (sorted by
-  /// low key, padded with kBlock NaNs): cell c's run begins at cell_start[c].
-  Buffer<float> cell_lo[3];
-  Buffer<float> cell_hi[3];
-  Buffer<uint32_t> cell_box;     ///< box index of each cell entry
-  Buffer<uint32_t> cell_start;   ///< first entry of each cell, then the total
+  Buffer<uint32_t> box_of;       ///< box index of each entry of a run
+  Buffer<uint32_t> cell_start;   ///< first entry of each cell's run, then the total
   Buffer<uint32_t> cell_cursor;  ///< next free entry of each cell while filling
-  Buffer<uint32_t> cell_range;   ///< the cells each sweep position reaches (packed)
+  Buffer<uint32_t> cell_range;   ///< the cells each box reaches (packed, input order)
   PairSortScratch pair_scratch;
   uint32_t grid_cells = 1;  ///< cells of the last frame's grid (1: one sweep of all boxes)
 };

@@ -3,10 +3,13 @@
 // grid really ran (more than one cell) and that both sweeps give exactly the oracle's pairs.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <string>
 
+#include "core/key_origin.h"
 #include "core/small_frame.h"
+#include "core/sort_keys.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 
@@ -62,6 +65,66 @@ TEST(SmallFrameGrid, WideAndInfiniteBoxesReachEveryCell) {
   addBox(boxes, {20, kInf, 30}, {21, kInf, 31});    // a plane at +inf
   addBox(boxes, {20, kInf, 30}, {22, kInf, 32});
   expectGridMatches(boxes, "wide and infinite");
+}
+
+// Finite coordinates beyond the float range round outward to the largest float or infinity
+// (the four-lane conversion steps +inf down to the largest float for a low): boxes touching
+// out there, and boxes crossing the largest float, still pair exactly.
+TEST(SmallFrameGrid, CoordinatesBeyondTheFloatRange) {
+  BoxSet boxes = test_support::randomBoxes(3000, 100.0, 1.0, 45);
+  const double max_float = 3.4028234663852886e38;
+  for (double at : {1e39, -1e39, max_float, -max_float}) {
+    addBox(boxes, {at, 10, 10}, {at, 11, 11});
+    addBox(boxes, {at, 10.5, 10.5}, {at * 1.5, 12, 12});
+    addBox(boxes, {at * 0.5, 11, 11}, {at * 0.75, 12, 12});
+  }
+  addBox(boxes, {-max_float, 60, 60}, {max_float, 61, 61});
+  addBox(boxes, {-1e39, 60.5, 60.5}, {-max_float, 62, 62});
+  addBox(boxes, {max_float * 1.0000001, 60.5, 60.5}, {1e39, 62, 62});
+  expectGridMatches(boxes, "beyond the float range");
+}
+
+// The float bounds both sweeps test are the key origin's outward keys (KeyOrigin::low/high),
+// value for value, whichever conversion made them (four lanes at a time or one by one): values
+// that are floats, that fall between floats (above and below), that lose bits to the origin,
+// signed zeros, denormals, values beyond the float range and infinities.
+TEST(SmallFrameGrid, BoundsAreTheKeyOriginsOutwardKeys) {
+  test_support::TestRandom random(91);
+  BoxSet boxes;
+  const double awkward[] = {0.0,     -0.0, 1e-45,  -1e-45,  1e-300, 0.1,        -0.1,
+                            1.0 / 3, 3e38, 3.5e38, -3.5e38, 1e300,  5.4e6 + 0.1};
+  for (uint32_t i = 0; i < 1001; ++i) {
+    double low[3], high[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      const double base = 5.4e6 + random.unit() * 1000.0;
+      low[axis] = i % 3 == 0 ? awkward[random.below(std::size(awkward))] : base;
+      high[axis] = std::max(
+          low[axis], i % 5 == 0 ? awkward[random.below(std::size(awkward))] : base + random.unit());
+    }
+    if (i % 97 == 0) low[i % 3] = -kInf, high[(i + 1) % 3] = kInf;
+    addBox(boxes, low, high);
+  }
+  FrameSpread spread(boxes);
+  const int axis = chooseSmallFrameAxis(spread);
+  const KeyOrigin origin = keyOriginOf(spread, 1);
+  SmallFrameWorkspace work;
+  PairList pairs;
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    if (sweep == 0)
+      pairSmallFrame(boxes, work, pairs);
+    else
+      pairSmallFramePortable(boxes, work, pairs);
+    EXPECT_TRUE(test_support::samePairs(bruteForcePairs(boxes), pairs));
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      for (int slot = 0; slot < 3; ++slot) {
+        const int a = (axis + slot) % 3;
+        const float low = keyToFloat(origin.low(a, boxes.lo[a][i]));
+        const float high = keyToFloat(origin.high(a, boxes.hi[a][i]));
+        ASSERT_EQ(low, work.bounds[6 * i + 2 * slot]) << "box " << i << " axis " << a;
+        ASSERT_EQ(high, work.bounds[6 * i + 2 * slot + 1]) << "box " << i << " axis " << a;
+      }
+    }
+  }
 }
 
 // Integer lattice boxes: many faces touch exactly, some on the grid's cell edges, many have
