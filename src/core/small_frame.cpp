@@ -2,8 +2,9 @@
 //
 // Candidates are tested on float32 bounds rounded outward (sort_keys.h), measured from the
 // frame's key origin (key_origin.h) as the sweep's keys are, so a float test never
-// misses a true overlap; each float hit is confirmed on the float64 input by boxesOverlap, so
-// the result is exact. Floats halve the bytes a block reads and double the lanes of a vector.
+// misses a true overlap; each float hit is confirmed, by floats far enough apart or else on the
+// float64 input by boxesOverlap, so the result is exact. Floats halve the bytes a block reads and
+// double the lanes of a vector.
 #include "core/small_frame.h"
 
 #include <algorithm>
@@ -95,10 +96,32 @@ __attribute__((target("avx2"))) void sweepAvx2(const SweepArrays& inArrays, Repo
 }
 #endif
 
-// Confirms a float hit between boxes inFirst and inSecond on the float64 input.
-inline void reportIfExact(const BoxSet& inBoxes, uint32_t inFirst, uint32_t inSecond,
-                          PairList& outPairs) {
-  if (boxesOverlap(inBoxes, inFirst, inSecond) && filtersAllow(inBoxes, inFirst, inSecond))
+// True when an outward low inLow and an outward high inHigh prove low <= high for the exact
+// values they bound: the exact low lies at most one float above inLow and the exact high at
+// most one below inHigh, so a float strictly between the two settles it. Keys of adjacent
+// floats differ by one, except across zero, where -0.0's missing key makes it two: three keys
+// apart always leaves a float between.
+inline bool provesOrder(float inLow, float inHigh) {
+  return uint64_t{floatKeyFlat(inHigh)} >= uint64_t{floatKeyFlat(inLow)} + 3;
+}
+
+// True when the float bounds of entries i and j of a run prove the exact boxes overlap.
+inline bool provesOverlap(const SweepArrays& inArrays, uint32_t i, uint32_t j) {
+  bool proven = true;
+  for (int slot = 0; slot < 3; ++slot) {
+    proven &= provesOrder(inArrays.lo[slot][j], inArrays.hi[slot][i]) &
+              provesOrder(inArrays.lo[slot][i], inArrays.hi[slot][j]);
+  }
+  return proven;
+}
+
+// Reports a float hit between entries i and j of a run (boxes inFirst and inSecond) when the
+// exact boxes overlap: proven by the floats (most hits: no float64 bounds of two random boxes
+// fetched), else tested on the float64 input.
+inline void reportIfExact(const BoxSet& inBoxes, const SweepArrays& inArrays, uint32_t i,
+                          uint32_t j, uint32_t inFirst, uint32_t inSecond, PairList& outPairs) {
+  if ((provesOverlap(inArrays, i, j) || boxesOverlap(inBoxes, inFirst, inSecond)) &&
+      filtersAllow(inBoxes, inFirst, inSecond))
     outPairs.push_back(makeIdPair(inBoxes.ids[inFirst], inBoxes.ids[inSecond]));
 }
 
@@ -324,7 +347,7 @@ void sweepCells(const BoxSet& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
     sweepWith(inAvx2, arrays, [&](uint32_t i, uint32_t j) {
       const uint32_t owner = inGrid[0].of(std::max(arrays.lo[1][i], arrays.lo[1][j])) * cells1 +
                              inGrid[1].of(std::max(arrays.lo[2][i], arrays.lo[2][j]));
-      if (owner == cell) reportIfExact(inBoxes, box[i], box[j], outPairs);
+      if (owner == cell) reportIfExact(inBoxes, arrays, i, j, box[i], box[j], outPairs);
     });
   }
 }

@@ -37,7 +37,8 @@ void expectGridMatches(const BoxSet& inBoxes, const std::string& inLabel) {
 }
 
 TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
-  for (std::size_t n : {600u, 2000u, 9000u}) {
+  const auto per_cell = static_cast<std::size_t>(kSmallFrameBoxesPerCell);
+  for (std::size_t n : {4 * per_cell + 100, 9 * per_cell + 100, 40 * per_cell}) {
     for (double edge : {0.5, 2.0, 6.0}) {
       const BoxSet boxes = test_support::randomBoxes(n, 100.0, edge, n + 3);
       expectGridMatches(boxes, std::to_string(n) + " boxes, edge " + std::to_string(edge));
@@ -127,6 +128,35 @@ TEST(SmallFrameGrid, BoundsAreTheKeyOriginsOutwardKeys) {
   }
 }
 
+// Boxes that miss or overlap by less than a float's resolution, on every axis, around 50 and
+// around 0 (where -0.0 has no key of its own): the floats cannot tell these pairs, so each
+// hit must go to the float64 test, and every miss stays a miss.
+TEST(SmallFrameGrid, NearMissesBelowTheFloatResolution) {
+  BoxSet boxes = test_support::randomBoxes(3000, 100.0, 1.0, 95);
+  const double gaps[] = {-3e-6, -1e-7, -1e-12, 0.0, 1e-12, 1e-9, 1e-7, 3e-6, 8e-6};
+  double at = 20.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double gap : gaps) {
+      at += 2.5;
+      double low[3] = {at, at, at}, high[3] = {at + 1, at + 1, at + 1};
+      addBox(boxes, low, high);
+      low[axis] = high[axis] + gap;
+      high[axis] = low[axis] + 1.0;
+      addBox(boxes, low, high);
+    }
+    for (double below : {-2e-50, -1e-45, -0.0}) {
+      double low[3] = {90, 90, 90}, high[3] = {91, 91, 91};
+      low[axis] = -1.0;
+      high[axis] = below;
+      addBox(boxes, low, high);
+      low[axis] = -1e-50;
+      high[axis] = 1.0;
+      addBox(boxes, low, high);
+    }
+  }
+  expectGridMatches(boxes, "near misses");
+}
+
 // Integer lattice boxes: many faces touch exactly, some on the grid's cell edges, many have
 // zero extent; closed intervals make every touch a pair.
 TEST(SmallFrameGrid, TouchingFacesOnCellEdges) {
@@ -135,11 +165,12 @@ TEST(SmallFrameGrid, TouchingFacesOnCellEdges) {
   }
 }
 
-// A scene spanning exactly [-64, 64] on each axis, so 2500 boxes make a 4-cell grid axis
+// A scene spanning exactly [-64, 64] on each axis, with boxes enough for a 4-cell grid axis
 // whose cell edges are exact floats, 0 among them: boxes ending at -0.0 touch boxes starting
 // at 0.0 on each grid axis, right on a cell edge, and must pair across it.
 TEST(SmallFrameGrid, SignedZerosOnACellEdge) {
-  BoxSet boxes = test_support::randomBoxes(2500, 120.0, 1.0, 51);
+  const auto count = static_cast<std::size_t>(16 * kSmallFrameBoxesPerCell + 100);
+  BoxSet boxes = test_support::randomBoxes(count, 120.0, 1.0, 51);
   for (int axis = 0; axis < 3; ++axis) {
     for (std::size_t i = 0; i < boxes.size(); ++i) {
       boxes.lo[axis][i] -= 60.0;
@@ -162,6 +193,10 @@ TEST(SmallFrameGrid, SignedZerosOnACellEdge) {
       addBox(boxes, low, high);
     }
   }
+  SmallFrameWorkspace work;
+  PairList pairs;
+  pairSmallFrame(boxes, work, pairs);
+  ASSERT_EQ(work.grid_cells, 16u) << "0 is a cell edge of a 4 x 4 grid only";
   expectGridMatches(boxes, "signed zeros");
 }
 
