@@ -1,8 +1,9 @@
 // A busy machine: the engine's default configuration against one thread while 0, 1 or 2 busy
 // loops (child processes spinning, started and stopped here) share the cores, as on a robot's
 // computer. libgomp reads OMP_WAIT_POLICY once, when the process starts, so each policy (unset,
-// as `rosrun` starts the node, and passive) is measured in a child run of this executable with
-// that environment; the child prints one line per measurement and the parent tabulates them.
+// as `rosrun` starts the node, and passive) is measured in child runs of this executable with
+// that environment, one per configuration (one engine in a process, as in the node); a child
+// prints one line per size and the parent tabulates them.
 #include <signal.h>
 #include <sys/types.h>
 #include <sys/wait.h>
@@ -31,6 +32,9 @@ namespace {
 
 /// Set in a child run's environment: measure and print, don't orchestrate.
 constexpr const char* kChildVariable = "SAP_BENCH_BUSY_CHILD";
+/// Where a child run's sap_bench writes its machine log: not beside the results, which hold
+/// the parent's line only.
+constexpr const char* kChildOutDir = "/tmp/sap_bench_busy_child";
 /// The prefix of a child's result lines on its stdout.
 constexpr const char* kRowTag = "busy_row";
 /// Motion a frame, in mean box edges (as the size sweep's steady state).
@@ -38,13 +42,8 @@ constexpr double kSpeed = 0.01;
 constexpr double kDensity = 0.35;
 constexpr int kMaxBusyLoops = 2;
 
-/// The contenders: the default on the chosen threads, and on one thread.
-std::vector<std::pair<std::string, BroadphaseConfig>> contenders(int inThreads) {
-  BroadphaseConfig chosen;
-  chosen.threads = inThreads;
-  BroadphaseConfig one;
-  one.threads = 1;
-  return {{"sap_broadphase_t" + std::to_string(inThreads), chosen}, {"sap_broadphase_t1", one}};
+std::string contenderName(int inThreads) {
+  return "sap_broadphase_t" + std::to_string(inThreads);
 }
 
 double percentile90(std::vector<double> inValues) {
@@ -54,8 +53,8 @@ double percentile90(std::vector<double> inValues) {
   return inValues[std::max<std::size_t>(rank, 1) - 1];
 }
 
-/// The child's work: every contender in steady state over the same frames, their order
-/// alternating from frame to frame so neither always runs on the warmer cache; one row each.
+/// The child's work: the default configuration on --threads threads, alone in its process as
+/// in a node, in steady state over the scene's frames; one row per size.
 void measureInChild(const Options& inOptions) {
   const int threads = sap_broadphase::resolveThreadCount(inOptions.threads);
   const int frames = inOptions.framesOr(201, 21);
@@ -63,22 +62,18 @@ void measureInChild(const Options& inOptions) {
     sap_broadphase::SceneConfig scene = uniformScene(n, kDensity, inOptions.seed);
     scene.speed = kSpeed;
     FrameFeed feed(scene, 0);
-    const auto configs = contenders(threads);
-    std::vector<Broadphase> engines;
-    for (const auto& contender : configs) engines.emplace_back(contender.second);
-    std::vector<std::vector<double>> ms(engines.size());
+    BroadphaseConfig config;
+    config.threads = threads;
+    Broadphase engine(config);
+    std::vector<double> ms;
     for (int f = 0; f < frames; ++f) {
       if (f > 0) feed.step();
-      for (std::size_t k = 0; k < engines.size(); ++k) {
-        const std::size_t e = f % 2 == 0 ? k : engines.size() - 1 - k;
-        Stopwatch clock;
-        engines[e].update(feed.boxes());
-        if (f > 0) ms[e].push_back(clock.ms());  // frame 0 builds the steady state
-      }
+      Stopwatch clock;
+      engine.update(feed.boxes());
+      if (f > 0) ms.push_back(clock.ms());  // frame 0 builds the steady state
     }
-    for (std::size_t e = 0; e < engines.size(); ++e)
-      std::cout << kRowTag << " " << n << " " << configs[e].first << " " << median(ms[e]) << " "
-                << percentile90(ms[e]) << " " << ms[e].size() << "\n";
+    std::cout << kRowTag << " " << n << " " << contenderName(threads) << " " << median(ms) << " "
+              << percentile90(ms) << " " << ms.size() << "\n";
   }
   std::cout.flush();
 }
@@ -114,13 +109,15 @@ std::string selfPath() {
   return path;
 }
 
-/// Runs this executable as a child measuring under inPolicy ("" = unset) and parses its rows.
-std::vector<BusyRow> runChild(const Options& inOptions, const std::string& inPolicy) {
+/// Runs this executable as a child measuring the default on inThreads threads under inPolicy
+/// ("" = unset) and parses its rows.
+std::vector<BusyRow> runChild(const Options& inOptions, const std::string& inPolicy,
+                              int inThreads) {
   std::ostringstream command;
   command << "env -u OMP_WAIT_POLICY " << (inPolicy.empty() ? "" : "OMP_WAIT_POLICY=" + inPolicy)
           << " " << kChildVariable << "=1 '" << selfPath() << "' -e busy --no-plots --out '"
-          << inOptions.out_dir << "' --seed " << inOptions.seed << " --threads "
-          << inOptions.threads << (inOptions.quick ? " --quick" : "");
+          << kChildOutDir << "' --seed " << inOptions.seed << " --threads " << inThreads
+          << (inOptions.quick ? " --quick" : "");
   if (inOptions.frames > 0) command << " --frames " << inOptions.frames;
   if (!inOptions.only_sizes.empty()) {
     command << " --sizes ";
@@ -148,9 +145,11 @@ std::vector<BusyRow> runChild(const Options& inOptions, const std::string& inPol
 
 void runBusy(const Options& inOptions) {
   if (std::getenv(kChildVariable) != nullptr) return measureInChild(inOptions);
+  const int threads = sap_broadphase::resolveThreadCount(inOptions.threads);
   Table table(
       "Busy machine: ms per frame, steady at 1 % motion (uniform, d = 0.35), with busy loops "
-      "beside the engine; ratio = median / one thread's median in the same run",
+      "beside the engine, each configuration alone in a process; ratio = median / one thread's "
+      "median under the same load",
       {"n", "busy_loops", "omp_wait_policy", "contender", "median_ms", "p90_ms", "ratio_median",
        "frames"});
   std::map<std::size_t, std::map<std::string, Series>> medians, p90s;
@@ -159,12 +158,18 @@ void runBusy(const Options& inOptions) {
     for (int k = 0; k < busy; ++k) loops.push_back(startBusyLoop());
     for (const std::string policy : {"", "passive"}) {
       const std::string policyName = policy.empty() ? "unset" : policy;
-      const std::vector<BusyRow> rows = runChild(inOptions, policy);
+      // The chosen threads, then one thread, each in a child process of its own.
+      std::vector<BusyRow> rows = runChild(inOptions, policy, threads);
+      if (threads != 1) {
+        const std::vector<BusyRow> one = runChild(inOptions, policy, 1);
+        rows.insert(rows.end(), one.begin(), one.end());
+      }
+      std::stable_sort(rows.begin(), rows.end(),
+                       [](const BusyRow& inA, const BusyRow& inB) { return inA.n < inB.n; });
       for (const BusyRow& row : rows) {
         double oneThread = 0.0;
         for (const BusyRow& other : rows)
-          if (other.n == row.n && other.contender == "sap_broadphase_t1")
-            oneThread = other.median_ms;
+          if (other.n == row.n && other.contender == contenderName(1)) oneThread = other.median_ms;
         table.addRow({fmtSize(row.n), std::to_string(busy), policyName, row.contender,
                       fmt(row.median_ms), fmt(row.p90_ms), fmtRatio(row.median_ms, oneThread),
                       std::to_string(row.frames)});
