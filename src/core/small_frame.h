@@ -1,9 +1,10 @@
-// The small-frame path: one thread, one axis, no state kept between frames.
+// The small-frame path: one thread, no state kept between frames.
 //
 // Below a few thousand boxes the bi-dimensional sweep's fixed costs (two endpoint sorts, the
 // candidate ranges of Algorithm 1, SuccTrees sized to n) outweigh what it saves. A plain
-// single-axis sort-and-sweep then wins: sort the boxes by low end on the sweep axis, and test
-// each box against the boxes that start before it ends, several candidates at a time.
+// sort-and-sweep then wins: sort the boxes by low end on the sweep axis, lay them into the
+// cells of a grid over the two other axes, and test each box against the boxes of its cells
+// that start before it ends, several candidates at a time.
 #pragma once
 
 #include <cstddef>
