@@ -17,6 +17,7 @@ const char* const kUsage =
     "  --quick                small sizes and few frames (smoke tests, CI)\n"
     "  --max-n N              cap every box count at N (accepts 2^K)\n"
     "  --min-n N              drop sweep sizes below N (accepts 2^K)\n"
+    "  --sizes N[,N...]       the box counts of a size sweep instead of its own (accept 2^K)\n"
     "  --runs R               repetitions per configuration (medians are quoted)\n"
     "  --frames F             frames per run\n"
     "  --threads T            threads of the parallel engine (0 = all cores)\n"
@@ -55,6 +56,18 @@ void splitNames(const std::string& inText, std::vector<std::string>& ioNames) {
   }
 }
 
+bool parseCounts(const std::string& inText, std::vector<std::size_t>& outValues) {
+  std::vector<std::string> parts;
+  splitNames(inText, parts);
+  outValues.clear();
+  for (const std::string& part : parts) {
+    std::size_t value = 0;
+    if (!parseCount(part, value) || value == 0) return false;
+    outValues.push_back(value);
+  }
+  return !outValues.empty();
+}
+
 }  // namespace
 
 int Options::runsOr(int inDefault) const {
@@ -69,7 +82,9 @@ int Options::framesOr(int inFullDefault, int inQuickDefault) const {
 
 std::vector<std::size_t> Options::sizes(const std::vector<std::size_t>& inFull,
                                         const std::vector<std::size_t>& inQuick) const {
-  const std::vector<std::size_t>& base = quick ? inQuick : inFull;
+  const std::vector<std::size_t>& base = !only_sizes.empty() ? only_sizes
+                                         : quick             ? inQuick
+                                                             : inFull;
   std::vector<std::size_t> kept;
   for (std::size_t n : base) {
     if ((max_n == 0 || n <= max_n) && n >= min_n) kept.push_back(n);
@@ -122,6 +137,8 @@ bool parseOptions(int inArgc, char** inArgv, Options& outOptions, int& outExitCo
       ok = parseCount(value, outOptions.max_n);
     } else if (arg == "--min-n") {
       ok = parseCount(value, outOptions.min_n);
+    } else if (arg == "--sizes") {
+      ok = parseCounts(value, outOptions.only_sizes);
     } else if (arg == "--runs") {
       ok = parseInt(value, outOptions.runs);
     } else if (arg == "--frames") {

@@ -15,6 +15,7 @@ struct Options {
   bool quick = false;                    ///< small sizes, few frames: smoke tests and CI
   std::size_t max_n = 0;                 ///< cap on box counts (0 = none)
   std::size_t min_n = 0;                 ///< floor on box counts in size sweeps (0 = none)
+  std::vector<std::size_t> only_sizes;   ///< --sizes: a size sweep's box counts (empty = its own)
   int runs = 0;                          ///< repetitions per configuration (0 = default)
   int frames = 0;                        ///< frames per run (0 = default)
   int threads = 0;                       ///< threads of the parallel engine (0 = all cores)
@@ -26,8 +27,8 @@ struct Options {
   int runsOr(int inDefault) const;
   /// Frames per run: --frames, else inFullDefault (or inQuickDefault with --quick).
   int framesOr(int inFullDefault, int inQuickDefault) const;
-  /// The sizes to use: inQuick with --quick, else inFull; then filtered by --min-n/--max-n
-  /// (an empty result keeps the smallest size, capped).
+  /// The sizes to use: --sizes if given, else inQuick with --quick, else inFull; then filtered by
+  /// --min-n/--max-n (an empty result keeps the smallest size, capped).
   std::vector<std::size_t> sizes(const std::vector<std::size_t>& inFull,
                                  const std::vector<std::size_t>& inQuick) const;
   /// One size: inQuick with --quick, else inFull; capped by --max-n.

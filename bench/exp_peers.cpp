@@ -17,7 +17,7 @@
 #include "bench_stats.h"
 #include "engine_runner.h"
 #include "experiments.h"
-#include "peers/peer.h"
+#include "peer_runs.h"
 
 namespace sap_bench {
 
@@ -27,29 +27,6 @@ using sap_broadphase::BroadphaseConfig;
 using sap_broadphase::PairList;
 
 namespace {
-
-/// A peer that took longer than this for one frame (one-shot and steady together) is not run
-/// on the rest of the case's frames: its median then covers the frames it did run (the build
-/// frame, when it was stopped there). A peer whose cost per box on an earlier case predicts
-/// more than this for a frame is not run on the case at all.
-constexpr double kSlowFrameMs = 20000.0;
-
-/// Times, checks and memory of one contender over the frames of a case.
-struct Contender {
-  std::string name;
-  std::string family;
-  std::vector<double> one_shot_ms, steady_ms;
-  std::size_t wrong_one_shot = 0, wrong_steady = 0, frames_checked = 0;
-  std::size_t last_pairs = 0;
-  std::size_t memory_bytes = 0;
-  bool stopped_slow = false;
-  bool skipped_slow = false;  ///< not run: its cost per box on a smaller case predicts > limit
-};
-
-/// Per scene (kind and density) and peer, the most milliseconds per box one frame (one-shot and
-/// steady together) has cost so far. On the same scene, broad phases get no cheaper per box as
-/// n grows, so this times a larger case's n is a lower bound of that case's frame time.
-using PeerCosts = std::map<std::string, std::vector<double>>;
 
 /// FCL's sweep-and-prune and interval-tree managers keep, per box, every box overlapping it
 /// along one axis: on a clustered scene that is most of the scene. registerObjects() of the
@@ -64,12 +41,6 @@ bool quadraticOnClusters(const std::string& inPeerName) {
 
 std::string sceneKey(const BenchCase& inCase) {
   return inCase.scene + " " + fmt(inCase.density);
-}
-
-std::string pairStatus(std::size_t inWrong, std::size_t inFrames) {
-  if (inFrames == 0) return "-";
-  return inWrong == 0 ? "ok"
-                      : "WRONG(" + std::to_string(inWrong) + "/" + std::to_string(inFrames) + ")";
 }
 
 std::vector<BenchCase> peerCases(const Options& inOptions) {
@@ -113,30 +84,6 @@ std::vector<OursVariant> oursVariants(int inThreads) {
   return variants;
 }
 
-/// Runs one frame of an engine configuration both ways: a fresh engine (one-shot) and the
-/// kept one (steady), checking both against inTruth.
-void runOursFrame(Broadphase& ioSteady, const BroadphaseConfig& inConfig, const BoxSet& inBoxes,
-                  const PairList& inTruth, bool inTimed, Contender& ioEntry) {
-  ++ioEntry.frames_checked;
-  Stopwatch clock;
-  const PairList& kept = ioSteady.update(inBoxes);
-  const double steadyMs = clock.ms();
-  ioEntry.wrong_steady += kept != inTruth;
-  clock.restart();
-  Broadphase fresh(inConfig);
-  const PairList& once = fresh.update(inBoxes);
-  const double oneShotMs = clock.ms();
-  ioEntry.wrong_one_shot += once != inTruth;
-  ioEntry.last_pairs = kept.size();
-  if (inTimed) ioEntry.steady_ms.push_back(steadyMs), ioEntry.one_shot_ms.push_back(oneShotMs);
-}
-
-/// True when inPairs (any order) are exactly inTruth (canonical order).
-bool samePairs(PairList inPairs, const PairList& inTruth) {
-  sap_broadphase::sortPairsCanonical(inPairs);
-  return inPairs == inTruth;
-}
-
 /// Peak memory per contender while it builds its structure for the case's first frame and
 /// answers it (pairs included), each in turn.
 void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
@@ -158,31 +105,6 @@ void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
     ioContenders[inFirstPeer + p].memory_bytes = meter.grownBytes();
     ioPeers[p]->begin();  // frees the steady state
   }
-}
-
-/// Runs one peer on one frame, checking its pairs against inTruth.
-void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, bool inTimed,
-                  Contender& ioEntry, double& ioCostPerBox) {
-  if (ioEntry.stopped_slow || ioEntry.skipped_slow) return;
-  ++ioEntry.frames_checked;
-  const PeerResult once = ioPeer.oneShot(inBoxes);
-  ioEntry.wrong_one_shot += !samePairs(once.pairs, inTruth);
-  double steadyMs = once.ms;
-  if (ioPeer.incremental()) {
-    const PeerResult kept = ioPeer.step(inBoxes);
-    ioEntry.wrong_steady += !samePairs(kept.pairs, inTruth);
-    ioEntry.last_pairs = kept.pairs.size();
-    steadyMs = kept.ms;
-  } else {
-    ioEntry.wrong_steady += !samePairs(once.pairs, inTruth);
-    ioEntry.last_pairs = once.pairs.size();
-  }
-  ioEntry.stopped_slow = once.ms + steadyMs > kSlowFrameMs;
-  ioCostPerBox =
-      std::max(ioCostPerBox, (once.ms + steadyMs) / std::max<std::size_t>(1, inBoxes.size()));
-  // A peer stopped on the build frame keeps that frame's times: the only ones it has.
-  if (inTimed || (ioEntry.stopped_slow && ioEntry.one_shot_ms.empty()))
-    ioEntry.one_shot_ms.push_back(once.ms), ioEntry.steady_ms.push_back(steadyMs);
 }
 
 /// Runs every contender over the case's frames; frame 0 only builds the steady state.
@@ -216,19 +138,8 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
       if (f > 0) feed.step();
       const BoxSet& boxes = feed.boxes();
       const bool timed = f > 0 || inFrames == 1;
-      Stopwatch clock;
-      const PairList truth = steady.update(boxes);  // the copy is untimed
-      const double steadyMs = clock.ms();
-      clock.restart();
-      Broadphase fresh(oursConfig(inThreads));
-      const PairList& freshPairs = fresh.update(boxes);
-      const double oneShotMs = clock.ms();
-      const bool oneShotAgrees = freshPairs == truth;
-      Contender& ours = contenders[0];
-      ++ours.frames_checked;
-      ours.wrong_one_shot += !oneShotAgrees;
-      ours.last_pairs = truth.size();
-      if (timed) ours.steady_ms.push_back(steadyMs), ours.one_shot_ms.push_back(oneShotMs);
+      const PairList truth =
+          runReferenceFrame(steady, oursConfig(inThreads), boxes, timed, contenders[0]);
       for (std::size_t v = 0; v < variants.size(); ++v)
         runOursFrame(variant_engines[v], variants[v].config, boxes, truth, timed,
                      contenders[1 + v]);

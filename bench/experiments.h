@@ -20,6 +20,8 @@ void runMemory(const Options& inOptions);
 void runSkips(const Options& inOptions);
 void runCoherence(const Options& inOptions);
 void runDistributed(const Options& inOptions);
+void runSizes(const Options& inOptions);
+void runBusy(const Options& inOptions);
 
 /// One experiment: its name on the command line, a line of description, its function.
 struct Experiment {

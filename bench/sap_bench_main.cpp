@@ -36,6 +36,10 @@ const std::vector<Experiment>& allExperiments() {
       {"distributed",
        "MPI ranks of this machine: exchange and engine per frame, bytes, the cluster model",
        runDistributed},
+      {"sizes", "Frame time against n (2^8..2^20), default, one thread, no skin and peers",
+       runSizes},
+      {"busy", "Busy loops beside the engine: default against one thread, OMP_WAIT_POLICY",
+       runBusy},
   };
   return kExperiments;
 }

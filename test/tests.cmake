@@ -13,6 +13,7 @@ sap_add_gtest(test_core
   test/core/test_succ_tree.cpp
   test/core/test_radix_sort.cpp
   test/core/test_sweep.cpp
+  test/core/test_small_frame.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp
 )

@@ -2,10 +2,12 @@
 //
 // Candidates are tested on float32 bounds rounded outward (sort_keys.h), measured from the
 // frame's key origin (key_origin.h) as the sweep's keys are, so a float test never
-// misses a true overlap; each float hit is confirmed on the float64 input by boxesOverlap, so
-// the result is exact. Floats halve the bytes a block reads and double the lanes of a vector.
+// misses a true overlap; each float hit is confirmed, by floats far enough apart or else on the
+// float64 input by boxesOverlap, so the result is exact. Floats halve the bytes a block reads and
+// double the lanes of a vector.
 #include "core/small_frame.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -35,112 +37,93 @@ double relativeExtent(FrameSpread& ioSpread, int inAxis) {
   return spread.meanExtent() / span;
 }
 
-// Sorts the boxes by low key on inAxis and lays their outward float bounds out in sweep
-// order, inAxis first. Keys are measured from the frame's key origin, as the sweep's are: a
-// robot's few thousand boxes in UTM or Earth-centred coordinates would otherwise share their
-// float32 values and all become candidates of one another.
-void prepareSweep(const BoxSet& inBoxes, FrameSpread& ioSpread, int inAxis,
-                  SmallFrameWorkspace& ioWork) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  const KeyOrigin origin = keyOriginOf(ioSpread, 1);
-  resizeDiscarding(ioWork.order, n);
-  resizeDiscarding(ioWork.scratch, n);
-  const double* sweep_low = inBoxes.lo[inAxis].data();
-  for (uint32_t i = 0; i < n; ++i)
-    ioWork.order[i] = packKeyIndex(origin.low(inAxis, sweep_low[i]), i);
-  const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
-  resizeDiscarding(ioWork.box_of, n);
-  for (uint32_t k = 0; k < n; ++k) ioWork.box_of[k] = static_cast<uint32_t>(sorted[k]);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (int slot = 0; slot < 3; ++slot) {
-    const int axis = (inAxis + slot) % 3;
-    const double* low = inBoxes.lo[axis].data();
-    const double* high = inBoxes.hi[axis].data();
-    std::vector<float>& sorted_low = ioWork.lo[slot];
-    std::vector<float>& sorted_high = ioWork.hi[slot];
-    resizeDiscarding(sorted_low, n + kBlock);
-    resizeDiscarding(sorted_high, n + kBlock);
-    for (uint32_t k = 0; k < n; ++k) {
-      const uint32_t box = ioWork.box_of[k];
-      sorted_low[k] = keyToFloat(origin.low(axis, low[box]));
-      sorted_high[k] = keyToFloat(origin.high(axis, high[box]));
-    }
-    std::fill(sorted_low.begin() + n, sorted_low.end(), nan);
-    std::fill(sorted_high.begin() + n, sorted_high.end(), nan);
-  }
-}
-
-// Confirms a float hit between sweep positions inFirst and inSecond on the float64 input.
-inline void reportIfExact(const BoxSet& inBoxes, const uint32_t* inBoxOf, uint32_t inFirst,
-                          uint32_t inSecond, PairList& outPairs) {
-  const uint32_t a = inBoxOf[inFirst];
-  const uint32_t b = inBoxOf[inSecond];
-  if (boxesOverlap(inBoxes, a, b) && filtersAllow(inBoxes, a, b))
-    outPairs.push_back(makeIdPair(inBoxes.ids[a], inBoxes.ids[b]));
-}
+// The sweep-order float bounds of one run of candidates, the boxes of one grid cell; axis 0 is
+// the sweep axis, each low array padded with kBlock NaNs.
+struct SweepArrays {
+  const float* lo[3];
+  const float* hi[3];
+  uint32_t count;
+};
 
 // The sweep in blocks of kBlock candidates: sorted lows make the first low past the end of
-// box i the end of its candidates, and the NaN padding ends the last box's. Each block's test
-// is branch-free (bitwise, not short-circuit), so mispredictions stay with the rare hits and
-// the compiler may vectorise the lanes with whatever the target has.
-void sweepPortable(const BoxSet& inBoxes, const SmallFrameWorkspace& inWork, PairList& outPairs) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  const float* lo0 = inWork.lo[0].data();
-  const float* hi0 = inWork.hi[0].data();
-  const float* lo1 = inWork.lo[1].data();
-  const float* hi1 = inWork.hi[1].data();
-  const float* lo2 = inWork.lo[2].data();
-  const float* hi2 = inWork.hi[2].data();
-  for (uint32_t i = 0; i < n; ++i) {
-    const float low0 = lo0[i], high0 = hi0[i], low1 = lo1[i], high1 = hi1[i];
-    const float low2 = lo2[i], high2 = hi2[i];
+// box i the end of its candidates, and the NaN padding ends the last box's. The sweep-axis
+// test low_i <= hi_j holds for every j > i (sorted lows, outward keys: lo_j <= hi_j), so only
+// lo_j <= hi_i is tested on that axis. Each block's test is branch-free (bitwise, not
+// short-circuit), so mispredictions stay with the rare hits and the compiler may vectorise the
+// lanes with whatever the target has. inReport(i, j) receives each float hit.
+template <typename Report>
+void sweepPortable(const SweepArrays& inArrays, Report&& inReport) {
+  const float *lo0 = inArrays.lo[0], *lo1 = inArrays.lo[1], *lo2 = inArrays.lo[2];
+  const float *hi0 = inArrays.hi[0], *hi1 = inArrays.hi[1], *hi2 = inArrays.hi[2];
+  for (uint32_t i = 0; i < inArrays.count; ++i) {
+    const float high0 = hi0[i], low1 = lo1[i], high1 = hi1[i], low2 = lo2[i], high2 = hi2[i];
     for (uint32_t j = i + 1; lo0[j] <= high0; j += kBlock) {
       unsigned lanes = 0;
       for (uint32_t lane = 0; lane < kBlock; ++lane) {
         const uint32_t k = j + lane;
-        const bool hit = (lo0[k] <= high0) & (low0 <= hi0[k]) & (lo1[k] <= high1) &
-                         (low1 <= hi1[k]) & (lo2[k] <= high2) & (low2 <= hi2[k]);
+        const bool hit = (lo0[k] <= high0) & (lo1[k] <= high1) & (low1 <= hi1[k]) &
+                         (lo2[k] <= high2) & (low2 <= hi2[k]);
         lanes |= unsigned{hit} << lane;
       }
-      for (; lanes != 0; lanes &= lanes - 1)
-        reportIfExact(inBoxes, inWork.box_of.data(), i, j + __builtin_ctz(lanes), outPairs);
+      for (; lanes != 0; lanes &= lanes - 1) inReport(i, j + __builtin_ctz(lanes));
     }
   }
 }
 
 #if SAP_SMALL_FRAME_AVX2
-// The same sweep with each block's six compares as AVX2 instructions; a block may extend past
+// The same sweep with each block's five compares as AVX2 instructions; a block may extend past
 // the last candidate, whose extra lanes fail the sweep-axis test (or meet NaN padding).
-__attribute__((target("avx2"))) void sweepAvx2(const BoxSet& inBoxes,
-                                               const SmallFrameWorkspace& inWork,
-                                               PairList& outPairs) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  const float* lo0 = inWork.lo[0].data();
-  const float* hi0 = inWork.hi[0].data();
-  const float* lo1 = inWork.lo[1].data();
-  const float* hi1 = inWork.hi[1].data();
-  const float* lo2 = inWork.lo[2].data();
-  const float* hi2 = inWork.hi[2].data();
-  for (uint32_t i = 0; i < n; ++i) {
+template <typename Report>
+__attribute__((target("avx2"))) void sweepAvx2(const SweepArrays& inArrays, Report&& inReport) {
+  const float *lo0 = inArrays.lo[0], *lo1 = inArrays.lo[1], *lo2 = inArrays.lo[2];
+  const float *hi0 = inArrays.hi[0], *hi1 = inArrays.hi[1], *hi2 = inArrays.hi[2];
+  for (uint32_t i = 0; i < inArrays.count; ++i) {
     const float end = hi0[i];
-    const __m256 high0 = _mm256_set1_ps(end), low0 = _mm256_set1_ps(lo0[i]);
+    const __m256 high0 = _mm256_set1_ps(end);
     const __m256 high1 = _mm256_set1_ps(hi1[i]), low1 = _mm256_set1_ps(lo1[i]);
     const __m256 high2 = _mm256_set1_ps(hi2[i]), low2 = _mm256_set1_ps(lo2[i]);
     for (uint32_t j = i + 1; lo0[j] <= end; j += kBlock) {
-      __m256 hit = _mm256_and_ps(_mm256_cmp_ps(_mm256_loadu_ps(lo0 + j), high0, _CMP_LE_OQ),
-                                 _mm256_cmp_ps(low0, _mm256_loadu_ps(hi0 + j), _CMP_LE_OQ));
+      __m256 hit = _mm256_cmp_ps(_mm256_loadu_ps(lo0 + j), high0, _CMP_LE_OQ);
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_loadu_ps(lo1 + j), high1, _CMP_LE_OQ));
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(low1, _mm256_loadu_ps(hi1 + j), _CMP_LE_OQ));
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_loadu_ps(lo2 + j), high2, _CMP_LE_OQ));
       hit = _mm256_and_ps(hit, _mm256_cmp_ps(low2, _mm256_loadu_ps(hi2 + j), _CMP_LE_OQ));
       for (auto lanes = static_cast<unsigned>(_mm256_movemask_ps(hit)); lanes != 0;
            lanes &= lanes - 1)
-        reportIfExact(inBoxes, inWork.box_of.data(), i, j + __builtin_ctz(lanes), outPairs);
+        inReport(i, j + __builtin_ctz(lanes));
     }
   }
 }
-
 #endif
+
+// True when an outward low inLow and an outward high inHigh prove low <= high for the exact
+// values they bound: the exact low lies at most one float above inLow and the exact high at
+// most one below inHigh, so a float strictly between the two settles it. Keys of adjacent
+// floats differ by one, except across zero, where -0.0's missing key makes it two: three keys
+// apart always leaves a float between.
+inline bool provesOrder(float inLow, float inHigh) {
+  return uint64_t{floatKeyFlat(inHigh)} >= uint64_t{floatKeyFlat(inLow)} + 3;
+}
+
+// True when the float bounds of entries i and j of a run prove the exact boxes overlap.
+inline bool provesOverlap(const SweepArrays& inArrays, uint32_t i, uint32_t j) {
+  bool proven = true;
+  for (int slot = 0; slot < 3; ++slot) {
+    proven &= provesOrder(inArrays.lo[slot][j], inArrays.hi[slot][i]) &
+              provesOrder(inArrays.lo[slot][i], inArrays.hi[slot][j]);
+  }
+  return proven;
+}
+
+// Reports a float hit between entries i and j of a run (boxes inFirst and inSecond) when the
+// exact boxes overlap: proven by the floats (most hits: no float64 bounds of two random boxes
+// fetched), else tested on the float64 input.
+inline void reportIfExact(const BoxSet& inBoxes, const SweepArrays& inArrays, uint32_t i,
+                          uint32_t j, uint32_t inFirst, uint32_t inSecond, PairList& outPairs) {
+  if ((provesOverlap(inArrays, i, j) || boxesOverlap(inBoxes, inFirst, inSecond)) &&
+      filtersAllow(inBoxes, inFirst, inSecond))
+    outPairs.push_back(makeIdPair(inBoxes.ids[inFirst], inBoxes.ids[inSecond]));
+}
 
 bool cpuHasAvx2() {
 #if SAP_SMALL_FRAME_AVX2
@@ -151,14 +134,237 @@ bool cpuHasAvx2() {
 #endif
 }
 
-template <typename Sweep>
+template <typename Report>
+void sweepWith(bool inAvx2, const SweepArrays& inArrays, Report&& inReport) {
+#if SAP_SMALL_FRAME_AVX2
+  if (inAvx2) return sweepAvx2(inArrays, inReport);
+#endif
+  (void)inAvx2;
+  sweepPortable(inArrays, inReport);
+}
+
+// One axis of the cell grid laid over the two axes other than the sweep axis: equal cells
+// over the span of the finite bounds. A value's cell is monotone in the value (clamped at both
+// ends, so infinite bounds fall in the first or last cell), so two intervals that overlap both
+// contain the larger of their lows, and both reach its cell.
+struct GridAxis {
+  float base = 0.0f;
+  float scale = 0.0f;  ///< cells per unit
+  uint32_t cells = 1;
+
+  uint32_t of(float inValue) const {
+    if (cells == 1) return 0;
+    const float position = (inValue - base) * scale;
+    const float last = static_cast<float>(cells - 1);
+    return static_cast<uint32_t>(position > 0.0f ? std::min(position, last) : 0.0f);
+  }
+};
+
+// The cells of the grid on inAxis: as many as keep about kSmallFrameBoxesPerCell boxes in a
+// cell of an even scene, and no more than keep a cell kSmallFrameCellsPerExtent times wider
+// than the mean box (a box then spans one cell, rarely two, so few are copied into two).
+GridAxis gridAxis(FrameSpread& ioSpread, const KeyOrigin& inOrigin, int inAxis,
+                  std::size_t inBoxes) {
+  GridAxis grid;
+  const AxisSpread& spread = ioSpread.axis(inAxis, 1);
+  const double span = spread.span();
+  const double relative = relativeExtent(ioSpread, inAxis);
+  const double by_count = std::sqrt(static_cast<double>(inBoxes) / kSmallFrameBoxesPerCell);
+  const double by_extent = 1.0 / (kSmallFrameCellsPerExtent * relative);
+  const double cells = std::min({by_count, by_extent, double{kSmallFrameMaxCellsPerAxis}});
+  if (!(cells >= 2.0) || !std::isfinite(span)) return grid;
+  grid.cells = static_cast<uint32_t>(cells);
+  grid.base = static_cast<float>(spread.lowest - inOrigin.origin[inAxis]);
+  grid.scale = static_cast<float>(grid.cells / span);
+  if (!(grid.scale > 0.0f) || !std::isfinite(grid.scale)) grid = GridAxis();
+  return grid;
+}
+
+template <typename Visit>
+void forEachCell(uint32_t inRange, uint32_t inCells1, Visit&& inVisit) {
+  for (uint32_t a = inRange & 0xFF; a <= ((inRange >> 8) & 0xFF); ++a)
+    for (uint32_t b = (inRange >> 16) & 0xFF; b <= inRange >> 24; ++b) inVisit(a * inCells1 + b);
+}
+
+// Each box's outward float bounds relative to the key origin, six in a row: low and high on
+// inAxes[0] (the sweep axis), then on inAxes[1] and inAxes[2]. Keys are measured from the
+// frame's key origin, as the sweep's are: a robot's few thousand boxes in UTM or Earth-centred
+// coordinates would otherwise share their float32 values and all become candidates of one
+// another.
+void outwardBoundsPortable(const BoxSet& inBoxes, const KeyOrigin& inOrigin, const int (&inAxes)[3],
+                           uint32_t inFirst, float* outBounds) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  for (uint32_t i = inFirst; i < n; ++i) {
+    float* bounds = outBounds + 6 * std::size_t{i};
+    for (int slot = 0; slot < 3; ++slot) {
+      const int axis = inAxes[slot];
+      bounds[2 * slot] = keyToFloat(inOrigin.low(axis, inBoxes.lo[axis][i]));
+      bounds[2 * slot + 1] = keyToFloat(inOrigin.high(axis, inBoxes.hi[axis][i]));
+    }
+  }
+}
+
+#if SAP_SMALL_FRAME_AVX2
+// KeyOrigin::low (inLow) or high of four values at once, as floats: inValues - inOrigin as a
+// double and its rounding error (TwoSum), rounded to the nearest float, then one float down
+// (up) where that float lies above (below) the exact difference. One float down from +-0 is
+// the least negative denormal; from +inf (a finite difference beyond the floats) the largest
+// float.
+__attribute__((target("avx2"))) __m128 outwardFloats(__m256d inValues, __m256d inOrigin,
+                                                     bool inLow) {
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d difference = _mm256_sub_pd(inValues, inOrigin);
+  const __m256d back = _mm256_sub_pd(difference, inValues);
+  const __m256d error = _mm256_add_pd(_mm256_sub_pd(inValues, _mm256_sub_pd(difference, back)),
+                                      _mm256_sub_pd(_mm256_sub_pd(zero, inOrigin), back));
+  const __m128 nearest = _mm256_cvtpd_ps(difference);
+  const __m256d widened = _mm256_cvtps_pd(nearest);
+  const __m256d same = _mm256_cmp_pd(widened, difference, _CMP_EQ_OQ);
+  const __m256d wrong =
+      inLow ? _mm256_or_pd(_mm256_cmp_pd(widened, difference, _CMP_GT_OQ),
+                           _mm256_and_pd(same, _mm256_cmp_pd(error, zero, _CMP_LT_OQ)))
+            : _mm256_or_pd(_mm256_cmp_pd(widened, difference, _CMP_LT_OQ),
+                           _mm256_and_pd(same, _mm256_cmp_pd(error, zero, _CMP_GT_OQ)));
+  const __m128i step_lanes = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
+      _mm256_castpd_si256(wrong), _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0)));
+  const __m128i bits = _mm_castps_si128(nearest);
+  const __m128i toward_larger = _mm_or_si128(_mm_srai_epi32(bits, 31), _mm_set1_epi32(1));
+  const __m128i delta = inLow ? _mm_sub_epi32(_mm_setzero_si128(), toward_larger) : toward_larger;
+  const __m128i is_zero =
+      _mm_cmpeq_epi32(_mm_and_si128(bits, _mm_set1_epi32(0x7FFFFFFF)), _mm_setzero_si128());
+  const __m128i from_zero = _mm_set1_epi32(inLow ? static_cast<int>(0x80000001u) : 1);
+  const __m128i stepped = _mm_blendv_epi8(_mm_add_epi32(bits, delta), from_zero, is_zero);
+  return _mm_castsi128_ps(_mm_blendv_epi8(bits, stepped, step_lanes));
+}
+
+// outwardBoundsPortable, four boxes at a time; the last few boxes on the portable loop.
+__attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxSet& inBoxes,
+                                                       const KeyOrigin& inOrigin,
+                                                       const int (&inAxes)[3], float* outBounds) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  uint32_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    alignas(16) float lanes[6][4];
+    for (int slot = 0; slot < 3; ++slot) {
+      const int axis = inAxes[slot];
+      const __m256d origin = _mm256_set1_pd(inOrigin.origin[axis]);
+      _mm_store_ps(lanes[2 * slot],
+                   outwardFloats(_mm256_loadu_pd(inBoxes.lo[axis].data() + i), origin, true));
+      _mm_store_ps(lanes[2 * slot + 1],
+                   outwardFloats(_mm256_loadu_pd(inBoxes.hi[axis].data() + i), origin, false));
+    }
+    for (uint32_t box = 0; box < 4; ++box)
+      for (int bound = 0; bound < 6; ++bound)
+        outBounds[6 * std::size_t{i + box} + bound] = lanes[bound][box];
+  }
+  outwardBoundsPortable(inBoxes, inOrigin, inAxes, i, outBounds);
+}
+#endif
+
+// One pass over the boxes in input order: their outward float bounds (six in a row, inAxis
+// first), the sort key of each low on inAxis, the cells each box reaches (packed as four
+// bytes: first and last cell on grid axis 0, then on grid axis 1) and each cell's count.
+void measureBoxes(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
+                  const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  resizeDiscarding(ioWork.order, n);
+  resizeDiscarding(ioWork.scratch, n);
+  resizeDiscarding(ioWork.bounds, 6 * std::size_t{n});
+  resizeDiscarding(ioWork.cell_range, n);
+  ioWork.cell_start.assign(inGrid[0].cells * inGrid[1].cells + 1, 0);
+  const int axes[3] = {inAxis, (inAxis + 1) % 3, (inAxis + 2) % 3};
+#if SAP_SMALL_FRAME_AVX2
+  if (inAvx2)
+    outwardBoundsAvx2(inBoxes, inOrigin, axes, ioWork.bounds.data());
+  else
+#endif
+    outwardBoundsPortable(inBoxes, inOrigin, axes, 0, ioWork.bounds.data());
+  (void)inAvx2;
+  for (uint32_t i = 0; i < n; ++i) {
+    const float* bounds = ioWork.bounds.data() + 6 * std::size_t{i};
+    ioWork.order[i] = packKeyIndex(floatKeyFlat(bounds[0]), i);
+    const uint32_t range = inGrid[0].of(bounds[2]) | inGrid[0].of(bounds[3]) << 8 |
+                           inGrid[1].of(bounds[4]) << 16 | inGrid[1].of(bounds[5]) << 24;
+    ioWork.cell_range[i] = range;
+    forEachCell(range, inGrid[1].cells, [&](uint32_t cell) { ++ioWork.cell_start[cell + 1]; });
+  }
+}
+
+// Sorts the boxes by low key on the sweep axis and copies each, in that order, into every cell
+// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs.
+void fillCells(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
+               const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, ioWork);
+  const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
+  const uint32_t cells = inGrid[0].cells * inGrid[1].cells;
+  Buffer<uint32_t>& start = ioWork.cell_start;
+  for (uint32_t cell = 0; cell < cells; ++cell) start[cell + 1] += start[cell] + kBlock;
+  const uint32_t entries = start[cells];
+  for (int slot = 0; slot < 3; ++slot) {
+    resizeDiscarding(ioWork.lo[slot], entries);
+    resizeDiscarding(ioWork.hi[slot], entries);
+  }
+  resizeDiscarding(ioWork.box_of, entries);
+  resizeDiscarding(ioWork.cell_cursor, cells);
+  std::copy(start.begin(), start.end() - 1, ioWork.cell_cursor.begin());
+  for (uint32_t k = 0; k < n; ++k) {
+    const auto box = static_cast<uint32_t>(sorted[k]);
+    const float* bounds = ioWork.bounds.data() + 6 * std::size_t{box};
+    forEachCell(ioWork.cell_range[box], inGrid[1].cells, [&](uint32_t cell) {
+      const uint32_t entry = ioWork.cell_cursor[cell]++;
+      for (int slot = 0; slot < 3; ++slot) {
+        ioWork.lo[slot][entry] = bounds[2 * slot];
+        ioWork.hi[slot][entry] = bounds[2 * slot + 1];
+      }
+      ioWork.box_of[entry] = box;
+    });
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (uint32_t cell = 0; cell < cells; ++cell) {
+    for (uint32_t entry = ioWork.cell_cursor[cell]; entry < start[cell + 1]; ++entry) {
+      for (int slot = 0; slot < 3; ++slot) ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
+      ioWork.box_of[entry] = 0;
+    }
+  }
+}
+
+// Sweeps each cell of the grid; a float hit is reported only in the cell of the larger lows
+// (the one cell both boxes reach that is a function of the pair alone), so a pair whose boxes
+// share several cells is reported once. Without a grid, the one cell holds every box.
+void sweepCells(const BoxSet& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
+                const SmallFrameWorkspace& inWork, PairList& outPairs) {
+  const uint32_t cells1 = inGrid[1].cells;
+  for (uint32_t cell = 0; cell + 1 < inWork.cell_start.size(); ++cell) {
+    const uint32_t first = inWork.cell_start[cell];
+    SweepArrays arrays;
+    for (int slot = 0; slot < 3; ++slot) {
+      arrays.lo[slot] = inWork.lo[slot].data() + first;
+      arrays.hi[slot] = inWork.hi[slot].data() + first;
+    }
+    arrays.count = inWork.cell_start[cell + 1] - first - kBlock;
+    const uint32_t* box = inWork.box_of.data() + first;
+    sweepWith(inAvx2, arrays, [&](uint32_t i, uint32_t j) {
+      const uint32_t owner = inGrid[0].of(std::max(arrays.lo[1][i], arrays.lo[1][j])) * cells1 +
+                             inGrid[1].of(std::max(arrays.lo[2][i], arrays.lo[2][j]));
+      if (owner == cell) reportIfExact(inBoxes, arrays, i, j, box[i], box[j], outPairs);
+    });
+  }
+}
+
 void pairWith(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-              PairList& outPairs, Sweep&& inSweep) {
+              PairList& outPairs, bool inAvx2) {
   outPairs.clear();
   if (inBoxes.size() < 2) return;
   SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the small frame reads the spread of other boxes");
-  prepareSweep(inBoxes, ioSpread, chooseSmallFrameAxis(ioSpread), ioWork);
-  inSweep(inBoxes, ioWork, outPairs);
+  const auto n = static_cast<uint32_t>(inBoxes.size());
+  const int axis = chooseSmallFrameAxis(ioSpread);
+  const KeyOrigin origin = keyOriginOf(ioSpread, 1);
+  const GridAxis grid[2] = {gridAxis(ioSpread, origin, (axis + 1) % 3, n),
+                            gridAxis(ioSpread, origin, (axis + 2) % 3, n)};
+  ioWork.grid_cells = grid[0].cells * grid[1].cells;
+  fillCells(inBoxes, origin, axis, grid, inAvx2, ioWork);
+  sweepCells(inBoxes, grid, inAvx2, ioWork, outPairs);
   sortPairsCanonical(outPairs, ioWork.pair_scratch);
 }
 
@@ -183,10 +389,7 @@ bool smallFrameUsesAvx2() {
 
 void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
                     PairList& outPairs) {
-#if SAP_SMALL_FRAME_AVX2
-  if (cpuHasAvx2()) return pairWith(inBoxes, ioSpread, ioWork, outPairs, sweepAvx2);
-#endif
-  pairWith(inBoxes, ioSpread, ioWork, outPairs, sweepPortable);
+  pairWith(inBoxes, ioSpread, ioWork, outPairs, cpuHasAvx2());
 }
 
 void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
@@ -197,7 +400,7 @@ void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList
 void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork,
                             PairList& outPairs) {
   FrameSpread spread(inBoxes);
-  pairWith(inBoxes, spread, ioWork, outPairs, sweepPortable);
+  pairWith(inBoxes, spread, ioWork, outPairs, false);
 }
 
 }  // namespace sap_broadphase

@@ -1,0 +1,62 @@
+// One frame of a contender, timed and checked: our engine (a kept engine and a fresh one on
+// the same boxes) or a peer. Shared by the peer and size-sweep experiments.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "peers/peer.h"
+#include "sap_broadphase/core/broadphase.h"
+
+namespace sap_bench {
+
+/// A peer that took longer than this for one frame (one-shot and steady together) is not run
+/// on the rest of the case's frames: its median then covers the frames it did run (the build
+/// frame, when it was stopped there). A peer whose cost per box on an earlier case predicts
+/// more than this for a frame is not run on the case at all.
+constexpr double kSlowFrameMs = 20000.0;
+
+/// Times, checks and memory of one contender over the frames of a case.
+struct Contender {
+  std::string name;
+  std::string family;
+  std::vector<double> one_shot_ms, steady_ms;
+  std::size_t wrong_one_shot = 0, wrong_steady = 0, frames_checked = 0;
+  std::size_t last_pairs = 0;
+  std::size_t memory_bytes = 0;
+  bool stopped_slow = false;
+  bool skipped_slow = false;  ///< not run: its cost per box on a smaller case predicts > limit
+};
+
+/// Per scene (kind and density) and peer, the most milliseconds per box one frame (one-shot and
+/// steady together) has cost so far. On the same scene, broad phases get no cheaper per box as
+/// n grows, so this times a larger case's n is a lower bound of that case's frame time.
+using PeerCosts = std::map<std::string, std::vector<double>>;
+
+/// "ok", "WRONG(k/frames)", or "-" when no frame was checked.
+std::string pairStatus(std::size_t inWrong, std::size_t inFrames);
+
+/// The reference run of a frame: ioSteady (the kept engine) answers it, then a fresh engine of
+/// inConfig (one-shot), checked against it. Returns the kept engine's pairs, the truth the
+/// other contenders are checked against (the copy is untimed).
+sap_broadphase::PairList runReferenceFrame(sap_broadphase::Broadphase& ioSteady,
+                                           const sap_broadphase::BroadphaseConfig& inConfig,
+                                           const sap_broadphase::BoxSet& inBoxes, bool inTimed,
+                                           Contender& ioEntry);
+
+/// Runs one frame of an engine configuration both ways: a fresh engine (one-shot) and the
+/// kept one (steady), checking both against inTruth.
+void runOursFrame(sap_broadphase::Broadphase& ioSteady,
+                  const sap_broadphase::BroadphaseConfig& inConfig,
+                  const sap_broadphase::BoxSet& inBoxes, const sap_broadphase::PairList& inTruth,
+                  bool inTimed, Contender& ioEntry);
+
+/// Runs one peer on one frame, checking its pairs against inTruth; ioCostPerBox keeps the most
+/// ms per box a frame has cost it.
+void runPeerFrame(Peer& ioPeer, const sap_broadphase::BoxSet& inBoxes,
+                  const sap_broadphase::PairList& inTruth, bool inTimed, Contender& ioEntry,
+                  double& ioCostPerBox);
+
+}  // namespace sap_bench
