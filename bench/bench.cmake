@@ -26,6 +26,7 @@ add_executable(sap_bench
   ${SAP_BENCH_DIR}/exp_skips.cpp
   ${SAP_BENCH_DIR}/exp_coherence.cpp
   ${SAP_BENCH_DIR}/exp_distributed.cpp
+  ${SAP_BENCH_DIR}/exp_query.cpp
   ${SAP_BENCH_DIR}/bench_memory.cpp
   ${SAP_BENCH_DIR}/peers/peer_registry.cpp
   ${SAP_BENCH_DIR}/peers/peer_grid.cpp

@@ -20,6 +20,7 @@ void runMemory(const Options& inOptions);
 void runSkips(const Options& inOptions);
 void runCoherence(const Options& inOptions);
 void runDistributed(const Options& inOptions);
+void runQuery(const Options& inOptions);
 
 /// One experiment: its name on the command line, a line of description, its function.
 struct Experiment {

@@ -36,6 +36,8 @@ const std::vector<Experiment>& allExperiments() {
       {"distributed",
        "MPI ranks of this machine: exchange and engine per frame, bytes, the cluster model",
        runDistributed},
+      {"query", "Box queries: 1, 100, 10 000 boxes against 2^20, beside FCL's dynamic tree",
+       runQuery},
   };
   return kExperiments;
 }
