@@ -14,14 +14,13 @@ if(NOT SAP_BUILD_PYTHON)
   return()
 endif()
 # Debian's interpreter, whose packages (python3-numpy, python3-pybind11, python3-pytest) the
-# module and its tests use: a pyenv or virtualenv python3 earlier in PATH may lack them. catkin
-# passes its own (PYTHON_EXECUTABLE); -DPython3_EXECUTABLE chooses another.
-if(NOT Python3_EXECUTABLE)
-  if(PYTHON_EXECUTABLE)
-    set(Python3_EXECUTABLE ${PYTHON_EXECUTABLE})
-  elseif(EXISTS /usr/bin/python3)
-    set(Python3_EXECUTABLE /usr/bin/python3)
-  endif()
+# module and its tests use: a pyenv or virtualenv python3 earlier in PATH may lack them. Under
+# catkin, catkin's own (PYTHON_EXECUTABLE: scripts/setup.sh passes Debian's), even where a ROS
+# package found another one first; -DPython3_EXECUTABLE chooses another in the plain build.
+if(SAP_WITH_CATKIN AND PYTHON_EXECUTABLE)
+  set(Python3_EXECUTABLE ${PYTHON_EXECUTABLE})
+elseif(NOT Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+  set(Python3_EXECUTABLE /usr/bin/python3)
 endif()
 find_package(Python3 COMPONENTS Interpreter Development.Module QUIET)
 if(Python3_FOUND)
