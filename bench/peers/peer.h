@@ -89,6 +89,8 @@ class FclTreeQuery {
   explicit FclTreeQuery(const sap_broadphase::BoxSet& inWorld);
   ~FclTreeQuery();
   Answer query(const sap_broadphase::BoxSet& inQueries);
+  /// ms the world's manager took to build (registerObjects + setup), once.
+  double worldBuildMs() const;
 
  private:
   struct State;

@@ -177,14 +177,21 @@ struct FclTreeQuery::State {
   const BoxSet* world;
   Objects world_objects;
   fcl::DynamicAABBTreeCollisionManagerd world_manager;
+  double build_ms = 0.0;
 };
 
 FclTreeQuery::FclTreeQuery(const BoxSet& inWorld) : state_(std::make_unique<State>()) {
   state_->world = &inWorld;
   bool moved = false;
   syncObjects(inWorld, state_->world_objects, moved);
+  Stopwatch clock;
   state_->world_manager.registerObjects(pointers(state_->world_objects));
   state_->world_manager.setup();
+  state_->build_ms = clock.ms();
+}
+
+double FclTreeQuery::worldBuildMs() const {
+  return state_->build_ms;
 }
 
 FclTreeQuery::~FclTreeQuery() = default;
