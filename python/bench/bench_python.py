@@ -33,9 +33,10 @@ MEAN_CUBED_EDGE = (1.5 ** 4 - 0.5 ** 4) / 4.0  # E[e^3] for e uniform in [0.5, 1
 RTREE_MOST_BOXES = 10 ** 5  # the largest size rtree finds pairs for (the target's; a short run)
 
 
-def uniform_boxes(count, seed):
+def uniform_boxes(count, seed, world_boxes=None):
+    """count boxes in the cube that holds world_boxes (default: count) at the density."""
     rng = np.random.default_rng(seed)
-    side = (count * MEAN_CUBED_EDGE / DENSITY) ** (1.0 / 3.0)
+    side = ((world_boxes or count) * MEAN_CUBED_EDGE / DENSITY) ** (1.0 / 3.0)
     low = rng.uniform(0.0, side, size=(count, 3))
     edge = rng.uniform(0.5, 1.5, size=(count, 1))
     return np.ascontiguousarray(np.hstack([low, low + edge]))
@@ -93,9 +94,13 @@ def find_pairs_rows(sizes, threads, runs):
     rows = []
     for count in sizes:
         boxes = uniform_boxes(count, seed=count)
-        python_ms, pairs = median_ms(lambda: sap_broadphase.find_pairs(boxes, threads=threads),
-                                     runs)
-        cpp_ms = statistics.median(_one_shot_ms(boxes, threads) for _ in range(runs))
+        # Alternating, so that a busy spell of the machine falls on both alike.
+        python_times, cpp_times = [], []
+        for _ in range(runs):
+            ms, pairs = median_ms(lambda: sap_broadphase.find_pairs(boxes, threads=threads), 1)
+            python_times.append(ms)
+            cpp_times.append(_one_shot_ms(boxes, threads))
+        python_ms, cpp_ms = statistics.median(python_times), statistics.median(cpp_times)
         rtree_ms, rtree_check = 0.0, "-"
         if count <= RTREE_MOST_BOXES:
             rtree_ms, theirs = median_ms(lambda: rtree_pairs(boxes), 1)
@@ -113,7 +118,7 @@ def query_rows(sizes, batches, threads, runs):
     rows = []
     for count in sizes:
         world = uniform_boxes(count, seed=count)
-        other = uniform_boxes(count, seed=count + 1)  # query boxes over the same volume
+        other = uniform_boxes(max(batches), seed=count + 1, world_boxes=count)  # same volume
         engine = sap_broadphase.Broadphase(threads=threads)
         update_ms, _ = median_ms(lambda: engine.update(world), 1)
         tree = rtree_of(world)
@@ -149,10 +154,11 @@ def main(argv):
     options = parser.parse_args(argv)
     sizes = [10 ** 3, 10 ** 4] if options.quick else [10 ** 3, 10 ** 4, 10 ** 5, 10 ** 6]
     batches = [1, 100, 1000] if options.quick else [1, 100, 10000]
-    runs = 2 if options.quick else 5
+    runs = 2 if options.quick else 9
     out_dir = pathlib.Path(options.out)
     publish(out_dir, "python_find_pairs",
-            f"find_pairs against C++ alone and rtree (ms, median of {runs}; rtree once)",
+            f"find_pairs against C++ alone (alternating) and rtree (ms, median of {runs}; "
+            "rtree once)",
             find_pairs_rows(sizes, options.threads, runs))
     publish(out_dir, "python_query",
             f"Broadphase.query against rtree (ms per batch, median of {runs})",
