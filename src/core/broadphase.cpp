@@ -375,9 +375,7 @@ QueryHitList Broadphase::query(const BoxSet& inQueries) const {
 
 QueryHitList Broadphase::query(const InterleavedBoxes& inQueries) const {
   BoxSet queries;
-  // One thread: a batch of query boxes is small beside a frame, and waking a team for it
-  // costs more than the copy (tens of microseconds under OMP_WAIT_POLICY=passive).
-  copyInterleaved(inQueries, queries, 1);
+  copyInterleaved(inQueries, queries, resolveThreadCount(impl_->config.threads));
   return query(queries);
 }
 
