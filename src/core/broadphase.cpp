@@ -230,7 +230,8 @@ void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
   if (!give_back.shouldGiveBack(inBoxes, sweep.capacityBoxes())) return;
   sweep.releaseBuffers();
   history.shrinkToFit();
-  skin.releaseMemory();  // the next grown sweep keeps candidates of the frame's size again
+  skin.releaseMemory();   // the next grown sweep keeps candidates of the frame's size again
+  world.releaseMemory();  // the next frame's query index, if one is asked for, sizes itself
   pairs.shrink_to_fit();
   buffers = Buffers();
 }

@@ -30,6 +30,8 @@ class FrameQuery {
   void setFrame(const BoxSet& inFrame);
   /// Queries now find nothing.
   void clear();
+  /// Gives back the index's memory (after a burst of large frames; the next index sizes it).
+  void releaseMemory() { index_ = StaticIndex(); }
   /// Appends {query id, frame id} for every frame box that overlaps a box of inQueries
   /// (closed intervals) and passes the group/mask filter both ways, in any order. inQueries
   /// are valid (validate()). May run concurrently with other query() calls, never with

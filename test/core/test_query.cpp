@@ -338,6 +338,22 @@ TEST(Query, TheWorldIsTheLastFrameThatReturned) {
       << "without scenery";
 }
 
+// A burst of one large frame, then small frames until the engine gives its buffers back (the
+// frame's query index among them): every frame's queries still match the oracle.
+TEST(Query, AfterMemoryIsGivenBack) {
+  Broadphase engine(engineConfig(Method::kAuto, 2, 0, 1));
+  const BoxSet burst = randomBoxes(70000, 400.0, 4.0, 30);
+  engine.update(burst);
+  const BoxSet burst_queries = queryBoxes(60, 400.0, 31);
+  expectQueriesMatch(engine, burst_queries, burst, "the burst");
+  for (int frame = 0; frame < 70; ++frame) {
+    const BoxSet boxes = randomBoxes(500, 40.0, 4.0, 100 + frame);
+    engine.update(boxes);
+    expectQueriesMatch(engine, queryBoxes(60, 40.0, 200 + frame), boxes,
+                       "small frame " + std::to_string(frame));
+  }
+}
+
 // Between frames, queries run on other threads, several at once, while the thread that calls
 // update() waits for them (the documented contract: queries never overlap update()).
 TEST(Query, QueriesFromOtherThreadsBetweenFrames) {
