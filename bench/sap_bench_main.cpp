@@ -40,6 +40,8 @@ const std::vector<Experiment>& allExperiments() {
        runSizes},
       {"busy", "Busy loops beside the engine: default against one thread, OMP_WAIT_POLICY",
        runBusy},
+      {"query", "Box queries: 1, 100, 10 000 boxes against 2^20, beside FCL's dynamic tree",
+       runQuery},
   };
   return kExperiments;
 }

@@ -32,7 +32,8 @@ set -e
 # a second build of only the core test targets, optimised as the first, so that the asserted
 # run adds minutes, not the whole suite. Its JUnit files join the count below.
 ASSERTS_BUILD="$BUILD/asserts"
-ASSERTED_TESTS=(test_core test_engine test_skin_list test_frame_flow test_static_index test_cli)
+ASSERTED_TESTS=(test_core test_engine test_skin_list test_frame_flow test_static_index test_query
+  test_cli)
 cmake -S "$ROOT" -B "$ASSERTS_BUILD" -DSAP_BUILD_ROS=OFF -DCMAKE_BUILD_TYPE=Release \
   -DSAP_ASSERTS=ON > /dev/null
 cmake --build "$ASSERTS_BUILD" -j"$JOBS" --target "${ASSERTED_TESTS[@]}"

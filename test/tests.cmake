@@ -44,6 +44,11 @@ sap_add_gtest(test_skin_list
 target_include_directories(test_skin_list PRIVATE test/core)
 target_link_libraries(test_skin_list ${PROJECT_NAME}_core_internal)
 
+# Box queries (Broadphase::query, FrameQuery) against the brute-force query oracle.
+sap_add_gtest(test_query test/core/test_query.cpp test/core/test_support.cpp test/core/test_main.cpp)
+target_include_directories(test_query PRIVATE test/core)
+target_link_libraries(test_query ${PROJECT_NAME}_core_internal)
+
 # The CLI contract, exercised through the real executables.
 sap_add_gtest(test_cli test/core/test_cli.cpp test/core/test_main.cpp)
 target_link_libraries(test_cli ${PROJECT_NAME}_core_internal)

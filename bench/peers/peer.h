@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_bench {
@@ -72,5 +73,28 @@ void addBulletPeers(PeerOutput inOutput, Peers& ioPeers);
 void addFclPeers(PeerOutput inOutput, Peers& ioPeers);
 std::unique_ptr<Peer> makeFclPeer(PeerOutput inOutput);  ///< dynamic AABB tree
 #endif
+
+/// What a batch of query boxes overlaps in a world, asked of FCL's dynamic AABB tree: the
+/// world's manager is built once (untimed); each batch is a manager of its own, built and
+/// collided against the world's (FCL's collide(manager, manager)), the exact closed test in the
+/// callback. Objects are the user's scene and are made untimed, as in the other FCL peers.
+/// Defined in peer_fcl.cpp, built only when FCL is found (SAP_BENCH_WITH_FCL).
+class FclTreeQuery {
+ public:
+  struct Answer {
+    sap_broadphase::QueryHitList hits;  ///< {query id, world id}, in FCL's order
+    double ms = 0.0;                    ///< the batch's manager built, set up and collided
+    double ms_collide = 0.0;            ///< of which the collide
+  };
+  explicit FclTreeQuery(const sap_broadphase::BoxSet& inWorld);
+  ~FclTreeQuery();
+  Answer query(const sap_broadphase::BoxSet& inQueries);
+  /// ms the world's manager took to build (registerObjects + setup), once.
+  double worldBuildMs() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace sap_bench

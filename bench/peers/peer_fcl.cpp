@@ -150,7 +150,70 @@ class FclPeer : public Peer {
   std::unique_ptr<Manager> manager_;
 };
 
+// User data of a query object: its index with this bit set, so that the callback tells the
+// two managers' objects apart whatever order FCL hands them in.
+constexpr std::size_t kQueryObjectBit = std::size_t{1} << 40;
+
+struct QueryData {
+  const BoxSet* world;
+  const BoxSet* queries;
+  sap_broadphase::QueryHitList* hits;
+};
+
+bool collectHit(fcl::CollisionObjectd* inFirst, fcl::CollisionObjectd* inSecond, void* ioData) {
+  auto* data = static_cast<QueryData*>(ioData);
+  auto first = reinterpret_cast<std::size_t>(inFirst->getUserData());
+  auto second = reinterpret_cast<std::size_t>(inSecond->getUserData());
+  if ((first & kQueryObjectBit) == 0) std::swap(first, second);
+  const std::size_t query = first & ~kQueryObjectBit;
+  if (sap_broadphase::boxesOverlap(*data->queries, query, *data->world, second))
+    data->hits->push_back({data->queries->ids[query], data->world->ids[second]});
+  return false;  // keep going
+}
+
 }  // namespace
+
+struct FclTreeQuery::State {
+  const BoxSet* world;
+  Objects world_objects;
+  fcl::DynamicAABBTreeCollisionManagerd world_manager;
+  double build_ms = 0.0;
+};
+
+FclTreeQuery::FclTreeQuery(const BoxSet& inWorld) : state_(std::make_unique<State>()) {
+  state_->world = &inWorld;
+  bool moved = false;
+  syncObjects(inWorld, state_->world_objects, moved);
+  Stopwatch clock;
+  state_->world_manager.registerObjects(pointers(state_->world_objects));
+  state_->world_manager.setup();
+  state_->build_ms = clock.ms();
+}
+
+double FclTreeQuery::worldBuildMs() const {
+  return state_->build_ms;
+}
+
+FclTreeQuery::~FclTreeQuery() = default;
+
+FclTreeQuery::Answer FclTreeQuery::query(const BoxSet& inQueries) {
+  Objects objects;
+  bool moved = false;
+  syncObjects(inQueries, objects, moved);  // the user's scene, not the broad phase
+  for (std::size_t q = 0; q < objects.size(); ++q)
+    objects[q]->setUserData(reinterpret_cast<void*>(q | kQueryObjectBit));
+  Answer answer;
+  QueryData data{state_->world, &inQueries, &answer.hits};
+  Stopwatch clock;
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  manager.registerObjects(pointers(objects));
+  manager.setup();
+  Stopwatch collide_clock;
+  manager.collide(&state_->world_manager, &data, collectHit);
+  answer.ms_collide = collide_clock.ms();
+  answer.ms = clock.ms();
+  return answer;
+}
 
 std::unique_ptr<Peer> makeFclPeer(PeerOutput inOutput) {
   return std::make_unique<FclPeer<fcl::DynamicAABBTreeCollisionManagerd>>("fcl_dynamic_aabb",

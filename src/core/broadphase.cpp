@@ -20,6 +20,7 @@
 #include "core/assert.h"
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
+#include "core/frame_query.h"
 #include "core/phase_timer.h"
 #include "core/skin_reuse.h"
 #include "core/small_frame.h"
@@ -43,6 +44,7 @@ struct Broadphase::Impl {
   SkinReuse skin;              // kept candidates, motion and learnt costs
   StaticSplit resting;         // boxes guessed static (index_static_boxes)
   StaticIndex scenery;         // boxes declared static (setStaticBoxes)
+  FrameQuery world;            // box queries against the last frame (the history's copy)
   ThreadChoice thread_choice;  // all cores or one, measured (threads = 0, method auto)
   int passes_threads = 0;      // threads of the history's passes: the last work's, learnt (0: all)
   PairList pairs;              // the frame's one canonical pair list
@@ -228,7 +230,8 @@ void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
   if (!give_back.shouldGiveBack(inBoxes, sweep.capacityBoxes())) return;
   sweep.releaseBuffers();
   history.shrinkToFit();
-  skin.releaseMemory();  // the next grown sweep keeps candidates of the frame's size again
+  skin.releaseMemory();   // the next grown sweep keeps candidates of the frame's size again
+  world.releaseMemory();  // the next frame's query index, if one is asked for, sizes itself
   pairs.shrink_to_fit();
   buffers = Buffers();
 }
@@ -270,6 +273,7 @@ void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta
     PhaseTimer timer(report.ms_history);
     history.remember(inBoxes);
   }
+  world.setFrame(history.remembered());
   pairs_valid = true;
   PhaseTimer timer(report.ms_plan);
   giveBackMemoryAfterBursts(inBoxes.size());
@@ -278,6 +282,7 @@ void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta
 
 const PairList& Broadphase::update(const BoxSet& inBoxes) {
   Impl& impl = *impl_;
+  impl.world.clear();  // the history's copy is about to change
   FrameReport& report = impl.report;
   report = FrameReport();
   {
@@ -300,6 +305,7 @@ const PairList& Broadphase::update(const BoxSet& inBoxes) {
 
 const PairList& Broadphase::update(const InterleavedBoxes& inBoxes) {
   Impl& impl = *impl_;
+  impl.world.clear();  // the history's copy is about to change
   const int threads = resolveThreadCount(impl.config.threads);
   if (inBoxes.hasFilters()) {
     // Boxes that pair with nothing are dropped before the history sees a frame, so a filtered
@@ -360,6 +366,18 @@ void Broadphase::clearStaticBoxes() {
 
 std::size_t Broadphase::staticBoxCount() const {
   return impl_->scenery.size();
+}
+
+QueryHitList Broadphase::query(const BoxSet& inQueries) const {
+  if (auto problem = validate(inQueries)) throw InvalidBoxes(std::move(*problem));
+  return answerQueries(inQueries, impl_->world, impl_->scenery,
+                       resolveThreadCount(impl_->config.threads));
+}
+
+QueryHitList Broadphase::query(const InterleavedBoxes& inQueries) const {
+  BoxSet queries;
+  copyInterleaved(inQueries, queries, resolveThreadCount(impl_->config.threads));
+  return query(queries);
 }
 
 }  // namespace sap_broadphase

@@ -54,6 +54,10 @@ class FrameHistory {
                          std::optional<ValidationError>& outProblem);
   /// The frame load() made, until the next compare(), load() or forget().
   const BoxSet& loaded() const { return last_; }
+  /// The last frame remember() made, still there after forget() (which only stops the next
+  /// frame from being compared with it), until the next compare() or load() starts replacing
+  /// it. Box queries read the world here (frame_query.h).
+  const BoxSet& remembered() const { return last_; }
   /// Makes inBoxes, the frame given to compare() or load(), the last frame (copied in parallel
   /// unless compare() copied it already).
   void remember(const BoxSet& inBoxes);

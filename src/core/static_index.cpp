@@ -47,6 +47,11 @@ struct StaticIndex::QueryBox {
   uint32_t group;
   uint32_t mask;
   uint32_t id;
+  PairOrder order;
+
+  IdPair pairWith(uint32_t inIndexedId) const {
+    return order == PairOrder::kQueryFirst ? IdPair{id, inIndexedId} : makeIdPair(id, inIndexedId);
+  }
 };
 
 namespace {
@@ -226,8 +231,10 @@ bool StaticIndex::remove(uint32_t inId) {
   return true;
 }
 
-void StaticIndex::query(const BoxSet& inQueries, std::size_t inQuery, PairList& outPairs) const {
+void StaticIndex::query(const BoxSet& inQueries, std::size_t inQuery, PairList& outPairs,
+                        PairOrder inOrder) const {
   QueryBox box;
+  box.order = inOrder;
   for (int axis = 0; axis < 3; ++axis) {
     box.lo[axis] = inQueries.lo[axis][inQuery];
     box.hi[axis] = inQueries.hi[axis][inQuery];
@@ -282,8 +289,7 @@ void StaticIndex::scanCells(const QueryBox& inBox, PairList& outPairs) const {
           const uint32_t s = cell_slots_[e];
           const Slot& slot = slots_[s];
           if ((slot.low_cells & need) != expected) continue;
-          if (overlapsAndAllowed(slot, inBox))
-            outPairs.push_back(makeIdPair(inBox.id, slot_ids_[s]));
+          if (overlapsAndAllowed(slot, inBox)) outPairs.push_back(inBox.pairWith(slot_ids_[s]));
         }
       }
     }
@@ -293,8 +299,7 @@ void StaticIndex::scanCells(const QueryBox& inBox, PairList& outPairs) const {
 void StaticIndex::scanSlots(const QueryBox& inBox, std::size_t inBegin, std::size_t inEnd,
                             PairList& outPairs) const {
   for (std::size_t s = inBegin; s < inEnd; ++s)
-    if (overlapsAndAllowed(slots_[s], inBox))
-      outPairs.push_back(makeIdPair(inBox.id, slot_ids_[s]));
+    if (overlapsAndAllowed(slots_[s], inBox)) outPairs.push_back(inBox.pairWith(slot_ids_[s]));
 }
 
 // Queries of a frame land in cells far apart in a large index, so each one waits for its
@@ -329,24 +334,25 @@ void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, in
 }
 
 void StaticIndex::queryRange(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
-                             std::size_t inBegin, std::size_t inEnd, PairList& outPairs) const {
+                             std::size_t inBegin, std::size_t inEnd, PairOrder inOrder,
+                             PairList& outPairs) const {
   for (std::size_t k = inBegin; k < inEnd; ++k) {
     for (int stage = 0; stage < 3; ++stage) {
       if (k + kPrefetchAhead[stage] < inEnd)
         prefetchQuery(inQueries, inQueryIndexes[k + kPrefetchAhead[stage]], stage);
     }
-    query(inQueries, inQueryIndexes[k], outPairs);
+    query(inQueries, inQueryIndexes[k], outPairs, inOrder);
   }
 }
 
 void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
-                           int inThreads, PairList& outPairs) const {
+                           int inThreads, PairList& outPairs, PairOrder inOrder) const {
   const std::size_t count = inQueryIndexes.size();
   const int threads = static_cast<int>(
       std::min<std::size_t>(resolveThreadCount(inThreads),
                             std::max<std::size_t>(1, count / tuning::kMinQueriesPerThread)));
   if (threads == 1) {
-    queryRange(inQueries, inQueryIndexes, 0, count, outPairs);
+    queryRange(inQueries, inQueryIndexes, 0, count, inOrder, outPairs);
     return;
   }
   // Contiguous shares, so that each thread prefetches its own next queries and the parts,
@@ -357,7 +363,7 @@ void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>&
     const int thread = omp_get_thread_num();
     const int team = omp_get_num_threads();
     queryRange(inQueries, inQueryIndexes, count * thread / team, count * (thread + 1) / team,
-               parts[thread]);
+               inOrder, parts[thread]);
   }
   std::size_t total = outPairs.size();
   for (const PairList& part : parts) total += part.size();

@@ -30,16 +30,21 @@ class StaticIndex {
   void build(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
   /// Number of indexed boxes not removed.
   std::size_t size() const { return live_count_; }
-  /// Appends to outPairs (as makeIdPair(query id, indexed id)) every indexed box that overlaps
-  /// box inQuery of inQueries and passes the group/mask filter both ways; each pair once.
-  /// Allocates nothing beyond outPairs' growth. Query ids are expected to differ from indexed
-  /// ids (a box queried against itself would give the pair (id, id)).
-  void query(const BoxSet& inQueries, std::size_t inQuery, PairList& outPairs) const;
+  /// How a pair is written: makeIdPair(query id, indexed id), as the engine's pairs are, or
+  /// {query id, indexed id} as they are, for box queries whose ids name another set
+  /// (Broadphase::query).
+  enum class PairOrder : uint8_t { kCanonical, kQueryFirst };
+  /// Appends to outPairs (in inOrder) every indexed box that overlaps box inQuery of inQueries
+  /// and passes the group/mask filter both ways; each pair once. Allocates nothing beyond
+  /// outPairs' growth. In canonical order, query ids are expected to differ from indexed ids
+  /// (a box queried against itself would give the pair (id, id)).
+  void query(const BoxSet& inQueries, std::size_t inQuery, PairList& outPairs,
+             PairOrder inOrder = PairOrder::kCanonical) const;
   /// All pairs between boxes inQueryIndexes of inQueries and the index, in parallel with
   /// inThreads threads (0 = all cores), appended to outPairs (any order; the caller sorts
   /// canonically). The order is the same on every run with the same thread count.
   void queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes, int inThreads,
-                PairList& outPairs) const;
+                PairList& outPairs, PairOrder inOrder = PairOrder::kCanonical) const;
   /// Marks the indexed box with id inId as removed (it no longer answers queries); false if
   /// no such box is indexed or it was already removed.
   bool remove(uint32_t inId);
@@ -81,7 +86,8 @@ class StaticIndex {
   void scanCells(const QueryBox& inBox, PairList& outPairs) const;
   void prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, int inStage) const;
   void queryRange(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
-                  std::size_t inBegin, std::size_t inEnd, PairList& outPairs) const;
+                  std::size_t inBegin, std::size_t inEnd, PairOrder inOrder,
+                  PairList& outPairs) const;
   /// Queries ahead whose offsets, slot lists and slots are fetched (prefetchQuery's stages).
   static constexpr std::size_t kPrefetchAhead[3] = {12, 6, 3};
   /// Most cells (and slots a cell row) a query prefetches.

@@ -37,6 +37,19 @@ constexpr uint64_t kMaxCellsPerBox = 64;
 /// Fewest queries worth a thread of their own in queryAll.
 constexpr std::size_t kMinQueriesPerThread = 64;
 
+// ---- Box queries against the last frame (frame_query.h) ----
+
+/// Query boxes a frame is scanned for before its index is built: building the static index of
+/// a frame costs about as much as this many one-box scans of it (2^20 uniform boxes on the
+/// loaded 2-core VM: an index 110-140 ms, a one-box scan 2.7 ms in a loop and 3.8-10 ms alone;
+/// sap_bench -e query), so that rent-or-buy rule pays about twice the cheaper of the two.
+constexpr std::size_t kQueryScansPerIndexBuild = 48;
+/// Frame boxes a scan tests against every query box before moving on: their primary-axis
+/// bounds (16 bytes a box) stay in the L2 cache while each query box reads them.
+constexpr std::size_t kQueryScanBlock = 8192;
+/// Fewest frame boxes worth a thread of their own in a scan.
+constexpr std::size_t kMinScannedBoxesPerThread = 32768;
+
 /// Most distinct group/mask classes looked at among the unchanged boxes.
 constexpr std::size_t kMaxFilterClasses = 64;
 

@@ -104,13 +104,20 @@ class InvalidBoxes : public std::invalid_argument {
   ValidationError error_;
 };
 
-/// True when boxes a and b overlap on all three axes (closed intervals: touching overlaps).
-inline bool boxesOverlap(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
+/// True when box a of inBoxesA and box b of inBoxesB overlap on all three axes (closed
+/// intervals: touching overlaps).
+inline bool boxesOverlap(const BoxSet& inBoxesA, std::size_t a, const BoxSet& inBoxesB,
+                         std::size_t b) {
   for (int axis = 0; axis < 3; ++axis) {
-    if (inBoxes.lo[axis][a] > inBoxes.hi[axis][b] || inBoxes.lo[axis][b] > inBoxes.hi[axis][a])
+    if (inBoxesA.lo[axis][a] > inBoxesB.hi[axis][b] || inBoxesB.lo[axis][b] > inBoxesA.hi[axis][a])
       return false;
   }
   return true;
+}
+
+/// True when boxes a and b of inBoxes overlap on all three axes.
+inline bool boxesOverlap(const BoxSet& inBoxes, std::size_t a, std::size_t b) {
+  return boxesOverlap(inBoxes, a, inBoxes, b);
 }
 
 /// The group/mask rule: two boxes may pair when each one's group meets the other's mask

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/config.h"
@@ -14,9 +15,26 @@
 
 namespace sap_broadphase {
 
+/// One answer of Broadphase::query(): the query box with id `query` overlaps the world box
+/// with id `world`.
+struct QueryHit {
+  uint32_t query;
+  uint32_t world;
+  friend bool operator==(const QueryHit& x, const QueryHit& y) {
+    return x.query == y.query && x.world == y.world;
+  }
+  friend bool operator<(const QueryHit& x, const QueryHit& y) {
+    return x.query < y.query || (x.query == y.query && x.world < y.world);
+  }
+};
+
+/// The answers of one Broadphase::query(), sorted by (query, world), none twice.
+using QueryHitList = std::vector<QueryHit>;
+
 /// The stateful broad phase: keeps partition bounds B and the sweep axes across frames, owns
 /// every buffer (no allocation per frame once sizes are stable). Not thread-safe: one frame at
-/// a time per instance. The input is trusted: validate() it at the edge first.
+/// a time per instance; between frames, query() may run on other threads (see there). The
+/// input is trusted: validate() it at the edge first.
 class Broadphase {
  public:
   explicit Broadphase(const BroadphaseConfig& inConfig = BroadphaseConfig());
@@ -42,6 +60,30 @@ class Broadphase {
   void setStaticBoxes(const BoxSet& inStaticBoxes);
   /// Forgets the scenery.
   void clearStaticBoxes();
+  /// What overlaps each of inQueries in the world: the boxes of the last update() that
+  /// returned, plus the declared scenery. Every world box that overlaps a query box (closed
+  /// intervals, as update()'s pairs) and passes the group/mask filter with it both ways, as
+  /// {query box's id, world box's id}, sorted by (query id, world id). The query boxes' ids
+  /// name only them: number them 0..m-1 to get query indexes; they may equal world ids.
+  /// Query boxes are checked as validate() does (a NaN bound, min > max, a repeated id): a bad
+  /// one throws InvalidBoxes naming it, and the engine is unchanged. Before the first update(),
+  /// and after an update() that threw, the world is the scenery alone; reset() keeps it.
+  ///
+  /// Threads: query() only reads the engine, so any number of queries may run at the same
+  /// time, from any threads, together with stats(), config() and staticBoxCount(); none may run
+  /// while update(), setStaticBoxes(), clearStaticBoxes(), reset() or an assignment runs on the
+  /// same engine (the caller orders them, e.g. with a shared mutex: shared for queries,
+  /// exclusive for the rest). Each query uses up to config().threads OpenMP threads.
+  ///
+  /// Cost: a few query boxes are answered by scanning the frame (one pass over it, about 3 ms
+  /// at 2^20 boxes on 2 cores); once a frame's scans have cost about as much as an index of the
+  /// frame, the index is built (once per frame, by the query that needs it) and answers the
+  /// rest of the frame's queries in about a microsecond a query box. The scenery is always
+  /// answered from its own index.
+  QueryHitList query(const BoxSet& inQueries) const;
+  /// The same for query boxes laid out as records (ids null: numbered 0..count-1, as query
+  /// indexes).
+  QueryHitList query(const InterleavedBoxes& inQueries) const;
   /// Number of declared static boxes.
   std::size_t staticBoxCount() const;
   /// Statistics of the last update().

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -9,5 +10,9 @@ namespace sap_broadphase {
 /// All overlapping, filter-allowed pairs of inBoxes by testing every pair (O(n^2)),
 /// in canonical (a, b) order.
 PairList bruteForcePairs(const BoxSet& inBoxes);
+
+/// What Broadphase::query() answers, by testing every query box against every box of inWorld
+/// (O(m n)): {query id, world id} for each overlapping, filter-allowed pair, sorted.
+QueryHitList bruteForceQuery(const BoxSet& inQueries, const BoxSet& inWorld);
 
 }  // namespace sap_broadphase

@@ -1,0 +1,108 @@
+#include "core/frame_query.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+#include "core/tuning.h"
+#include "sap_broadphase/core/config.h"  // resolveThreadCount
+
+namespace sap_broadphase {
+
+namespace {
+
+std::vector<uint32_t> everyIndex(std::size_t inCount) {
+  std::vector<uint32_t> indexes(inCount);
+  std::iota(indexes.begin(), indexes.end(), 0u);
+  return indexes;
+}
+
+}  // namespace
+
+void FrameQuery::setFrame(const BoxSet& inFrame) {
+  frame_ = &inFrame;
+  indexed_.store(false, std::memory_order_release);
+  scanned_queries_.store(0, std::memory_order_relaxed);
+}
+
+void FrameQuery::clear() {
+  frame_ = nullptr;
+  indexed_.store(false, std::memory_order_release);
+}
+
+// Rent or buy: scan while the scans of this frame, this one included, cost less than an index.
+bool FrameQuery::shouldIndex(std::size_t inQueries) const {
+  if (indexed()) return true;
+  const std::size_t scanned = scanned_queries_.fetch_add(inQueries, std::memory_order_relaxed);
+  return scanned + inQueries > tuning::kQueryScansPerIndexBuild;
+}
+
+void FrameQuery::buildIndex(int inThreads) const {
+  std::lock_guard<std::mutex> lock(index_mutex_);
+  if (indexed()) return;  // a concurrent query built it while this one waited
+  index_.build(*frame_, everyIndex(frame_->size()), inThreads);
+  indexed_.store(true, std::memory_order_release);
+}
+
+void FrameQuery::query(const BoxSet& inQueries, int inThreads, PairList& outHits) const {
+  if (frame_ == nullptr || frame_->size() == 0 || inQueries.size() == 0) return;
+  if (!shouldIndex(inQueries.size())) {
+    scan(inQueries, inThreads, outHits);
+    return;
+  }
+  buildIndex(inThreads);
+  index_.queryAll(inQueries, everyIndex(inQueries.size()), inThreads, outHits,
+                  StaticIndex::PairOrder::kQueryFirst);
+}
+
+// Frame boxes in blocks, each block tested against every query box: the primary axis first, as
+// the sweep does, since it rejects most boxes reading two of their six bounds.
+void FrameQuery::scan(const BoxSet& inQueries, int inThreads, PairList& outHits) const {
+  const BoxSet& frame = *frame_;
+  const std::size_t boxes = frame.size();
+  const std::size_t blocks = (boxes + tuning::kQueryScanBlock - 1) / tuning::kQueryScanBlock;
+  const int threads = static_cast<int>(
+      std::min<std::size_t>(resolveThreadCount(inThreads),
+                            std::max<std::size_t>(1, boxes / tuning::kMinScannedBoxesPerThread)));
+  std::vector<PairList> parts(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    PairList& hits = parts[omp_get_thread_num()];
+#pragma omp for schedule(static)
+    for (std::size_t block = 0; block < blocks; ++block) {
+      const std::size_t begin = block * tuning::kQueryScanBlock;
+      const std::size_t end = std::min(boxes, begin + tuning::kQueryScanBlock);
+      for (std::size_t q = 0; q < inQueries.size(); ++q) {
+        const double query_low = inQueries.lo[0][q];
+        const double query_high = inQueries.hi[0][q];
+        for (std::size_t i = begin; i < end; ++i) {
+          if (frame.lo[0][i] > query_high || query_low > frame.hi[0][i]) continue;
+          if (boxesOverlap(inQueries, q, frame, i) &&
+              groupsMayPair(inQueries.group(q), inQueries.mask(q), frame.group(i), frame.mask(i)))
+            hits.push_back(IdPair{inQueries.ids[q], frame.ids[i]});
+        }
+      }
+    }
+  }
+  for (const PairList& part : parts) outHits.insert(outHits.end(), part.begin(), part.end());
+}
+
+QueryHitList answerQueries(const BoxSet& inQueries, const FrameQuery& inFrame,
+                           const StaticIndex& inScenery, int inThreads) {
+  PairList hits;
+  inFrame.query(inQueries, inThreads, hits);
+  if (inScenery.size() > 0 && inQueries.size() > 0) {
+    inScenery.queryAll(inQueries, everyIndex(inQueries.size()), inThreads, hits,
+                       StaticIndex::PairOrder::kQueryFirst);
+  }
+  sortPairsCanonical(hits);  // by (a, b): here (query id, world id)
+  QueryHitList answer(hits.size());
+  std::transform(hits.begin(), hits.end(), answer.begin(), [](const IdPair& inHit) {
+    return QueryHit{inHit.a, inHit.b};
+  });
+  return answer;
+}
+
+}  // namespace sap_broadphase
