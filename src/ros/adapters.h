@@ -25,6 +25,7 @@
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/core/box_set.h"
 #include "source_spec.h"
+#include "wire_layout.h"
 
 namespace sap_broadphase {
 
@@ -43,6 +44,13 @@ const InputTypeInfo& inputTypeInfo(InputType inType);
 std::optional<InputType> inputTypeByName(const std::string& inName);
 /// "sap_broadphase/BoxArray, visualization_msgs/MarkerArray, ...": for refusals.
 std::string inputTypeNames();
+/// The wire layout of inType, read once from its definition: every message of a source is
+/// checked against it before it is deserialized.
+const WireLayout& wireLayout(InputType inType);
+/// Why a publisher of type inType and MD5 sum inMd5 cannot feed a source of inExpected, or
+/// nothing (the source's name goes in front).
+std::optional<std::string> checkPublishedType(InputType inExpected, const std::string& inType,
+                                              const std::string& inMd5);
 
 /// A box as the messages give it: a box of `size` centred on `centre`, in the frame that `pose`
 /// places in the message's frame.
@@ -134,7 +142,6 @@ class SourceAdapter {
   mutable std::mutex mutex_;
   IdTable ids_;
   std::map<std::string, MarkerSet> marker_sets_;  // by publisher
-  std::vector<uint8_t> wire_;                     // a ShapeShifter's bytes, reused
   DecodedBoxes decoded_;                          // reused
   BoxSet one_box_;                                // a box moved by its pose, reused
 };

@@ -108,6 +108,15 @@ void NodeStatus::timeOut(const std::string& inMessage) {
   ROS_WARN("sap_broadphase: %s", inMessage.c_str());
 }
 
+void NodeStatus::restartClock() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    reported_at_ = ros::Time();
+  }
+  // The updater waits for a time of the old clock: it reports now and counts from now.
+  diagnostics_.force_update();
+}
+
 void NodeStatus::frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine) {
   auto stats = boost::make_shared<FrameStats>();
   {

@@ -51,6 +51,9 @@ class NodeStatus {
   void timeOut(const std::string& inMessage);
   /// Counts a computed frame and publishes its stats with the engine's report.
   void frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine);
+  /// The ROS clock went back: the diagnostics' period and rate start again from now (worker
+  /// thread).
+  void restartClock();
   /// Publishes /diagnostics when its period has passed (worker thread).
   void updateDiagnostics() { diagnostics_.update(); }
 

@@ -8,6 +8,7 @@
 #include <boost/make_shared.hpp>
 
 #include "adapters.h"
+#include "checked_callbacks.h"
 #include "sap_broadphase/IdNames.h"
 #include "sap_broadphase/ros/conversions.h"
 
@@ -39,16 +40,7 @@ SourceIngest::SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams,
       if (any_waiting_.load(std::memory_order_relaxed)) wake_();
     });
   }
-  subscribers_.push_back(
-      ioNode.subscribe<BoxArray>("static_boxes", 1, [this](const BoxArrayConstPtr& inMsg) {
-        {
-          std::lock_guard<std::mutex> lock(mutex_);
-          pending_scenery_ = inMsg;
-          scenery_wait_logged_ = false;
-          any_waiting_ = true;
-        }
-        wake_();
-      }));
+  subscribeScenery(ioNode);
   for (const SourceSpec& spec : inParams.sources) {
     if (const char* output = ownOutputNamed(ioNode, spec.topic)) {
       // The node would read what it writes (e.g. `markers` as a MarkerArray source).
@@ -66,25 +58,57 @@ SourceIngest::SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams,
 void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, int inQueueSize) {
   ros::SubscribeOptions options;
   const std::string topic = inSpec.topic;
+  // A message refused at the wire (its publisher's type, a length prefix past its bytes) never
+  // reaches the callbacks below: counted and named here.
+  WireRefusal refuse = [this, topic](const ros::M_string& inConnection,
+                                     const std::string& inReason) {
+    status_.countReceived();
+    const auto caller = inConnection.find("callerid");
+    const SourceKey key{topic, caller == inConnection.end() ? "" : caller->second, ""};
+    status_.refuse(std_msgs::Header(), 0, sourceName(key) + ": " + inReason);
+  };
+  const WireLayout& layout = wireLayout(inSpec.type);
   if (inSpec.takesBoxArrayAsIs()) {
-    options.initByFullCallbackType<const ros::MessageEvent<BoxArray const>&>(
-        topic, static_cast<uint32_t>(inQueueSize),
-        [this, topic](const ros::MessageEvent<BoxArray const>& inEvent) {
-          deliver(topic, inEvent);
-        });
+    using Event = const ros::MessageEvent<BoxArray const>&;
+    options.initByFullCallbackType<Event>(topic, static_cast<uint32_t>(inQueueSize), [](Event) {});
+    options.helper = boost::make_shared<CheckedSubscriptionHelper<Event>>(
+        [this, topic](Event inEvent) {
+          runGuarded([&] { deliver(topic, inEvent); },
+                     [&](const std::string& inWhat) { refuseUnhandled(topic, inWhat); });
+        },
+        layout, PublisherCheck(), refuse);
   } else {
-    // Any type (ShapeShifter): the adapter checks the type name and MD5 sum. Every message is
-    // converted here, in order, since a MarkerArray only tells what changed.
+    // Any type (ShapeShifter): the type name and MD5 sum are checked per publisher, from the
+    // connection header of each message. Every message is converted here, in order, since a
+    // MarkerArray only tells what changed.
     adapters_.push_back(std::make_unique<SourceAdapter>(inSpec));
     SourceAdapter* adapter = adapters_.back().get();
-    options.initByFullCallbackType<const ros::MessageEvent<topic_tools::ShapeShifter const>&>(
-        topic, static_cast<uint32_t>(inQueueSize),
-        [this, adapter](const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent) {
-          onAdaptedMessage(*adapter, inEvent);
-        });
+    using Event = const ros::MessageEvent<topic_tools::ShapeShifter const>&;
+    options.initByFullCallbackType<Event>(topic, static_cast<uint32_t>(inQueueSize), [](Event) {});
+    const InputType type = inSpec.type;
+    options.helper = boost::make_shared<CheckedSubscriptionHelper<Event>>(
+        [this, adapter, topic](Event inEvent) {
+          runGuarded([&] { onAdaptedMessage(*adapter, inEvent); },
+                     [&](const std::string& inWhat) { refuseUnhandled(topic, inWhat); });
+        },
+        layout,
+        [type](const ros::M_string& inConnection) {
+          const auto field = [&](const char* inKey) {
+            const auto found = inConnection.find(inKey);
+            return found == inConnection.end() ? std::string() : found->second;
+          };
+          return checkPublishedType(type, field("type"), field("md5sum"));
+        },
+        refuse);
   }
   options.transport_hints = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(ioNode.subscribe(options));
+}
+
+void SourceIngest::refuseUnhandled(const std::string& inTopic, const std::string& inWhat) {
+  status_.refuse(std_msgs::Header(), 0,
+                 "'" + inTopic + "': a message that could not be handled (" + inWhat +
+                     "): refused, the node goes on");
 }
 
 void SourceIngest::onAdaptedMessage(
@@ -93,8 +117,8 @@ void SourceIngest::onAdaptedMessage(
   if (auto reason =
           ioAdapter.convert(*inEvent.getConstMessage(), inEvent.getPublisherName(), *boxes)) {
     status_.countReceived();
-    const SourceKey key{ioAdapter.spec().topic, inEvent.getPublisherName(), ""};
-    status_.refuse(boxes->header, 0, sourceName(key) + ": " + *reason);
+    const SourceKey key{ioAdapter.spec().topic, inEvent.getPublisherName(), boxes->header.frame_id};
+    status_.refuse(boxes->header, boxes->bounds.size() / 6, sourceName(key) + ": " + *reason);
     return;
   }
   publishIdNames(boxes->header);
@@ -114,6 +138,27 @@ void SourceIngest::publishIdNames(const std_msgs::Header& inHeader) {
   for (const auto& adapter : adapters_) adapter->appendIdNames(msg->ids, msg->names);
   id_names_published_ = msg->ids.size();
   id_names_pub_.publish(msg);
+}
+
+void SourceIngest::subscribeScenery(ros::NodeHandle& ioNode) {
+  ros::SubscribeOptions options;
+  using Message = const BoxArrayConstPtr&;
+  options.init<BoxArray>("static_boxes", 1, [](Message) {});
+  const auto keep = [this](Message inMsg) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      pending_scenery_ = inMsg;
+      scenery_wait_logged_ = false;
+      any_waiting_ = true;
+    }
+    wake_();
+  };
+  options.helper = boost::make_shared<CheckedSubscriptionHelper<Message>>(
+      keep, wireLayout(InputType::kBoxArray), PublisherCheck(),
+      [this](const ros::M_string&, const std::string& inReason) {
+        status_.refuse(std_msgs::Header(), 0, std::string(kStaticSourceName) + ": " + inReason);
+      });
+  subscribers_.push_back(ioNode.subscribe(options));
 }
 
 SourceIngest::~SourceIngest() {
@@ -207,6 +252,12 @@ void SourceIngest::take(std::map<SourceKey, Delivery>& outDeliveries, BoxArrayCo
     }
   }
   any_waiting_ = !waiting_.empty() || pending_scenery_;
+}
+
+void SourceIngest::restartClock(const ros::Time& inNow) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto* deliveries : {&pending_, &waiting_})
+    for (auto& [key, delivery] : *deliveries) delivery.received = inNow;
 }
 
 bool SourceIngest::convert(const SourceKey& inKey, const BoxArray& inMsg, BoxSet& outBoxes) {

@@ -72,6 +72,10 @@ class SourceIngest {
   /// a latched message may be older than tf2's cache.
   bool convertScenery(const BoxArray& inMsg, BoxSet& outBoxes);
 
+  /// The ROS clock went back to inNow: frames waiting for the worker or for their transform
+  /// count as received now (their ~transform_timeout starts again).
+  void restartClock(const ros::Time& inNow);
+
   /// The frame every source is moved into, or empty without a ~fixed_frame.
   const std::string& fixedFrame() const { return fixed_frame_; }
 
@@ -79,6 +83,10 @@ class SourceIngest {
   /// Subscribes to a ~sources entry: a BoxArray topic as published (shared in process by a
   /// nodelet, never copied), any other entry through its adapter.
   void subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, int inQueueSize);
+  /// Subscribes to the latched scenery, static_boxes.
+  void subscribeScenery(ros::NodeHandle& ioNode);
+  /// Counts and logs a message of inTopic whose handling threw (inWhat): refused, not fatal.
+  void refuseUnhandled(const std::string& inTopic, const std::string& inWhat);
   /// Callback of a source read through an adapter (another type, or a BoxArray with an
   /// id_offset, group or mask): converts the message, names new ids on ~id_names, delivers.
   void onAdaptedMessage(SourceAdapter& ioAdapter,

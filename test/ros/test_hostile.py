@@ -1,0 +1,236 @@
+#!/usr/bin/python3
+"""Messages built byte by byte, as any process on the robot's network can send them: length
+prefixes that claim far more than the bytes that follow (10^9 markers, 2^32 - 1 points of a
+CUBE_LIST, 2^27 bounds of a BoxArray on a topic and in a compute_pairs request, a point cloud
+of 2^32 - 1 bytes inside a vision_msgs detection), and a request with bytes left over. The
+publishers send the real type name and MD5 sum, so the node takes the bytes for a message of
+that type. Each must be refused, counted in `stats` and named, and the node must go on
+answering: a process that died fails every later check.
+
+No timing is asserted: every wait is for a condition, bounded by WAIT only so that a broken
+node fails the test instead of hanging it.
+"""
+import struct
+import threading
+import unittest
+
+import genpy
+import rospy
+import rostest
+from sap_broadphase.msg import BoxArray, FrameStats, PairArray
+from sap_broadphase.srv import ComputePairs, ComputePairsRequest, ComputePairsResponse
+from std_msgs.msg import Header
+from visualization_msgs.msg import Marker, MarkerArray
+
+from test_adapters import foreign_classes
+
+PACKAGE = "sap_broadphase"
+WAIT = 60.0  # seconds; a bound on waiting, never a speed check
+
+
+def raw_class(type_name, md5sum):
+    """A message class whose instances serialize to the bytes they hold, under a real type."""
+
+    class Raw(genpy.Message):
+        _type = type_name
+        _md5sum = md5sum
+        _full_text = ""
+        _has_header = False
+        _slot_types = ["string"]
+        __slots__ = ["data"]
+
+        def __init__(self, data=b""):
+            self.data = data
+
+        def serialize(self, buff):
+            buff.write(self.data)
+
+        def deserialize(self, data):
+            self.data = data
+            return self
+
+    return Raw
+
+
+def serialized(message):
+    from io import BytesIO
+    buff = BytesIO()
+    message.serialize(buff)
+    return buff.getvalue()
+
+
+def header_bytes(frame_id="map"):
+    return serialized(Header(seq=0, stamp=rospy.Time(1, 0), frame_id=frame_id))
+
+
+def marker_array_claiming_markers(count):
+    return struct.pack("<I", count)
+
+
+def cube_list_claiming_points(count):
+    """One CUBE_LIST marker whose points prefix claims `count` points, none following (the
+    marker's other fields do)."""
+    marker = Marker(type=Marker.CUBE_LIST, action=Marker.ADD, ns="lying", id=1)
+    marker.header.frame_id = "map"
+    marker.pose.orientation.w = 1.0
+    marker.scale.x = marker.scale.y = marker.scale.z = 1.0
+    whole = serialized(MarkerArray(markers=[marker]))
+    # points is the first array after frame_locked; with no points, colors, text or mesh, the
+    # marker ends with: points (4), colors (4), text (4), mesh_resource (4), mesh_use_embedded (1).
+    points_at = len(whole) - 17
+    assert whole[points_at:points_at + 4] == b"\0\0\0\0"
+    return whole[:points_at] + struct.pack("<I", count) + whole[points_at + 4:]
+
+
+def box_array_claiming_bounds(count):
+    return header_bytes() + struct.pack("<I", 0) + struct.pack("<I", count)
+
+
+def detection_claiming_cloud(count):
+    """A Detection3DArray of one detection whose source_cloud data claims `count` bytes."""
+    classes = foreign_classes("vision_msgs/Detection3DArray")
+    detection = classes["vision_msgs/Detection3D"]()
+    detection.header.frame_id = "map"
+    detection.bbox.center.orientation.w = 1.0
+    array = classes["vision_msgs/Detection3DArray"](detections=[detection])
+    array.header.frame_id = "map"
+    whole = serialized(array)
+    # The cloud ends with data (4 bytes of length, none of data) and is_dense (1).
+    data_at = len(whole) - 5
+    assert whole[data_at:data_at + 4] == b"\0\0\0\0"
+    return whole[:data_at] + struct.pack("<I", count) + b"\0"
+
+
+class Hostile(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_hostile")
+        cls.lock = threading.Condition()
+        cls.stats = []
+        cls.pairs = []
+        rospy.Subscriber("stats", FrameStats, cls.on_stats, queue_size=1000)
+        rospy.Subscriber("pairs", PairArray, cls.on_pairs, queue_size=1000)
+        cls.publishers = {}
+
+    @classmethod
+    def on_stats(cls, msg):
+        with cls.lock:
+            cls.stats.append(msg)
+            cls.lock.notify_all()
+
+    @classmethod
+    def on_pairs(cls, msg):
+        with cls.lock:
+            cls.pairs.append(msg)
+            cls.lock.notify_all()
+
+    def publisher(self, topic, type_name, md5sum):
+        key = (topic, type_name, md5sum)
+        if key not in self.publishers:
+            self.publishers[key] = rospy.Publisher(topic, raw_class(type_name, md5sum),
+                                                   queue_size=10)
+        pub = self.publishers[key]
+        deadline = rospy.get_time() + WAIT
+        while pub.get_num_connections() == 0 and rospy.get_time() < deadline:
+            rospy.sleep(0.05)
+        self.assertGreater(pub.get_num_connections(), 0, "the node never subscribed to " + topic)
+        return pub
+
+    def wait_refusal(self, accept, republish):
+        """Waits for a refusal in stats that accept() likes, republishing meanwhile."""
+        seen = 0
+        deadline = rospy.get_time() + WAIT
+        while rospy.get_time() < deadline:
+            republish()
+            with self.lock:
+                self.lock.wait(0.5)
+                for msg in self.stats[seen:]:
+                    if msg.path == "refused" and accept(msg.last_refusal):
+                        return msg
+                seen = len(self.stats)
+        return None
+
+    def expect_alive(self):
+        """The node still computes: a BoxArray frame on `boxes` is answered."""
+        pub = rospy.Publisher("boxes", BoxArray, queue_size=10)
+        deadline = rospy.get_time() + WAIT
+        while pub.get_num_connections() == 0 and rospy.get_time() < deadline:
+            rospy.sleep(0.05)
+        stamp = rospy.Time(12345, len(self.pairs) + 1)
+        msg = BoxArray(ids=[1, 2], bounds=[0, 0, 0, 1, 1, 1, 0.5, 0.5, 0.5, 2, 2, 2])
+        msg.header.stamp = stamp
+        msg.header.frame_id = "map"
+        deadline = rospy.get_time() + WAIT
+        while rospy.get_time() < deadline:
+            pub.publish(msg)
+            with self.lock:
+                self.lock.wait(0.5)
+                if any(p.header.stamp == stamp for p in self.pairs):
+                    return
+        self.fail("the node no longer answers frames")
+
+    def refuse_on_topic(self, topic, type_name, md5sum, data, words):
+        pub = self.publisher(topic, type_name, md5sum)
+        refusal = self.wait_refusal(lambda text: all(w in text for w in words),
+                                    lambda: pub.publish(raw_class(type_name, md5sum)(data)))
+        self.assertIsNotNone(refusal, "no refusal naming %s on %s" % (words, topic))
+        self.expect_alive()
+
+    def test_marker_array_claiming_a_billion_markers(self):
+        self.refuse_on_topic("robot_markers", MarkerArray._type, MarkerArray._md5sum,
+                             marker_array_claiming_markers(10**9),
+                             ["robot_markers", "markers: claims 1000000000 elements"])
+
+    def test_cube_list_claiming_every_point(self):
+        self.refuse_on_topic("robot_markers", MarkerArray._type, MarkerArray._md5sum,
+                             cube_list_claiming_points(2**32 - 1),
+                             ["robot_markers", "markers[0].points: claims 4294967295"])
+
+    def test_box_array_on_a_topic_claiming_2_27_bounds(self):
+        self.refuse_on_topic("boxes", BoxArray._type, BoxArray._md5sum,
+                             box_array_claiming_bounds(2**27),
+                             ["'boxes'", "bounds: claims 134217728 elements"])
+
+    def test_scenery_claiming_2_27_bounds(self):
+        pub = rospy.Publisher("static_boxes", raw_class(BoxArray._type, BoxArray._md5sum),
+                              queue_size=1, latch=True)
+        refusal = self.wait_refusal(
+            lambda text: "static_boxes" in text and "bounds: claims" in text,
+            lambda: pub.publish(pub.data_class(box_array_claiming_bounds(2**27))))
+        self.assertIsNotNone(refusal)
+        self.expect_alive()
+
+    def test_detection_claiming_a_huge_point_cloud(self):
+        classes = foreign_classes("vision_msgs/Detection3DArray")
+        self.refuse_on_topic("detections", "vision_msgs/Detection3DArray",
+                             classes["vision_msgs/Detection3DArray"]._md5sum,
+                             detection_claiming_cloud(2**32 - 1),
+                             ["detections", "source_cloud.data: claims 4294967295"])
+
+    def call_raw(self, data):
+        request_class = raw_class(ComputePairsRequest._type, ComputePairsRequest._md5sum)
+
+        class Service:
+            _type = ComputePairs._type
+            _md5sum = ComputePairs._md5sum
+            _request_class = request_class
+            _response_class = ComputePairsResponse
+
+        rospy.wait_for_service("compute_pairs", WAIT)
+        return rospy.ServiceProxy("compute_pairs", Service)(request_class(data))
+
+    def test_compute_pairs_request_claiming_2_27_bounds(self):
+        answer = self.call_raw(box_array_claiming_bounds(2**27))
+        self.assertFalse(answer.success)
+        self.assertIn("bounds: claims 134217728 elements", answer.message)
+
+    def test_compute_pairs_request_with_bytes_left_over(self):
+        valid = serialized(ComputePairsRequest(boxes=BoxArray(bounds=[0, 0, 0, 1, 1, 1])))
+        self.assertTrue(self.call_raw(valid).success)
+        answer = self.call_raw(valid + b"\x07")
+        self.assertFalse(answer.success)
+        self.assertIn("1 bytes left after the last field", answer.message)
+
+
+if __name__ == "__main__":
+    rostest.rosrun(PACKAGE, "hostile", Hostile)
