@@ -270,7 +270,8 @@ std::optional<uint32_t> IdTable::idOf(const std::string& inName) {
   auto found = ids_.find(inName);
   if (found != ids_.end()) return found->second;
   const uint64_t id = uint64_t{offset_} + names_.size();
-  if (id > std::numeric_limits<uint32_t>::max()) return std::nullopt;
+  if (id > std::numeric_limits<uint32_t>::max() || names_.size() >= kMaxNamesPerSource)
+    return std::nullopt;
   ids_.emplace(inName, static_cast<uint32_t>(id));
   names_.push_back(inName);
   return static_cast<uint32_t>(id);
@@ -388,8 +389,10 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
   for (const PosedBox& box : inBoxes) {
     const std::optional<uint32_t> id = ids_.idOf(box.name);
     if (!id) {
-      return "box '" + box.name + "': no id left: id_offset " + std::to_string(spec_.id_offset) +
-             " plus " + std::to_string(ids_.names().size()) + " names passes 2^32 - 1";
+      return "box '" + box.name + "': no id left: the source has named " +
+             std::to_string(ids_.names().size()) + " boxes (at most " +
+             std::to_string(kMaxNamesPerSource) + ", and id_offset " +
+             std::to_string(spec_.id_offset) + " plus the names must stay below 2^32)";
     }
     outBoxes.ids.push_back(*id);
     // The box in its own frame; a point's box is widened by an ulp each way so the rounding of
@@ -461,6 +464,16 @@ void SourceAdapter::appendIdNames(std::vector<uint32_t>& ioIds,
 std::size_t SourceAdapter::nameCount() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return ids_.names().size();
+}
+
+void SourceAdapter::dropPublisher(const std::string& inPublisher) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  marker_sets_.erase(inPublisher);
+}
+
+std::size_t SourceAdapter::publisherCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return marker_sets_.size();
 }
 
 }  // namespace sap_broadphase

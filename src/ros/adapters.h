@@ -78,13 +78,18 @@ std::optional<std::string> decodeWireBoxes(InputType inType, const uint8_t* inDa
 /// all-zero quaternion is read as the identity, as rviz does). Returns the reason, or nothing.
 std::optional<std::string> checkPosedBox(const PosedBox& inBox);
 
+/// Names a source may give ids to: each costs about 350 bytes (the name twice, a map node) for
+/// the life of the node, so a publisher inventing a new name per message cannot grow the node
+/// without bound. A box whose name would pass the cap is refused, saying so.
+constexpr std::size_t kMaxNamesPerSource = std::size_t{1} << 18;
+
 /// Stable ids for the names of a source: the k-th name seen gets id_offset + k, for the life of
 /// the node, whatever order later messages list them in.
 class IdTable {
  public:
   explicit IdTable(uint32_t inOffset) : offset_(inOffset) {}
   /// The id of inName (registered when new), or nothing when the offset plus the number of
-  /// names would pass 2^32 - 1.
+  /// names would pass 2^32 - 1 or the table holds kMaxNamesPerSource names.
   std::optional<uint32_t> idOf(const std::string& inName);
   /// The names in id order: names()[k] has id offset() + k.
   const std::vector<std::string>& names() const { return names_; }
@@ -124,6 +129,11 @@ class SourceAdapter {
   void appendIdNames(std::vector<uint32_t>& ioIds, std::vector<std::string>& ioNames) const;
   /// Number of names given an id so far (grows only: a change means ~id_names is out of date).
   std::size_t nameCount() const;
+  /// Forgets the marker set of inPublisher, whose source timed out: a publisher that left
+  /// costs nothing after its time-out, and one that comes back starts from an empty set.
+  void dropPublisher(const std::string& inPublisher);
+  /// Number of publishers whose marker sets are kept.
+  std::size_t publisherCount() const;
 
  private:
   /// One publisher's markers, by (ns, id), and the frame of the last set converted.

@@ -114,6 +114,7 @@ void FrameWorker::run() {
           expireSources();
           if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
             computeFrame();
+          ingest_.publishIdNames();
           status_.updateDiagnostics();
         },
         [&](const std::string& inWhat) { recoverFrom(inWhat); });
@@ -209,6 +210,7 @@ void FrameWorker::expireSources() {
     return params_.source_timeout;
   };
   for (const SourceKey& key : sources_.expire(ros::Time::now(), timeout_of)) {
+    ingest_.forget(key);
     const bool own = timeout_of(key) != params_.source_timeout;
     status_.timeOut(sourceName(key) + " silent for more than " +
                     (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +

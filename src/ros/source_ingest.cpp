@@ -121,20 +121,23 @@ void SourceIngest::onAdaptedMessage(
     status_.refuse(boxes->header, boxes->bounds.size() / 6, sourceName(key) + ": " + *reason);
     return;
   }
-  publishIdNames(boxes->header);
+  {
+    std::lock_guard<std::mutex> lock(id_names_mutex_);
+    id_names_header_ = boxes->header;
+  }
   // The BoxArray built, with the connection header (publisher) of the message received.
   deliver(ioAdapter.spec().topic,
           ros::MessageEvent<BoxArray const>(boxes, inEvent.getConnectionHeaderPtr(),
                                             inEvent.getReceiptTime()));
 }
 
-void SourceIngest::publishIdNames(const std_msgs::Header& inHeader) {
+void SourceIngest::publishIdNames() {
   std::lock_guard<std::mutex> lock(id_names_mutex_);
   std::size_t names = 0;
   for (const auto& adapter : adapters_) names += adapter->nameCount();
   if (names == id_names_published_) return;  // names only grow: none is new
   auto msg = boost::make_shared<IdNames>();
-  msg->header = inHeader;
+  msg->header = id_names_header_;
   for (const auto& adapter : adapters_) adapter->appendIdNames(msg->ids, msg->names);
   id_names_published_ = msg->ids.size();
   id_names_pub_.publish(msg);
@@ -252,6 +255,11 @@ void SourceIngest::take(std::map<SourceKey, Delivery>& outDeliveries, BoxArrayCo
     }
   }
   any_waiting_ = !waiting_.empty() || pending_scenery_;
+}
+
+void SourceIngest::forget(const SourceKey& inKey) {
+  for (const auto& adapter : adapters_)
+    if (adapter->spec().topic == inKey.topic) adapter->dropPublisher(inKey.publisher);
 }
 
 void SourceIngest::restartClock(const ros::Time& inNow) {

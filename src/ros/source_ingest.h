@@ -72,6 +72,13 @@ class SourceIngest {
   /// a latched message may be older than tf2's cache.
   bool convertScenery(const BoxArray& inMsg, BoxSet& outBoxes);
 
+  /// Publishes the names of every adapter's ids on ~id_names when some are new since the last
+  /// time (worker thread, once per round: a burst of new names costs one message, not one per
+  /// name).
+  void publishIdNames();
+  /// The source inKey timed out: its adapter forgets the publisher's state (worker thread).
+  void forget(const SourceKey& inKey);
+
   /// The ROS clock went back to inNow: frames waiting for the worker or for their transform
   /// count as received now (their ~transform_timeout starts again).
   void restartClock(const ros::Time& inNow);
@@ -91,8 +98,7 @@ class SourceIngest {
   /// id_offset, group or mask): converts the message, names new ids on ~id_names, delivers.
   void onAdaptedMessage(SourceAdapter& ioAdapter,
                         const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent);
-  /// Publishes the names of every adapter's ids on ~id_names when some are new (any thread).
-  void publishIdNames(const std_msgs::Header& inHeader);
+
   /// Keeps a checked frame for the worker, or aside while its transform is missing.
   void store(const SourceKey& inKey, const Delivery& inDelivery);
   /// Moves the waiting frames that tf2 can now place to pending_, skips those that waited too
@@ -117,6 +123,7 @@ class SourceIngest {
   ros::Publisher id_names_pub_;                           // latched, while adapters name ids
   std::mutex id_names_mutex_;
   std::size_t id_names_published_ = 0;  // names in the last ~id_names (under the mutex above)
+  std_msgs::Header id_names_header_;    // of the last message an adapter converted
 
   std::mutex mutex_;                       // guards what the worker takes
   std::map<SourceKey, Delivery> pending_;  // ready for the worker

@@ -542,6 +542,42 @@ TEST(MarkerAdapter, ARefusedMessageLeavesTheSetAsItWas) {
   EXPECT_EQ(out.ids, (std::vector<uint32_t>{0}));  // a/1 still there
 }
 
+TEST(MarkerAdapter, DepartedPublishersAreForgotten) {
+  // Publishers coming and going: each leaves its marker set until its source times out.
+  SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
+  BoxArray out;
+  visualization_msgs::MarkerArray msg;
+  msg.markers = {cube("a", 1, 0.0, "map")};
+  for (int k = 0; k < 50; ++k)
+    ASSERT_FALSE(adapter.convertMarkers(msg, "/robot_" + std::to_string(k), out));
+  EXPECT_EQ(adapter.publisherCount(), 50u);
+  for (int k = 0; k < 50; ++k) adapter.dropPublisher("/robot_" + std::to_string(k));
+  EXPECT_EQ(adapter.publisherCount(), 0u);
+  // Back after its time-out, a publisher starts from an empty set: its old cube is gone.
+  msg.markers.clear();
+  ASSERT_FALSE(adapter.convertMarkers(msg, "/robot_0", out));
+  EXPECT_TRUE(out.ids.empty());
+}
+
+TEST(MarkerAdapter, NamesPastTheCapAreRefusedSayingSo) {
+  SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
+  BoxArray out;
+  visualization_msgs::MarkerArray msg;
+  msg.markers = {cube("a", 0, 0.0, "map")};
+  msg.markers[0].type = visualization_msgs::Marker::CUBE_LIST;
+  msg.markers[0].points.resize(kMaxNamesPerSource);  // one name per point: the cap, exactly
+  ASSERT_FALSE(adapter.convertMarkers(msg, "/r", out));
+  EXPECT_EQ(adapter.nameCount(), kMaxNamesPerSource);
+  msg.markers = {cube("b", 1, 0.0, "map")};
+  const auto refusal = adapter.convertMarkers(msg, "/r2", out);
+  ASSERT_TRUE(refusal);
+  EXPECT_NE(refusal->find("box 'b/1': no id left: the source has named 262144 boxes (at most "
+                          "262144"),
+            std::string::npos)
+      << *refusal;
+  EXPECT_EQ(adapter.nameCount(), kMaxNamesPerSource);
+}
+
 TEST(Validation, NaNNegativeSizeAndBadQuaternionsNameTheBox) {
   PosedBox box{"obstacles/7", pose(0, 0, 0, tf2::Quaternion(0, 0, 0, 1)), geometry_msgs::Point(),
                vector(1, 1, 1)};

@@ -207,6 +207,52 @@ class Hostile(unittest.TestCase):
                              detection_claiming_cloud(2**32 - 1),
                              ["detections", "source_cloud.data: claims 4294967295"])
 
+    def test_marker_state_of_a_silent_publisher_is_dropped(self):
+        """A MarkerArray publisher silent past its source's time-out (1 s in hostile.test) is
+        forgotten: when it comes back with another cube, its old cube is not in the world."""
+        self.expect_alive()  # `boxes` holds 2 boxes for good (source_timeout 0)
+        pub = self.publisher("leaving_markers", MarkerArray._type, MarkerArray._md5sum)
+        cube = Marker(type=Marker.CUBE, action=Marker.ADD, ns="leaving", id=1)
+        cube.header.frame_id = "map"
+        cube.pose.orientation.w = 1.0
+        cube.scale.x = cube.scale.y = cube.scale.z = 1.0
+        send = lambda markers: pub.publish(pub.data_class(serialized(MarkerArray(markers))))
+        with self.lock:
+            seen = len(self.stats)
+        joined = self.wait_stats(lambda s: s.sources == 2 and s.boxes == 3, lambda: send([cube]),
+                                 seen)
+        self.assertIsNotNone(joined, "the marker source never joined")
+        boxes = rospy.Publisher("boxes", BoxArray, queue_size=10)
+        frame = BoxArray(ids=[1, 2], bounds=[0, 0, 0, 1, 1, 1, 0.5, 0.5, 0.5, 2, 2, 2])
+        frame.header.frame_id = "map"
+        # Frames on `boxes` keep stats coming while the marker source falls silent.
+        timed_out = self.wait_stats(lambda s: s.sources_timed_out > joined.sources_timed_out,
+                                    lambda: boxes.publish(frame), seen)
+        self.assertIsNotNone(timed_out, "the marker source never timed out")
+        with self.lock:
+            seen = len(self.stats)
+        other = Marker(type=Marker.CUBE, action=Marker.ADD, ns="leaving", id=2)
+        other.header.frame_id = "map"
+        other.pose.orientation.w = 1.0
+        other.pose.position.x = 10.0
+        other.scale.x = other.scale.y = other.scale.z = 1.0
+        back = self.wait_stats(lambda s: s.sources == 2 and s.path != "refused",
+                               lambda: send([other]), seen)
+        self.assertIsNotNone(back, "the marker source never joined again")
+        self.assertEqual(back.boxes, 3, "the cube of the publisher's old set came back")
+
+    def wait_stats(self, accept, republish, seen):
+        """The first stats message from index `seen` on that accept() likes, or None."""
+        deadline = rospy.get_time() + WAIT
+        while rospy.get_time() < deadline:
+            republish()
+            with self.lock:
+                self.lock.wait(0.5)
+                for msg in self.stats[seen:]:
+                    if accept(msg):
+                        return msg
+        return None
+
     def call_raw(self, data):
         request_class = raw_class(ComputePairsRequest._type, ComputePairsRequest._md5sum)
 
