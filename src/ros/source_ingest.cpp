@@ -27,6 +27,18 @@ constexpr int kStatefulQueueSize = 1000;
 /// Wall seconds between two looks at roscpp's drop counts.
 constexpr double kLossCheckSeconds = 0.5;
 
+/// The check of each message's connection header against a source of inType: the type name
+/// and MD5 sum its publisher declared.
+PublisherCheck connectionTypeCheck(InputType inType) {
+  return [inType](const ros::M_string& inConnection) {
+    const auto field = [&](const char* inKey) {
+      const auto found = inConnection.find(inKey);
+      return found == inConnection.end() ? std::string() : found->second;
+    };
+    return checkPublishedType(inType, field("type"), field("md5sum"));
+  };
+}
+
 /// The node's output topic that inTopic resolves to, or nullptr.
 const char* ownOutputNamed(const ros::NodeHandle& inNode, const std::string& inTopic) {
   for (const char* output : {"pairs", "pair_events", "markers", "stats", "id_names"})
@@ -89,8 +101,9 @@ void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, 
     const SourceKey key{topic, caller == inConnection.end() ? "" : caller->second, ""};
     status_.refuse(std_msgs::Header(), 0, sourceName(key) + ": " + inReason);
   };
-  const WireLayout& layout = wireLayout(inSpec.type);
-  if (inSpec.type == InputType::kMarkerArray) {
+  const InputType type = inSpec.type;
+  const WireLayout& layout = wireLayout(type);
+  if (type == InputType::kMarkerArray) {
     // A MarkerArray only says what changed: a message lost in the queue is an update the
     // node never sees. Its queue holds a burst; what it still drops is counted.
     inQueueSize = std::max(inQueueSize, kStatefulQueueSize);
@@ -113,21 +126,12 @@ void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, 
     SourceAdapter* adapter = adapters_.back().get();
     using Event = const ros::MessageEvent<topic_tools::ShapeShifter const>&;
     options.initByFullCallbackType<Event>(topic, static_cast<uint32_t>(inQueueSize), [](Event) {});
-    const InputType type = inSpec.type;
     options.helper = boost::make_shared<CheckedSubscriptionHelper<Event>>(
         [this, adapter, topic](Event inEvent) {
           runGuarded([&] { onAdaptedMessage(*adapter, inEvent); },
                      [&](const std::string& inWhat) { refuseUnhandled(topic, inWhat); });
         },
-        layout,
-        [type](const ros::M_string& inConnection) {
-          const auto field = [&](const char* inKey) {
-            const auto found = inConnection.find(inKey);
-            return found == inConnection.end() ? std::string() : found->second;
-          };
-          return checkPublishedType(type, field("type"), field("md5sum"));
-        },
-        refuse);
+        layout, connectionTypeCheck(type), refuse);
     // The definition the node decodes, not "*": roscpp would fix the topic's MD5 sum to its
     // first publisher's, and one publisher of another definition would lock the others out.
     // Publishers of another definition are refused by roscpp and named by the probe.
@@ -136,7 +140,6 @@ void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, 
   }
   options.transport_hints = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(ioNode.subscribe(options));
-  const InputType type = inSpec.type;
   probed_topics_.emplace_back(ioNode.resolveName(topic), [type](const PublishedType& inPublished) {
     return checkPublishedType(type, inPublished.type, inPublished.md5);
   });
