@@ -7,6 +7,7 @@
 #include <dynamic_reconfigure/server.h>
 #include <ros/console.h>
 
+#include "checked_callbacks.h"
 #include "sap_broadphase/BroadphaseNodeConfig.h"
 
 namespace sap_broadphase {
@@ -23,7 +24,13 @@ NodeReconfigure::NodeReconfigure(const ros::NodeHandle& inPrivate, const NodePar
   toReconfigureConfig(accepted_, in_force);
   server_->updateConfig(in_force);
   server_->setCallback([this](BroadphaseNodeConfig& ioConfig, uint32_t inLevel) {
-    onReconfigure(ioConfig, inLevel);
+    // A service callback of dynamic_reconfigure: nothing thrown may leave it.
+    runGuarded([&] { onReconfigure(ioConfig, inLevel); },
+               [&](const std::string& inWhat) {
+                 ROS_ERROR("sap_broadphase: reconfigure failed, the settings in force stay: %s",
+                           inWhat.c_str());
+                 toReconfigureConfig(accepted_, ioConfig);
+               });
   });
 }
 
