@@ -7,6 +7,7 @@
 #   scripts/fuzz.sh --seconds 120         # per target
 #   scripts/fuzz.sh --target text         # one target: text, boxset, box_array, sequence or wire
 #   scripts/fuzz.sh --save                # merge new coverage into fuzz/corpus/ afterwards
+#   scripts/fuzz.sh --junit FILE          # also write each target's verdict as a JUnit test case
 #
 # Targets: fuzz_text (readBoxText, round trip, engine vs oracle), fuzz_boxset (validate() on
 # raw box sets, engine vs oracle), fuzz_box_array (BoxArray deserialization and the ROS
@@ -25,13 +26,15 @@ RUNS=20000
 SECONDS_PER_TARGET=""
 TARGETS=(text boxset box_array sequence wire)
 SAVE=0
+JUNIT=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --runs) RUNS="$2"; shift 2 ;;
     --seconds) SECONDS_PER_TARGET="$2"; shift 2 ;;
     --target) TARGETS=("$2"); shift 2 ;;
     --save) SAVE=1; shift ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    --junit) JUNIT="$2"; shift 2 ;;
+    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     *) echo "fuzz.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -100,6 +103,7 @@ export ASAN_OPTIONS="allocator_may_return_null=1:detect_leaks=1:${ASAN_OPTIONS:-
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
 export OMP_WAIT_POLICY=passive
 status=0
+cases=""
 for target in "${TARGETS[@]}"; do
   work="$OUT/corpus/$target"
   mkdir -p "$work"
@@ -113,9 +117,11 @@ for target in "${TARGETS[@]}"; do
   if "$OUT/fuzz_$target" "${limit[@]}" "${dict[@]}" -max_len=4096 -rss_limit_mb=2048 \
        -artifact_prefix="$OUT/crashes/$target-" -print_final_stats=1 "$work" \
        > "$OUT/$target.log" 2>&1; then
+    cases+="<testcase classname=\"fuzz\" name=\"fuzz_$target\"/>"
     echo "fuzz.sh: fuzz_$target clean: $(grep -E '^stat::number_of_executed_units' "$OUT/$target.log" | awk '{print $2}') inputs in $(( $(date +%s) - start )) s, corpus $(ls "$work" | wc -l) files, $(grep -oE 'cov: [0-9]+' "$OUT/$target.log" | tail -1)"
   else
     status=1
+    cases+="<testcase classname=\"fuzz\" name=\"fuzz_$target\"><failure message=\"fuzz_$target found a problem: $OUT/$target.log\"/></testcase>"
     echo "fuzz.sh: fuzz_$target FOUND A PROBLEM (log $OUT/$target.log):"
     grep -E 'ERROR|fuzz_|SUMMARY|Test unit written' "$OUT/$target.log" | head -20
   fi
@@ -123,4 +129,9 @@ for target in "${TARGETS[@]}"; do
     "$OUT/fuzz_$target" -merge=1 "$ROOT/fuzz/corpus/$target" "$work" >/dev/null 2>&1 || true
   fi
 done
+if [ -n "$JUNIT" ]; then
+  mkdir -p "$(dirname "$JUNIT")"
+  printf '<?xml version="1.0"?>\n<testsuite name="fuzz" tests="%d" failures="%d">%s</testsuite>\n' \
+    "${#TARGETS[@]}" "$(grep -o '<failure' <<<"$cases" | wc -l)" "$cases" > "$JUNIT"
+fi
 exit $status

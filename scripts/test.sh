@@ -16,6 +16,15 @@ export ROS_MASTER_URI=http://127.0.0.1:11411
 # workers slow every parallel region by an order of magnitude when cores are oversubscribed.
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 catkin_make -C "$WS" run_tests -j1 -DPYTHON_EXECUTABLE=/usr/bin/python3 2>&1 | tee "$ROOT/build/test.log" | grep -E '^\[( RUN|  PASSED|  FAILED|  FAILED ) *\]|^\[ *(OK|FAILED) *\]|SUMMARY|FAILURE|ERROR' || true
+# The fuzzers (ASan/UBSan, scripts/fuzz.sh) for a few seconds a target, from the seed corpus:
+# each target's verdict is a test case; a build that fails is one failed case.
+fuzz_junit="$WS/build/test_results/fuzz/fuzz.xml"
+if ! "$ROOT/scripts/fuzz.sh" --seconds "${SAP_FUZZ_SECONDS:-8}" --junit "$fuzz_junit" \
+     > "$ROOT/build/fuzz.log" 2>&1 && [ ! -f "$fuzz_junit" ]; then
+  mkdir -p "$(dirname "$fuzz_junit")"
+  echo '<?xml version="1.0"?><testsuite name="fuzz" tests="1" failures="1"><testcase classname="fuzz" name="build"><failure message="scripts/fuzz.sh failed before fuzzing: see build/fuzz.log"/></testcase></testsuite>' > "$fuzz_junit"
+fi
+grep -E '^fuzz.sh: fuzz_' "$ROOT/build/fuzz.log" || true
 set +e
 summary=$(catkin_test_results --verbose "$WS/build/test_results")
 status=$?
