@@ -4,7 +4,7 @@
 # under about 3 minutes in Release on 2 cores.
 
 # Unit tests of the engine's parts: text format, validation, SuccTree, sort keys, radix sorts,
-# candidate generation.
+# candidate generation, the frame history, pair sorting, the third-axis slabs.
 sap_add_gtest(test_core
   test/core/test_text_io.cpp
   test/core/test_config.cpp
@@ -13,6 +13,9 @@ sap_add_gtest(test_core
   test/core/test_succ_tree.cpp
   test/core/test_radix_sort.cpp
   test/core/test_sweep.cpp
+  test/core/test_frame_history.cpp
+  test/core/test_pair_set.cpp
+  test/core/test_slab_grid.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp
 )

@@ -20,6 +20,7 @@
 #include "core/assert.h"
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
+#include "core/pair_sort.h"
 #include "core/phase_timer.h"
 #include "core/skin_reuse.h"
 #include "core/small_frame.h"

@@ -1,5 +1,7 @@
 #include "sap_broadphase/core/brute_force.h"
 
+#include "core/pair_sort.h"
+
 namespace sap_broadphase {
 
 PairList bruteForcePairs(const BoxSet& inBoxes) {

@@ -173,6 +173,8 @@ const FrameDelta& FrameHistory::load(const InterleavedBoxes& inBoxes, int inThre
     }
   }
   if (outProblem) forget();
+  SAP_ASSERT(outProblem || last_.size() == inBoxes.count, "the loaded frame lost boxes");
+  SAP_ASSERT(delta_.moved_boxes <= inBoxes.count, "more boxes moved than the frame holds");
   return delta_;
 }
 
@@ -213,6 +215,8 @@ FrameHistory::RecordsLoaded FrameHistory::compareAndLoadBoxByBox(const Interleav
   }
   delta_.moved_boxes = moved;
   delta_.max_displacement = max_displacement;
+  SAP_ASSERT(moved == countChanged(unchanged_.data(), 0, n), "moved boxes miscounted");
+  SAP_ASSERT(!(max_displacement < 0.0), "a negative or NaN displacement");
   return RecordsLoaded{other_ids != 0, unusable != 0};
 }
 
@@ -234,6 +238,7 @@ const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
   }
   delta_.relation = delta_.moved_boxes == 0 ? FrameRelation::kIdentical : FrameRelation::kSameIds;
   delta_.unchanged = &unchanged_;
+  SAP_ASSERT(unchanged_.size() == inBoxes.size(), "one unchanged flag per box");
   return delta_;
 }
 
@@ -273,6 +278,8 @@ bool FrameHistory::compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads) 
   delta_.moved_boxes = moved;
   delta_.filters_changed = filters_changed != 0;
   delta_.max_displacement = max_displacement;
+  SAP_ASSERT(moved == countChanged(unchanged_.data(), 0, n), "moved boxes miscounted");
+  SAP_ASSERT(!(max_displacement < 0.0), "a negative or NaN displacement");
   return other_ids == 0;
 }
 

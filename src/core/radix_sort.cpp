@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -174,7 +173,8 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
                                               int inThreads) {
   const int partitions = static_cast<int>(inBounds.bounds.size()) + 1;
   const int bound_count = partitions - 1;
-  assert(partitions >= 1 && partitions <= kMaxSortPartitions);  // partition_of_ is 8 bits
+  SAP_ASSERT(partitions >= 1 && partitions <= kMaxSortPartitions,
+             "more sort partitions than partition_of_'s 8 bits number");
   const uint32_t* bounds = inBounds.bounds.data();
   // Each thread's counters sit a cache line past the previous thread's: counters that shared
   // a line would bounce between the cores on every item.

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/axis_spread.h"
+#include "core/pair_sort.h"
 #include "sap_broadphase/core/box_set.h"
-#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
 

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "core/buffers.h"
+#include "core/pair_sort.h"
 #include "core/slab_grid.h"
 #include "core/succ_tree.h"
 #include "sap_broadphase/core/box_set.h"
-#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
 
