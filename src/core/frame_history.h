@@ -2,8 +2,8 @@
 //
 // Temporal coherence (the paper's partition bounds B, §4.2) is kept by the sweep itself; what
 // the history adds is the knowledge of which boxes moved and how far, which lets a frame skip
-// work: an identical frame returns the last pairs, resting boxes can be indexed instead of
-// swept, and the measured motion chooses the skin of the kept candidates (skin_list.h).
+// work: an identical frame returns the last pairs, and the measured motion chooses the skin of
+// the kept candidates (skin_list.h).
 #pragma once
 
 #include <cstddef>

@@ -117,7 +117,7 @@ double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts
   return 0.0;
 }
 
-FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed) {
+FramePath framePathOf(const FramePlan& inPlan) {
   switch (inPlan.work) {
     case FrameWork::kEmpty:
       return FramePath::kEmpty;
@@ -131,7 +131,6 @@ FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed) {
     case FrameWork::kSweep:
       break;
   }
-  if (inRestingIndexed) return FramePath::kStatic;
   return inPlan.work == FrameWork::kSmallFrame ? FramePath::kSmallFrame : inPlan.sweep_path;
 }
 
@@ -179,13 +178,13 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     return plan;
   }
   if (config.method == Method::kAuto && !skin_fixed &&
-      isSmallFrame(inInputs.swept, inInputs.threads)) {
+      isSmallFrame(inInputs.boxes, inInputs.threads)) {
     plan.work = FrameWork::kSmallFrame;  // no skin: a small frame costs less than its pass
     plan.threads = 1;
     return plan;
   }
   plan.work = FrameWork::kSweep;
-  plan.sweep_path = sweepPath(config, inInputs.swept, inInputs.threads);
+  plan.sweep_path = sweepPath(config, inInputs.boxes, inInputs.threads);
   if (plan.sweep_path == FramePath::kSequential) plan.threads = 1;
   if (skin_off) return plan;
   if (skin_fixed) {
@@ -196,7 +195,7 @@ FramePlan planFrame(const PlanInputs& inInputs) {
   } else if (!delta.sameIds()) {
     plan.skin_choice = SkinChoice::kIdsChanged;
   } else {
-    plan.sweep_skin = chooseSkin(inInputs.motion, inInputs.swept, inInputs.costs, plan.skin_choice);
+    plan.sweep_skin = chooseSkin(inInputs.motion, inInputs.boxes, inInputs.costs, plan.skin_choice);
   }
   plan.skin = plan.sweep_skin;
   // The kept-candidate passes of a grown sweep run on every thread.

@@ -49,7 +49,6 @@ struct PlanInputs {
   const BroadphaseConfig* config = nullptr;
   FrameDelta delta;
   std::size_t boxes = 0;  ///< boxes that can pair (filtered)
-  std::size_t swept = 0;  ///< boxes left to sweep (after resting boxes went to an index)
   int threads = 1;
   bool last_pairs_valid = false;  ///< the output still holds the last frame's pairs
   bool kept_candidates = false;   ///< a kept-candidate list exists for these boxes
@@ -91,9 +90,8 @@ bool planConsidersKeptCandidates(const PlanInputs& inInputs);
 /// Picks the work of a frame.
 FramePlan planFrame(const PlanInputs& inInputs);
 
-/// The path a frame reports for its plan (inRestingIndexed: resting boxes answered by their
-/// index this frame).
-FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed);
+/// The path a frame reports for its plan.
+FramePath framePathOf(const FramePlan& inPlan);
 
 /// The automatic skin for motion inMotion: the skin whose sweep-then-passes cycle the cost
 /// model expects cheapest per frame, or 0 when none beats a plain sweep. outChoice says why.

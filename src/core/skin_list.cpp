@@ -268,12 +268,6 @@ void SkinList::keepSpatialCandidates() {
   }
 }
 
-bool SkinList::collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs) {
-  if (!gather(inBoxes, inThreads)) return false;
-  collectGathered(inThreads, outPairs);
-  return true;
-}
-
 bool SkinList::gather(const BoxSet& inBoxes, int inThreads) {
   frame_gathered_ = valid_ && sameCounts(inBoxes) && gatherInside(inBoxes, inThreads);
   return frame_gathered_;

@@ -177,10 +177,6 @@ int chooseSmallFrameAxis(FrameSpread& ioSpread) {
   return best_axis;
 }
 
-bool smallFrameUsesAvx2() {
-  return cpuHasAvx2();
-}
-
 void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
                     PairList& outPairs) {
 #if SAP_SMALL_FRAME_AVX2

@@ -59,7 +59,4 @@ void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList
 /// The same, forced onto the portable loop (for tests and benchmarks on AVX2 machines).
 void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
 
-/// True when pairSmallFrame uses the AVX2 blocks on this CPU.
-bool smallFrameUsesAvx2();
-
 }  // namespace sap_broadphase

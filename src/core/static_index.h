@@ -1,5 +1,5 @@
-// An exact index of boxes that do not move: a uniform 3-D grid in CSR form (resting and declared
-// static boxes).
+// An exact index of boxes that do not move, the declared scenery: a uniform 3-D grid in CSR
+// form.
 #pragma once
 
 #include <cstddef>

@@ -24,7 +24,7 @@ constexpr std::size_t kMinBoxesForSlabs = 2048;
 /// mean boxes sit in more trees.
 constexpr double kSlabWidthInExtents = 2.0;
 
-// ---- Static index: resting boxes and declared scenery (static_index.h, static_split.h) ----
+// ---- Static index of the declared scenery (static_index.h) ----
 
 /// Cell edge in mean box extents. At one extent a box covers about 2^3 cells and a cell holds
 /// about density * 8 boxes; the cap below usually decides instead.
@@ -36,9 +36,6 @@ constexpr double kCellsPerBox = 1.0;
 constexpr uint64_t kMaxCellsPerBox = 64;
 /// Fewest queries worth a thread of their own in queryAll.
 constexpr std::size_t kMinQueriesPerThread = 64;
-
-/// Most distinct group/mask classes looked at among the unchanged boxes.
-constexpr std::size_t kMaxFilterClasses = 64;
 
 // ---- Large-world coordinates (sort keys relative to the frame) ----
 

@@ -32,7 +32,7 @@ PlanInputs coherentFrame(const BroadphaseConfig& inConfig) {
   inputs.delta.relation = FrameRelation::kSameIds;
   inputs.delta.moved_boxes = 100000;
   inputs.delta.max_displacement = 0.01;
-  inputs.boxes = inputs.swept = 100000;
+  inputs.boxes = 100000;
   inputs.threads = 2;
   inputs.last_pairs_valid = true;
   inputs.motion = 0.01;
@@ -43,7 +43,7 @@ PlanInputs coherentFrame(const BroadphaseConfig& inConfig) {
 TEST(FramePlan, FewerThanTwoBoxesIsEmpty) {
   BroadphaseConfig config;
   PlanInputs inputs = coherentFrame(config);
-  inputs.boxes = inputs.swept = 1;
+  inputs.boxes = 1;
   EXPECT_EQ(planFrame(inputs).work, FrameWork::kEmpty);
 }
 
@@ -149,7 +149,7 @@ TEST(FramePlan, FastMotionTurnsTheSkinOff) {
 TEST(FramePlan, SmallFramesAndUnmeasuredCostsTakeNoSkin) {
   BroadphaseConfig config;
   PlanInputs inputs = coherentFrame(config);
-  inputs.boxes = inputs.swept = tuning::kMinSkinBoxes - 1;
+  inputs.boxes = tuning::kMinSkinBoxes - 1;
   EXPECT_EQ(planFrame(inputs).skin_choice, SkinChoice::kNotWorthIt);
   inputs = coherentFrame(config);
   inputs.costs.reference_boxes = 0;
@@ -218,12 +218,11 @@ TEST(FramePlan, PathsNameThePlan) {
   FramePlan plan;
   plan.work = FrameWork::kSweep;
   plan.sweep_path = FramePath::kParallel;
-  EXPECT_EQ(framePathOf(plan, false), FramePath::kParallel);
-  EXPECT_EQ(framePathOf(plan, true), FramePath::kStatic);
+  EXPECT_EQ(framePathOf(plan), FramePath::kParallel);
   plan.work = FrameWork::kKeptCandidates;
-  EXPECT_EQ(framePathOf(plan, false), FramePath::kSkin);
+  EXPECT_EQ(framePathOf(plan), FramePath::kSkin);
   plan.work = FrameWork::kReuse;
-  EXPECT_EQ(framePathOf(plan, false), FramePath::kReused);
+  EXPECT_EQ(framePathOf(plan), FramePath::kReused);
 }
 
 }  // namespace

@@ -71,9 +71,6 @@ struct BroadphaseConfig {
   bool reuse_unchanged_frames = true;      ///< a frame bit for bit equal to the previous one
                                            ///< (ids, bounds, groups, masks) returns its pairs; the
                                            ///< comparison is the frame history's, done anyway
-  bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
-                                    ///< and whose groups/masks forbid pairs among them in an
-                                    ///< index (static_split.h); sweep only the others
   /// Skin reuse (kept candidates): sweep boxes grown by skin / 2 a side, then test only those
   /// candidates until a box leaves its grown box. Nothing (the default) = automatic: chosen
   /// each sweep from the measured motion and costs, off when it does not pay; 0 = off;
