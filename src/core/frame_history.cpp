@@ -1,6 +1,7 @@
 #include "core/frame_history.h"
 #include "core/assert.h"
 #include "core/buffers.h"
+#include "core/tuning.h"
 
 #include <omp.h>
 
@@ -38,7 +39,7 @@ struct BlockChanges {
   double max_displacement = 0.0;
 };
 
-constexpr std::size_t kBlock = 512;  // boxes compared, then copied, together
+constexpr std::size_t kBlock = tuning::kHistoryBlockBoxes;
 
 // One bound array over a block of inCount boxes: ORs each box's differing bits into
 // ioDiffering[k] and returns the bits of the largest change, 0 when bit for bit equal,

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <iterator>
 
-#include "core/small_frame.h"
 #include "core/tuning.h"
 
 namespace sap_broadphase {
@@ -134,8 +133,8 @@ FramePath framePathOf(const FramePlan& inPlan) {
   return inPlan.work == FrameWork::kSmallFrame ? FramePath::kSmallFrame : inPlan.sweep_path;
 }
 
-bool isSmallFrame(std::size_t inBoxes, int inThreads) {
-  return inBoxes <= (inThreads == 1 ? kSmallFrameMaxBoxesOneThread : kSmallFrameMaxBoxesParallel);
+bool isSmallFrame(std::size_t inBoxes) {
+  return inBoxes <= tuning::kSmallFrameMaxBoxes;
 }
 
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
@@ -177,8 +176,7 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;
     return plan;
   }
-  if (config.method == Method::kAuto && !skin_fixed &&
-      isSmallFrame(inInputs.boxes, inInputs.threads)) {
+  if (config.method == Method::kAuto && !skin_fixed && isSmallFrame(inInputs.boxes)) {
     plan.work = FrameWork::kSmallFrame;  // no skin: a small frame costs less than its pass
     plan.threads = 1;
     return plan;

@@ -73,8 +73,9 @@ struct FramePlan {
 FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
 
 /// True when a frame of inBoxes boxes goes to the small-frame path (Method::kAuto) rather than
-/// the sweep: at or below the measured crossover (small_frame.h).
-bool isSmallFrame(std::size_t inBoxes, int inThreads);
+/// the sweep, on any thread count: at or below the measured crossover
+/// (tuning::kSmallFrameMaxBoxes).
+bool isSmallFrame(std::size_t inBoxes);
 
 /// True when the frame's pairs are the last frame's: identical boxes, reuse on, the last
 /// pairs still held.

@@ -2,6 +2,7 @@
 
 #include "core/assert.h"
 #include "core/buffers.h"
+#include "core/tuning.h"
 
 #include <omp.h>
 
@@ -12,15 +13,13 @@ namespace {
 
 constexpr int kDigitBits = 16;
 constexpr uint32_t kDigitValues = 1u << kDigitBits;
-// Lists of pairs sharing `a` up to this long are insertion-sorted.
-constexpr std::size_t kInsertionSortLimit = 16;
 
 inline uint64_t pairKey(const IdPair& inPair) {
   return (uint64_t{inPair.a} << 32) | inPair.b;
 }
 
 void sortByB(IdPair* ioBegin, IdPair* ioEnd) {
-  if (static_cast<std::size_t>(ioEnd - ioBegin) > kInsertionSortLimit) {
+  if (static_cast<std::size_t>(ioEnd - ioBegin) > tuning::kPairInsertionSortLimit) {
     std::sort(ioBegin, ioEnd);
     return;
   }
@@ -117,7 +116,7 @@ void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal
     }
 #pragma omp barrier
     const uint32_t* run_end = offsets + (parts - 1) * row;
-    constexpr std::size_t kRunChunk = 4096;  // values of a a thread takes at a time
+    constexpr std::size_t kRunChunk = tuning::kPairRunChunk;
 #pragma omp for schedule(dynamic, 1)
     for (std::size_t chunk = 0; chunk < (row + kRunChunk - 1) / kRunChunk; ++chunk) {
       const std::size_t first = chunk * kRunChunk;
@@ -138,10 +137,6 @@ uint32_t largestA(const Pairs& inPairs) {
   forEachPair(inPairs, [&](const IdPair& inPair) { largest = std::max(largest, inPair.a); });
   return largest;
 }
-
-// Below this many pairs one thread merges the parts: a team's barriers and the second row of
-// counts cost more (measured: 26k pairs of 2^17 boxes, 0.19 ms on one thread, 0.30 on two).
-constexpr std::size_t kParallelMergePairs = 65536;
 
 bool denseEnough(uint32_t inLargestA, std::size_t inCount) {
   return inLargestA < 4 * inCount + 65536;
@@ -213,7 +208,7 @@ void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPai
   for (std::size_t part = 0; part < inParts.size(); ++part)
     inParts[part].forEach([&](const IdPair& inPair) { largest_a = std::max(largest_a, inPair.a); });
   if (denseEnough(largest_a, total)) {
-    if (threads > 1 && total >= kParallelMergePairs)
+    if (threads > 1 && total >= tuning::kParallelMergePairs)
       bucketSortParts(inParts, total, largest_a, threads, ioScratch.offsets, outPairs);
     else
       bucketSort(inParts, total, largest_a, ioScratch.offsets, outPairs);

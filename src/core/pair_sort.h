@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/tuning.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -16,7 +17,7 @@ namespace sap_broadphase {
 /// the chunks for the next frame.
 class PairChunks {
  public:
-  static constexpr std::size_t kChunkPairs = std::size_t{1} << 13;  // 64 KiB
+  static constexpr std::size_t kChunkPairs = tuning::kPairChunkPairs;
 
   /// Forgets the pairs, keeping the storage.
   void clear() {

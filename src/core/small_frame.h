@@ -16,18 +16,6 @@
 
 namespace sap_broadphase {
 
-/// Largest frame worth handing to pairSmallFrame instead of the one-thread engine. Measured
-/// with sap_microbench's BM_SmallFrame (uniform scenes, CPU time of one thread): the small
-/// frame stays ahead up to 2^15 boxes at density 0.35 and beyond 2^16 at 0.05 (at 2^14: 3.3
-/// against 5.3 ms, and 1.6 against 3.9 ms). Its candidates grow as n^(5/3) on a uniform scene,
-/// the engine's as n, hence a crossover; 2^14 keeps a margin for denser scenes.
-constexpr std::size_t kSmallFrameMaxBoxesOneThread = std::size_t{1} << 14;
-/// The same against the parallel engine on two threads. Measured with `sap_bench -e skips`
-/// (uniform, density 0.2, every frame swept, 2 cores idle): the small frame leads 2.04× at
-/// 2^13, 1.53× at 2^14 and 1.15× at 2^15 and trails from 2^16 (1.07 / 2.19, 2.66 / 4.07,
-/// 6.99 / 8.04, 20.0 / 15.4 ms); 2^14 keeps the margin for denser scenes.
-constexpr std::size_t kSmallFrameMaxBoxesParallel = std::size_t{1} << 14;
-
 /// Buffers of pairSmallFrame, reused from frame to frame (grown, never shrunk).
 struct SmallFrameWorkspace {
   std::vector<uint64_t> order;    ///< (low key << 32 | box) on the sweep axis, then sorted

@@ -82,10 +82,6 @@ class StaticIndex {
   void prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, int inStage) const;
   void queryRange(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                   std::size_t inBegin, std::size_t inEnd, PairList& outPairs) const;
-  /// Queries ahead whose offsets, slot lists and slots are fetched (prefetchQuery's stages).
-  static constexpr std::size_t kPrefetchAhead[3] = {12, 6, 3};
-  /// Most cells (and slots a cell row) a query prefetches.
-  static constexpr std::size_t kMostCellsPrefetched = 27;
   void scanSlots(const QueryBox& inBox, std::size_t inBegin, std::size_t inEnd,
                  PairList& outPairs) const;
 

@@ -6,13 +6,13 @@
 #include "core/assert.h"
 #include "core/buffers.h"
 #include "core/sweep.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 namespace {
 
-// Endpoints between a record's prefetch and its use: the records are read and written in
-// primary order, at random.
-constexpr std::size_t kRecordPrefetchAhead = 16;
+// The records are read and written in primary order, at random: fetched ahead.
+constexpr std::size_t kRecordPrefetchAhead = tuning::kEndpointPrefetchAhead;
 
 inline bool containsBit(const uint64_t* inBits, uint32_t inIndex) {
   return (inBits[inIndex >> 6] >> (inIndex & 63)) & 1u;

@@ -9,6 +9,7 @@
 #include "core/buffers.h"
 #include "core/phase_timer.h"
 #include "core/sweep.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 namespace {
@@ -22,7 +23,7 @@ constexpr uint64_t kEntryHighBit = uint64_t{1} << 63;
 constexpr uint32_t kRankMask = 0x7FFFFFFFu;
 constexpr uint32_t kLocalRankMask = 0xFFFFu;
 static_assert(kMaxBoxes - 1 <= kRankMask, "every rank must fit in an entry's 31 rank bits");
-static_assert(kPairingPartitionRanks <= kLocalRankMask,
+static_assert(tuning::kPairingPartitionRanks <= kLocalRankMask,
               "a partition's local candidate range (ends included) must fit in 16 bits");
 
 inline uint64_t lowEntry(uint32_t inRank, uint32_t inLocalBegin, uint32_t inLocalEnd) {
@@ -192,9 +193,7 @@ class PartitionSweep {
   }
 
  private:
-  // Endpoints between a record's prefetch and its use: enough to cover a miss to memory at a
-  // few nanoseconds an endpoint.
-  static constexpr std::size_t kPrefetchAhead = 16;
+  static constexpr std::size_t kPrefetchAhead = tuning::kEndpointPrefetchAhead;
 
   void prefetchRecords(uint32_t inRank) const {
     __builtin_prefetch(&input_.keys[inRank]);
@@ -252,8 +251,7 @@ class PartitionSweep {
     }
   }
 
-  // Candidates a block of the two-stage test holds (stack buffer).
-  static constexpr uint32_t kSurvivorBlock = 64;
+  static constexpr uint32_t kSurvivorBlock = tuning::kSurvivorBlock;
 
   const PairingInput& input_;
   const uint32_t rank_begin_;
@@ -405,14 +403,12 @@ void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartiti
              "the counted scatter left a gap or an overlap between segments");
 }
 
-// Room a segment gets beyond its size in the last frame: coherent frames change each
-// segment's size by a few percent at most.
+// Room a segment gets beyond its size in the last frame (tuning.h).
 inline std::size_t segmentRoom(std::size_t inLastSize) {
-  return inLastSize + inLastSize / 16 + 64;
+  return inLastSize + inLastSize / tuning::kSegmentRoomShare + tuning::kSegmentRoomEntries;
 }
 
-// Endpoints between a record's prefetch and its use in the one-pass scatter.
-constexpr std::size_t kScatterPrefetchAhead = 16;
+constexpr std::size_t kScatterPrefetchAhead = tuning::kEndpointPrefetchAhead;
 
 // Scatters slice inSlice straight from the secondary order and the boxes' records into the
 // segments' room. Returns false when a segment outgrew its room.
@@ -523,19 +519,21 @@ void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCou
   }
 }
 
-// The rank split: partitions of at most kPairingPartitionRanks ranks, and on several threads
-// at least kPairingPartitionsPerThread per thread, so that handing the partitions out by
-// decreasing measured work evens the threads out on clustered frames too. The size is the
+// The rank split: partitions of at most tuning::kPairingPartitionRanks ranks, and on several
+// threads at least tuning::kPairingPartitionsPerThread per thread, so that handing the partitions
+// out by decreasing measured work evens the threads out on clustered frames too. The size is the
 // largest power of two that gives at least that many partitions.
 RankPartitions partitionRanks(uint32_t inObjects, int inThreads) {
-  const uint32_t by_cache = (inObjects + kPairingPartitionRanks - 1) / kPairingPartitionRanks;
-  const uint32_t by_threads = inThreads > 1 ? inThreads * kPairingPartitionsPerThread : 1;
+  const uint32_t by_cache =
+      (inObjects + tuning::kPairingPartitionRanks - 1) / tuning::kPairingPartitionRanks;
+  const uint32_t by_threads = inThreads > 1 ? inThreads * tuning::kPairingPartitionsPerThread : 1;
   const uint32_t wanted = std::max(by_cache, by_threads);
   const uint32_t largest_size = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
   RankPartitions split;
   while ((uint32_t{2} << split.shift) <= largest_size) ++split.shift;
   split.count = (inObjects + split.size() - 1) >> split.shift;
-  SAP_ASSERT(split.size() <= kPairingPartitionRanks, "a partition's local ranks exceed 16 bits");
+  SAP_ASSERT(split.size() <= tuning::kPairingPartitionRanks,
+             "a partition's local ranks exceed 16 bits");
   // The partitions cover every rank, and none lies wholly beyond the last rank.
   SAP_ASSERT(uint64_t{split.count} * split.size() >= inObjects &&
                  (split.count == 0 || uint64_t{split.count - 1} * split.size() < inObjects),
@@ -605,8 +603,8 @@ void orderPartitions(const RankPartitions& inSplit, SweepWorkspace& ioWork) {
 
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
   const uint32_t n = inInput.objects;
-  if (n <= kPairingPartitionRanks ||
-      uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= kSequentialTreeBits) {
+  if (n <= tuning::kPairingPartitionRanks ||
+      uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= tuning::kSequentialTreeBits) {
     buildSecondaryStream(inInput, 1);
     prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
     PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);

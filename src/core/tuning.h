@@ -15,6 +15,46 @@ namespace sap_broadphase::tuning {
 constexpr int kSortPartitions = 16;
 /// Below this many endpoints one partition is cheaper than bucketing into m of them.
 constexpr std::size_t kMinPartitionedEndpoints = 8192;
+/// Below this many items a comparison sort beats clearing the radix sort's three 2048-entry
+/// histograms.
+constexpr std::size_t kSmallIndexSort = 256;
+/// Endpoints between the prefetch of a box's record and its use, in every pass that reads the
+/// records in sweep order, i.e. at random (candidate ranges, the pairing scatter, the pairing
+/// sweep): enough to cover a miss to memory at a few nanoseconds an endpoint.
+constexpr std::size_t kEndpointPrefetchAhead = 16;
+/// Largest rank partition of the parallel pairing (Algorithm 4): its slab trees stay
+/// cache-resident. Ranks inside it must fit the 16 bits of a pairing entry (static_assert in
+/// sweep_pairing.cpp).
+constexpr uint32_t kPairingPartitionRanks = 1u << 15;
+/// Fewest rank partitions per thread of the parallel pairing (when there are several threads):
+/// enough that handing them out by decreasing work evens the threads out.
+constexpr uint32_t kPairingPartitionsPerThread = 4;
+/// Largest total size, in bits (n ranks times the slab count), of the whole-stream trees that
+/// the one-thread pairing sweeps with; above it the thread sweeps rank partitions instead.
+/// Measured on the uniform scene (d = 0.35, 1 thread): whole-stream trees win by 5-10% up to
+/// 2^18 boxes (46 slabs, 1.5 MiB of trees), partitions by a third from 2^19 boxes (58 slabs,
+/// 3.6 MiB), where every insert, erase and range walk on the big trees misses the cache.
+constexpr uint64_t kSequentialTreeBits = uint64_t{1} << 24;
+/// Candidates the pairing's branch-free key filter collects before the exact tests (a stack
+/// buffer): large enough to amortise the switch between the two loops, small enough for L1.
+constexpr uint32_t kSurvivorBlock = 64;
+/// Room a scatter segment gets beyond its size in the last frame, as a share (1 / this) plus
+/// a constant: coherent frames change each segment's size by a few percent at most.
+constexpr std::size_t kSegmentRoomShare = 16;
+constexpr std::size_t kSegmentRoomEntries = 64;
+
+// ---- Small frames (small_frame.h) ----
+
+/// Largest frame worth handing to pairSmallFrame instead of the sweep, on one thread and on
+/// several alike. Measured against the one-thread engine with sap_microbench's BM_SmallFrame
+/// (uniform scenes, CPU time of one thread): the small frame stays ahead up to 2^15 boxes at
+/// density 0.35 and beyond 2^16 at 0.05 (at 2^14: 3.3 against 5.3 ms, and 1.6 against 3.9 ms).
+/// Against the parallel engine on two threads with `sap_bench -e skips` (uniform, density 0.2,
+/// every frame swept, 2 cores idle): it leads 2.04x at 2^13, 1.53x at 2^14 and 1.15x at 2^15
+/// and trails from 2^16 (1.07 / 2.19, 2.66 / 4.07, 6.99 / 8.04, 20.0 / 15.4 ms). Its
+/// candidates grow as n^(5/3) on a uniform scene, the engine's as n, hence a crossover; 2^14
+/// keeps a margin for denser scenes.
+constexpr std::size_t kSmallFrameMaxBoxes = std::size_t{1} << 14;
 
 // ---- Third-axis slab active lists (slab_grid.h) ----
 
@@ -36,6 +76,11 @@ constexpr double kCellsPerBox = 1.0;
 constexpr uint64_t kMaxCellsPerBox = 64;
 /// Fewest queries worth a thread of their own in queryAll.
 constexpr std::size_t kMinQueriesPerThread = 64;
+/// Queries ahead whose cell offsets, slot lists and slots a query fetches (three stages).
+constexpr std::size_t kSceneryPrefetchAhead[3] = {12, 6, 3};
+/// Most cells (and slots a cell row) a query prefetches: a box over more is large, and its
+/// cells are read in order anyway.
+constexpr std::size_t kSceneryMostCellsPrefetched = 27;
 
 // ---- Large-world coordinates (sort keys relative to the frame) ----
 
@@ -49,9 +94,47 @@ constexpr double kFarFromOriginInSpans = 64.0;
 /// then precision near the boxes would start to suffer and the origin is re-centred.
 constexpr double kOriginDriftInSpans = 0.125;
 
-// ---- Frame history and the plan ----
+// ---- Box copies and the frame history ----
+
+/// Below this many boxes a copy takes less than waking a second thread would.
+constexpr std::size_t kParallelCopyBoxes = std::size_t{1} << 15;
+/// Boxes the history compares, then copies, together: a block of records read into the
+/// thread's stack (6 bounds and an id a box, 28 KB) stays in L1/L2 while it is compared and
+/// written, and a block with no change is never written.
+constexpr std::size_t kHistoryBlockBoxes = 512;
 
 // When buffers are given back after a burst of large frames: memory_policy.h.
+
+// ---- Pair lists (pair_sort.h) ----
+
+/// Pairs of one chunk of a pairing thread's list (8 bytes a pair, 64 KiB): large enough that
+/// starting a chunk is rare, small enough that a thread with few pairs holds little.
+constexpr std::size_t kPairChunkPairs = std::size_t{1} << 13;
+/// Runs of pairs sharing `a` up to this long are insertion-sorted by b, longer ones by
+/// std::sort.
+constexpr std::size_t kPairInsertionSortLimit = 16;
+/// Values of a one thread takes at a time when the runs are sorted in parallel: the runs are
+/// short, so a chunk must hold many of them to be worth a scheduling step.
+constexpr std::size_t kPairRunChunk = 4096;
+/// Below this many pairs one thread merges the threads' parts: a team's barriers and the
+/// second row of counts cost more (measured: 26k pairs of 2^17 boxes, 0.19 ms on one thread,
+/// 0.30 on two).
+constexpr std::size_t kParallelMergePairs = 65536;
+
+// ---- Thread choice (thread_choice.h) ----
+
+/// Frames of a work between two probes of the other thread count, at first and after a close
+/// probe.
+constexpr int kShortestProbeInterval = 16;
+/// The longest wait between probes (after probes that lost clearly, one after another).
+constexpr int kLongestProbeInterval = 256;
+/// A probe loses clearly when its count costs this many times the one in use, or more.
+constexpr double kClearLoss = 1.25;
+/// Frames whose size differs from the learnt one by more than this factor start afresh: the
+/// cost per box of a frame that no longer fits the same caches is another cost.
+constexpr double kSameSizeFactor = 2.0;
+/// Weight of a frame in the running cost of the count in use (a probe replaces its count's).
+constexpr double kRunningWeight = 0.25;
 
 // ---- Automatic skin (kept candidates, skin_list.h) ----
 
@@ -82,5 +165,11 @@ constexpr double kInitialGrowNsPerBox = 10.0;
 constexpr double kInitialKeepNsPerCandidate = 30.0;
 /// Weight of the newest measurement in the running cost averages.
 constexpr double kCostSmoothing = 0.5;
+/// Boxes or candidates ahead a kept-candidate pass asks for the cache line it will need:
+/// enough to cover a memory latency with the work of the ones in between.
+constexpr std::size_t kSkinPrefetchAhead = 32;
+/// Boxes a thread's gather handles between two checks that no box of its share has left its
+/// skin (a box outside ends the pass early).
+constexpr std::size_t kGatherBlockBoxes = 4096;
 
 }  // namespace sap_broadphase::tuning
