@@ -104,9 +104,9 @@ FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const FrameDelta& inDelt
       planConsidersKeptCandidates(inputs) && skin.coversFrame(inBoxes, inThreads, report);
   PhaseTimer timer(report.ms_plan);
   const FramePlan plan = planFrame(inputs);
-  SAP_ASSERT(plan.work != FrameWork::kKeptCandidates || inputs.kept_covers,
+  SAP_ASSERT(plan.path != FramePath::kSkin || inputs.kept_covers,
              "the plan answers from kept candidates that do not cover the frame");
-  SAP_ASSERT(plan.sweep_skin == 0.0 || plan.work == FrameWork::kSweep,
+  SAP_ASSERT(plan.sweep_skin == 0.0 || isSweep(plan.path),
              "a skin to grow boxes by on a frame that is not swept");
   SAP_ASSERT(plan.threads >= 1 && plan.threads <= inThreads, "the plan's threads out of range");
   return plan;
@@ -119,13 +119,12 @@ std::optional<ThreadedWork> Broadphase::Impl::chooseThreads(FramePlan& ioPlan,
                                                             std::size_t inBoxes) {
   if (config.threads != 0 || config.method != Method::kAuto || ioPlan.threads < 2) return {};
   ThreadedWork work = ThreadedWork::kKeptCandidates;
-  if (ioPlan.work == FrameWork::kSweep)
+  if (isSweep(ioPlan.path))
     work = ioPlan.sweep_skin > 0.0 ? ThreadedWork::kGrownSweep : ThreadedWork::kSweep;
-  else if (ioPlan.work != FrameWork::kKeptCandidates)
+  else if (ioPlan.path != FramePath::kSkin)
     return {};
   ioPlan.threads = thread_choice.choose(work, ioPlan.threads, inBoxes);
-  if (ioPlan.threads == 1 && ioPlan.work == FrameWork::kSweep)
-    ioPlan.sweep_path = FramePath::kSequential;
+  if (ioPlan.threads == 1 && isSweep(ioPlan.path)) ioPlan.path = FramePath::kSequential;
   return work;
 }
 
@@ -134,35 +133,36 @@ std::optional<ThreadedWork> Broadphase::Impl::chooseThreads(FramePlan& ioPlan,
 // first and read again by the cost learning after it.
 void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
   const BoxSet& boxes = ioSpread.boxes();
-  switch (inPlan.work) {
-    case FrameWork::kEmpty:
+  switch (inPlan.path) {
+    case FramePath::kEmpty:
       pairs.clear();
       break;
-    case FrameWork::kReuse:
+    case FramePath::kReused:
       break;  // pairs still hold this very frame's pairs
-    case FrameWork::kBruteForce: {
+    case FramePath::kBruteForce: {
       PhaseTimer timer(report.ms_pairing);
       pairs = bruteForcePairs(boxes);
       break;
     }
-    case FrameWork::kKeptCandidates:
+    case FramePath::kSkin:
       skin.answerFromCandidates(inPlan.threads, report, pairs);
       break;
-    case FrameWork::kSmallFrame: {
+    case FramePath::kSmallFrame: {
       PhaseTimer timer(report.ms_pairing);
       skin.forget();
       pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs);
       break;
     }
-    case FrameWork::kSweep:
+    case FramePath::kSequential:
+    case FramePath::kParallel:
       if (inPlan.sweep_skin > 0.0) {
         const BoxSet& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
-        sweep.run(grown, grown_spread, inPlan.sweep_path, inPlan.threads, report, pairs);
+        sweep.run(grown, grown_spread, inPlan.path, inPlan.threads, report, pairs);
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
       } else {
         skin.forget();
-        sweep.run(boxes, ioSpread, inPlan.sweep_path, inPlan.threads, report, pairs);
+        sweep.run(boxes, ioSpread, inPlan.path, inPlan.threads, report, pairs);
       }
       break;
   }
@@ -193,7 +193,7 @@ void Broadphase::Impl::addSceneryPairs(const BoxSet& inBoxes, int inThreads) {
 // The report's rows that describe the frame as a whole (the phases and the sweep's rows were
 // filled as the work ran).
 void Broadphase::Impl::describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta) {
-  report.path = framePathOf(inPlan);
+  report.path = inPlan.path;
   report.threads = inPlan.threads;
   report.skin = inPlan.skin;
   report.skin_choice = inPlan.skin_choice;
@@ -201,7 +201,7 @@ void Broadphase::Impl::describeFrame(const FramePlan& inPlan, const FrameDelta& 
   report.max_displacement = inDelta.max_displacement;
   report.static_boxes = scenery.size();
   report.pairs = pairs.size();
-  if (inPlan.work != FrameWork::kSweep) {
+  if (!isSweep(inPlan.path)) {
     report.primary_axis = sweep.primaryAxis();
     report.secondary_axis = sweep.secondaryAxis();
   }
@@ -249,7 +249,7 @@ void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta
     PhaseTimer timer(report.ms_plan);
     skin.learn(frame_plan, spread, pairs.size(), report);
   }
-  if (frame_plan.work != FrameWork::kReuse) addSceneryPairs(inBoxes, inThreads);
+  if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, inThreads);
   {
     PhaseTimer timer(report.ms_history);
     history.remember(inBoxes);
