@@ -374,7 +374,7 @@ void smallFrameRows(const Options& inOptions, Table& ioTable) {
       const int threads = method == sap_broadphase::Method::kParallel
                               ? sap_broadphase::resolveThreadCount(inOptions.threads)
                               : 1;
-      const bool takes_small = sap_broadphase::isSmallFrame(n);
+      const bool takes_small = sap_broadphase::isSmallFrame(sap_broadphase::BroadphaseConfig(), n);
       addRow(ioTable, "small frame", "uniform n=" + fmtSize(n) + ", d=0.2",
              "small-frame path vs " + path + " sweep", small_ms, ms, "small",
              matches && small_matches, "-",

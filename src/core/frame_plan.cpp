@@ -116,8 +116,8 @@ double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts
   return 0.0;
 }
 
-bool isSmallFrame(std::size_t inBoxes) {
-  return inBoxes <= tuning::kSmallFrameMaxBoxes;
+bool isSmallFrame(const BroadphaseConfig& inConfig, std::size_t inBoxes) {
+  return inBoxes < inConfig.parallel_min_boxes;
 }
 
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
@@ -159,7 +159,7 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;
     return plan;
   }
-  if (config.method == Method::kAuto && !skin_fixed && isSmallFrame(inInputs.boxes)) {
+  if (config.method == Method::kAuto && !skin_fixed && isSmallFrame(config, inInputs.boxes)) {
     plan.path = FramePath::kSmallFrame;  // no skin: a small frame costs less than its pass
     plan.threads = 1;
     return plan;

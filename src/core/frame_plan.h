@@ -68,10 +68,10 @@ struct FramePlan {
 /// The sequential or parallel sweep for inBoxes boxes (Method::kAuto's rule).
 FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
 
-/// True when a frame of inBoxes boxes goes to the small-frame path (Method::kAuto) rather than
-/// the sweep, on any thread count: at or below the measured crossover
-/// (tuning::kSmallFrameMaxBoxes).
-bool isSmallFrame(std::size_t inBoxes);
+/// True when a frame of inBoxes boxes goes to the small-frame path (Method::kAuto, no fixed
+/// skin) rather than the sweep, on any thread count: below parallel_min_boxes, the one cut-off
+/// of Method::kAuto (sweepPath's too).
+bool isSmallFrame(const BroadphaseConfig& inConfig, std::size_t inBoxes);
 
 /// True when the frame's pairs are the last frame's: identical boxes, reuse on, the last
 /// pairs still held.

@@ -2,7 +2,7 @@
 // (BroadphaseConfig::threads = 0 with Method::kAuto): measured, not assumed.
 //
 // The paper's parallel phases pay from a few thousand boxes on an idle machine, and the plan's
-// fixed rules (parallel_min_boxes, the small-frame crossover) are measured there. On a machine
+// fixed rule (parallel_min_boxes, the small-frame crossover) is measured there. On a machine
 // whose other cores are busy, or with OMP_WAIT_POLICY=passive, where a sleeping worker is often
 // woken onto a busy core and runs after the master rather than beside it, a second thread can
 // cost a frame more than it brings, and no rule fixed in advance knows the machine's load. So

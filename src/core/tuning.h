@@ -43,19 +43,6 @@ constexpr uint32_t kSurvivorBlock = 64;
 constexpr std::size_t kSegmentRoomShare = 16;
 constexpr std::size_t kSegmentRoomEntries = 64;
 
-// ---- Small frames (small_frame.h) ----
-
-/// Largest frame worth handing to pairSmallFrame instead of the sweep, on one thread and on
-/// several alike. Measured against the one-thread engine with sap_microbench's BM_SmallFrame
-/// (uniform scenes, CPU time of one thread): the small frame stays ahead up to 2^15 boxes at
-/// density 0.35 and beyond 2^16 at 0.05 (at 2^14: 3.3 against 5.3 ms, and 1.6 against 3.9 ms).
-/// Against the parallel engine on two threads with `sap_bench -e skips` (uniform, density 0.2,
-/// every frame swept, 2 cores idle): it leads 2.04x at 2^13, 1.53x at 2^14 and 1.15x at 2^15
-/// and trails from 2^16 (1.07 / 2.19, 2.66 / 4.07, 6.99 / 8.04, 20.0 / 15.4 ms). Its
-/// candidates grow as n^(5/3) on a uniform scene, the engine's as n, hence a crossover; 2^14
-/// keeps a margin for denser scenes.
-constexpr std::size_t kSmallFrameMaxBoxes = std::size_t{1} << 14;
-
 // ---- Third-axis slab active lists (slab_grid.h) ----
 
 /// Below this many boxes one active list is as fast as any split.
