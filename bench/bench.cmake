@@ -95,6 +95,7 @@ if(benchmark_FOUND)
     ${SAP_BENCH_DIR}/micro/micro_phases.cpp
     ${SAP_BENCH_DIR}/micro/micro_static_index.cpp
     ${SAP_BENCH_DIR}/micro/micro_skin.cpp
+    ${SAP_BENCH_DIR}/micro/micro_history.cpp
   )
   target_link_libraries(sap_microbench ${PROJECT_NAME}_core_internal benchmark::benchmark)
 else()

@@ -13,6 +13,7 @@
 #include "bench_progress.h"
 #include "bench_scenes.h"
 #include "bench_stats.h"
+#include "core/pair_sort.h"
 #include "core/random.h"
 #include "experiments.h"
 #include "peers/peer.h"

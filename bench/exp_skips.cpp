@@ -1,5 +1,5 @@
-// What each of the engine's skips saves: boxes filtered out before the sweep, a
-// static index for resting scenery, declared scenery, unchanged frames, the sequential path
+// What each of the engine's skips saves: boxes filtered out before the sweep, declared
+// scenery, unchanged frames, the sequential path
 // for small frames, and skin reuse at several motion speeds; and what large-world coordinates
 // cost. Every row checks its pairs against the plain engine on the same frame (declared
 // scenery: minus the scenery x scenery pairs it does not report; far-away sites: against the
@@ -134,45 +134,10 @@ void filterRows(const Options& inOptions, Table& ioTable) {
          "group-0 boxes dropped", ms, base, path, matches);
 }
 
-// Resting scenery (group 0x2, mask 0x1) and a few movers; baseline: the plain sweep.
-void staticRows(const Options& inOptions, Table& ioTable) {
-  const std::size_t resting = inOptions.size(1000000, 20000);
-  const std::size_t moving = inOptions.size(1000, 200);
-  SceneSimulator motion(uniform(resting + moving, 0.1, inOptions.seed));
-  BoxSet frame = motion.boxes();
-  frame.groups.assign(frame.size(), 0x1);
-  frame.masks.assign(frame.size(), 0xFFFFFFFF);
-  for (std::size_t i = 0; i < resting; ++i) {
-    frame.groups[i] = 0x2;
-    frame.masks[i] = 0x1;
-  }
-  const auto makeFrame = [&](int) -> const BoxSet& {
-    motion.step();
-    for (std::size_t i = resting; i < frame.size(); ++i)
-      for (int axis = 0; axis < 3; ++axis) {
-        frame.lo[axis][i] = motion.boxes().lo[axis][i];
-        frame.hi[axis][i] = motion.boxes().hi[axis][i];
-      }
-    return frame;
-  };
-  const int frames = inOptions.framesOr(6, 3);
-  BroadphaseConfig indexed = sweptEveryFrame();
-  indexed.index_static_boxes = true;
-  Broadphase engine(indexed), baseline{sweptEveryFrame()};
-  bool matches = false, baseline_matches = false;
-  std::string path, baseline_path;
-  // The first frame builds the index; the median covers the steady frames after it.
-  const double ms = timeFrames(engine, frames + 1, makeFrame, matches, path);
-  const double base = timeFrames(baseline, frames, makeFrame, baseline_matches, baseline_path);
-  addRow(ioTable, "static boxes", fmtSize(resting) + " resting + " + fmtSize(moving) + " moving",
-         "index_static_boxes", ms, base, path, matches);
-}
-
-// Declared scenery: the static row's scene with the resting boxes given once to
-// setStaticBoxes() and only the movers to update(). Baseline: every box to update() each frame
-// with the default configuration; index_static_boxes is off by default and could not apply
-// anyway, since without filters the resting boxes pair among themselves. The declared engine
-// must report the baseline's pairs minus the scenery x scenery ones.
+// Declared scenery: a uniform scene whose resting boxes are given once to setStaticBoxes() and
+// only the movers to update(). Baseline: every box to update() each frame with the default
+// configuration. The declared engine must report the baseline's pairs minus the scenery x
+// scenery ones.
 void declaredRows(const Options& inOptions, Table& ioTable) {
   const std::size_t resting = inOptions.size(1000000, 20000);
   const std::size_t moving = inOptions.size(1000, 200);
@@ -409,7 +374,7 @@ void smallFrameRows(const Options& inOptions, Table& ioTable) {
       const int threads = method == sap_broadphase::Method::kParallel
                               ? sap_broadphase::resolveThreadCount(inOptions.threads)
                               : 1;
-      const bool takes_small = sap_broadphase::isSmallFrame(n, threads);
+      const bool takes_small = sap_broadphase::isSmallFrame(sap_broadphase::BroadphaseConfig(), n);
       addRow(ioTable, "small frame", "uniform n=" + fmtSize(n) + ", d=0.2",
              "small-frame path vs " + path + " sweep", small_ms, ms, "small",
              matches && small_matches, "-",
@@ -474,7 +439,6 @@ void runSkips(const Options& inOptions) {
   unchangedRows(inOptions, table);
   smallFrameRows(inOptions, table);
   skinRows(inOptions, table);
-  staticRows(inOptions, table);
   declaredRows(inOptions, table);
   largeWorldRows(inOptions, table);
   publish(inOptions, table, "skips");

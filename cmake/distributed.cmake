@@ -13,7 +13,7 @@ add_library(${PROJECT_NAME}_distributed
   src/distributed/distributed_broadphase.cpp
 )
 target_include_directories(${PROJECT_NAME}_distributed
-  PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> PRIVATE src/distributed)
+  PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> PRIVATE src/distributed src)
 target_link_libraries(${PROJECT_NAME}_distributed PUBLIC ${PROJECT_NAME}_core MPI::MPI_CXX)
 
 # mpirun -np R sap_pairs_mpi FILE: sap_pairs' contract, computed by R ranks.

@@ -41,7 +41,6 @@ SequenceSetup decodeSetup(ByteReader& ioReader) {
   SequenceSetup setup;
   BroadphaseConfig& config = setup.config;
   config.reuse_unchanged_frames = switches & 0x1;
-  config.index_static_boxes = switches & 0x2;
   config.skin = kSkins[(switches >> 2) & 0x3];
   setup.declared_scenery = switches & 0x10;
   setup.filters = switches & 0x20;
@@ -179,8 +178,6 @@ std::string pathProblem(const BroadphaseConfig& inConfig, const FrameReport& inR
   if (path == FramePath::kReused && !inConfig.reuse_unchanged_frames)
     return "reused a frame with reuse off";
   if (path == FramePath::kSkin && inConfig.skin == 0.0) return "skin path with the skin off";
-  if (path == FramePath::kStatic && !inConfig.index_static_boxes)
-    return "static path with resting boxes not indexed";
   if (path == FramePath::kBruteForce && inConfig.method != Method::kBruteForce)
     return "brute-force path without the brute method";
   if (path == FramePath::kParallel && inConfig.method == Method::kSequential)

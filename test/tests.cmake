@@ -4,7 +4,8 @@
 # under about 3 minutes in Release on 2 cores.
 
 # Unit tests of the engine's parts: text format, validation, SuccTree, sort keys, radix sorts,
-# candidate generation.
+# candidate generation, the frame history, pair sorting, the third-axis slabs, and the
+# configuration's front-end files against its table.
 sap_add_gtest(test_core
   test/core/test_text_io.cpp
   test/core/test_config.cpp
@@ -14,11 +15,17 @@ sap_add_gtest(test_core
   test/core/test_radix_sort.cpp
   test/core/test_sweep.cpp
   test/core/test_small_frame.cpp
+  test/core/test_frame_history.cpp
+  test/core/test_pair_set.cpp
+  test/core/test_slab_grid.cpp
+  test/core/test_config_sources.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp
 )
 target_include_directories(test_core PRIVATE test/core)
 target_link_libraries(test_core ${PROJECT_NAME}_core_internal)
+# test_config_sources reads the .cfg, the YAML defaults, the launch files and docs/NODE.md.
+target_compile_definitions(test_core PRIVATE SAP_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 
 # The whole engine against the brute-force oracle: random boxes, edge cases, scenes, frame
 # sequences, determinism across thread counts and axes, axis swapping.

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/pair_sort.h"
 #include "core/radix_sort.h"
 #include "core/small_frame.h"
 #include "core/sort_keys.h"

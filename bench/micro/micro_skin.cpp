@@ -110,7 +110,11 @@ void BM_SkinPass(benchmark::State& state) {
   list.adopt(scene.swept, scene.kept);
   PairList pairs;
   for (auto _ : state) {
-    if (!list.collect(scene.next, threads, pairs)) state.SkipWithError("a box left its skin");
+    if (!list.gather(scene.next, threads)) {
+      state.SkipWithError("a box left its skin");
+      break;
+    }
+    list.collectGathered(threads, pairs);
     benchmark::DoNotOptimize(pairs.data());
   }
   if (pairs != scene.exact) state.SkipWithError("pairs differ from the sweep's");

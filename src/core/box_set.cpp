@@ -6,13 +6,12 @@
 #include <sstream>
 
 #include "core/radix_sort.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 namespace {
 
 constexpr const char* kAxisNames[3] = {"x", "y", "z"};
-// Below this many boxes a copy takes less than waking a second thread would.
-constexpr std::ptrdiff_t kParallelCopyBoxes = std::ptrdiff_t{1} << 15;
 
 std::string formatNumber(double inValue) {
   std::ostringstream text;
@@ -156,7 +155,8 @@ void copyInterleaved(const InterleavedBoxes& inBoxes, BoxSet& outBoxes, int inTh
   outBoxes.masks.resize(filtered ? count : 0);
   // A 2^20-box frame is 50 MB: every thread copies its slice.
   const auto boxes = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for num_threads(inThreads) schedule(static) if (boxes >= kParallelCopyBoxes)
+#pragma omp parallel for num_threads(inThreads) \
+    schedule(static) if (boxes >= static_cast <std::ptrdiff_t>(tuning::kParallelCopyBoxes))
   for (std::ptrdiff_t i = 0; i < boxes; ++i) {
     const double* box = inBoxes.bounds + 6 * i;
     for (int axis = 0; axis < 3; ++axis) {

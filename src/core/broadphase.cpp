@@ -1,12 +1,11 @@
 // The per-frame flow (docs/ARCHITECTURE.md walks through it step by step):
 //
 //   boxes -> drop boxes that pair with nothing -> frame history: delta since the last frame
-//         -> resting boxes into their index (optional) -> do the kept candidates still cover
-//            the boxes to sweep? -> plan, once -> one strategy:
+//         -> do the kept candidates still cover the boxes? -> plan, once -> one strategy:
 //            reuse | kept candidates | sweep (grown by a skin or plain) | small frame | brute
-//         -> learn the costs -> resting and scenery pairs appended to the same list, which
-//            is put in canonical order once -> remember the frame, give back memory a burst of
-//            large frames left behind
+//         -> learn the costs -> the declared scenery's pairs sorted on their own and merged
+//            into the strategy's canonical list -> remember the frame, give back memory a
+//            burst of large frames left behind
 #include "sap_broadphase/core/broadphase.h"
 
 #include <algorithm>
@@ -21,11 +20,11 @@
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/frame_query.h"
+#include "core/pair_sort.h"
 #include "core/phase_timer.h"
 #include "core/skin_reuse.h"
 #include "core/small_frame.h"
 #include "core/static_index.h"
-#include "core/static_split.h"
 #include "core/sweep_and_prune.h"
 #include "core/thread_choice.h"
 #include "core/tuning.h"
@@ -42,7 +41,6 @@ struct Broadphase::Impl {
   FrameHistory history;        // the last frame, and what changed since
   SweepAndPrune sweep;         // the paper's sweep, with its partition bounds and axes
   SkinReuse skin;              // kept candidates, motion and learnt costs
-  StaticSplit resting;         // boxes guessed static (index_static_boxes)
   StaticIndex scenery;         // boxes declared static (setStaticBoxes)
   FrameQuery world;            // box queries against the last frame (the history's copy)
   ThreadChoice thread_choice;  // all cores or one, measured (threads = 0, method auto)
@@ -54,18 +52,17 @@ struct Broadphase::Impl {
     SmallFrameWorkspace small_frame;  // the small-frame path's
     std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
     PairSortScratch pair_sort;
+    PairList scenery_pairs;   // the frame's pairs with the scenery, sorted, then merged
+    PairList merged;          // the strategy's and the scenery's pairs, merged
     BoxSet filtered_records;  // a frame of records with groups or masks, in the BoxSet layout
   } buffers;
   GiveBackWatch give_back;
 
   const BoxSet& dropBoxesThatPairWithNothing(const BoxSet& inBoxes);
-  const BoxSet& setAsideRestingBoxes(const BoxSet& inBoxes, const FrameDelta& inDelta,
-                                     int inThreads);
-  FramePlan plan(const BoxSet& inBoxes, const BoxSet& inSwept, const FrameDelta& inDelta,
-                 int inThreads);
-  std::optional<ThreadedWork> chooseThreads(FramePlan& ioPlan, std::size_t inSwept);
-  void execute(const FramePlan& inPlan, const BoxSet& inBoxes, FrameSpread& ioSwept);
-  void addStaticPairs(const BoxSet& inBoxes, int inThreads);
+  FramePlan plan(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads);
+  std::optional<ThreadedWork> chooseThreads(FramePlan& ioPlan, std::size_t inBoxes);
+  void execute(const FramePlan& inPlan, FrameSpread& ioSpread);
+  void addSceneryPairs(const BoxSet& inBoxes, int inThreads);
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
   void runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads);
@@ -92,28 +89,13 @@ const BoxSet& Broadphase::Impl::dropBoxesThatPairWithNothing(const BoxSet& inBox
   return buffers.collidable;
 }
 
-// Resting boxes (bit for bit unchanged, of group/mask classes that cannot pair among
-// themselves) answer from an index; the rest is what the strategy sweeps.
-const BoxSet& Broadphase::Impl::setAsideRestingBoxes(const BoxSet& inBoxes,
-                                                     const FrameDelta& inDelta, int inThreads) {
-  if (!config.index_static_boxes || config.method == Method::kBruteForce || !inDelta.sameIds() ||
-      reusesLastPairs(config, inDelta, pairs_valid)) {
-    resting.clear();
-    return inBoxes;
-  }
-  PhaseTimer timer(report.ms_static);
-  return resting.prepare(inBoxes, *inDelta.unchanged, inThreads) ? resting.moving() : inBoxes;
-}
-
-// The plan, made once: whether the kept candidates still cover the boxes about to be swept is
-// known before it (SkinReuse::coversFrame), so the plan cannot be wrong about them.
-FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
-                                 const FrameDelta& inDelta, int inThreads) {
+// The plan, made once: whether the kept candidates still cover the boxes is known before it
+// (SkinReuse::coversFrame), so the plan cannot be wrong about them.
+FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads) {
   PlanInputs inputs;
   inputs.config = &config;
   inputs.delta = inDelta;
   inputs.boxes = inBoxes.size();
-  inputs.swept = inSwept.size();
   inputs.threads = inThreads;
   inputs.last_pairs_valid = pairs_valid;
   inputs.kept_candidates = skin.hasCandidates();
@@ -121,12 +103,12 @@ FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
   inputs.motion = skin.recentMotion();
   inputs.costs = skin.costs();
   inputs.kept_covers =
-      planConsidersKeptCandidates(inputs) && skin.coversFrame(inSwept, inThreads, report);
+      planConsidersKeptCandidates(inputs) && skin.coversFrame(inBoxes, inThreads, report);
   PhaseTimer timer(report.ms_plan);
   const FramePlan plan = planFrame(inputs);
-  SAP_ASSERT(plan.work != FrameWork::kKeptCandidates || inputs.kept_covers,
+  SAP_ASSERT(plan.path != FramePath::kSkin || inputs.kept_covers,
              "the plan answers from kept candidates that do not cover the frame");
-  SAP_ASSERT(plan.sweep_skin == 0.0 || plan.work == FrameWork::kSweep,
+  SAP_ASSERT(plan.sweep_skin == 0.0 || isSweep(plan.path),
              "a skin to grow boxes by on a frame that is not swept");
   SAP_ASSERT(plan.threads >= 1 && plan.threads <= inThreads, "the plan's threads out of range");
   return plan;
@@ -136,89 +118,92 @@ FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const BoxSet& inSwept,
 // measured on this machine, now (thread_choice.h): the work the plan runs on several threads
 // may run on one. Returns the work whose cost the frame then teaches, if any.
 std::optional<ThreadedWork> Broadphase::Impl::chooseThreads(FramePlan& ioPlan,
-                                                            std::size_t inSwept) {
+                                                            std::size_t inBoxes) {
   if (config.threads != 0 || config.method != Method::kAuto || ioPlan.threads < 2) return {};
   ThreadedWork work = ThreadedWork::kKeptCandidates;
-  if (ioPlan.work == FrameWork::kSweep)
+  if (isSweep(ioPlan.path))
     work = ioPlan.sweep_skin > 0.0 ? ThreadedWork::kGrownSweep : ThreadedWork::kSweep;
-  else if (ioPlan.work != FrameWork::kKeptCandidates)
+  else if (ioPlan.path != FramePath::kSkin)
     return {};
-  ioPlan.threads = thread_choice.choose(work, ioPlan.threads, inSwept);
-  if (ioPlan.threads == 1 && ioPlan.work == FrameWork::kSweep)
-    ioPlan.sweep_path = FramePath::kSequential;
+  ioPlan.threads = thread_choice.choose(work, ioPlan.threads, inBoxes);
+  if (ioPlan.threads == 1 && isSweep(ioPlan.path)) ioPlan.path = FramePath::kSequential;
   return work;
 }
 
-// Runs the plan's strategy: this frame's pairs of the swept boxes (or of inBoxes for brute force)
-// go into pairs, in canonical order. ioSwept is the spread of the swept boxes, measured by
-// whichever strategy needs it first and read again by the cost learning after it.
-void Broadphase::Impl::execute(const FramePlan& inPlan, const BoxSet& inBoxes,
-                               FrameSpread& ioSwept) {
-  const BoxSet& swept = ioSwept.boxes();
-  switch (inPlan.work) {
-    case FrameWork::kEmpty:
+// Runs the plan's strategy: this frame's pairs of the boxes of ioSpread go into pairs, in
+// canonical order. ioSpread (the boxes' spread) is measured by whichever strategy needs it
+// first and read again by the cost learning after it.
+void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
+  const BoxSet& boxes = ioSpread.boxes();
+  switch (inPlan.path) {
+    case FramePath::kEmpty:
       pairs.clear();
       break;
-    case FrameWork::kReuse:
+    case FramePath::kReused:
       break;  // pairs still hold this very frame's pairs
-    case FrameWork::kBruteForce: {
+    case FramePath::kBruteForce: {
       PhaseTimer timer(report.ms_pairing);
-      pairs = bruteForcePairs(inBoxes);
+      pairs = bruteForcePairs(boxes);
       break;
     }
-    case FrameWork::kKeptCandidates:
+    case FramePath::kSkin:
       skin.answerFromCandidates(inPlan.threads, report, pairs);
       break;
-    case FrameWork::kSmallFrame: {
+    case FramePath::kSmallFrame: {
       PhaseTimer timer(report.ms_pairing);
       skin.forget();
-      pairSmallFrame(swept, ioSwept, buffers.small_frame, pairs);
+      pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs);
       break;
     }
-    case FrameWork::kSweep:
+    case FramePath::kSequential:
+    case FramePath::kParallel:
       if (inPlan.sweep_skin > 0.0) {
-        const BoxSet& grown = skin.grow(swept, inPlan.sweep_skin, inPlan.threads, report);
-        FrameSpread grown_spread(grown);  // other boxes than the swept ones: their own spread
-        sweep.run(grown, grown_spread, inPlan.sweep_path, inPlan.threads, report, pairs);
-        skin.keepAndAnswer(swept, inPlan.threads, report, pairs);
+        const BoxSet& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
+        FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
+        sweep.run(grown, grown_spread, inPlan.path, inPlan.threads, report, pairs);
+        skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
       } else {
         skin.forget();
-        sweep.run(swept, ioSwept, inPlan.sweep_path, inPlan.threads, report, pairs);
+        sweep.run(boxes, ioSpread, inPlan.path, inPlan.threads, report, pairs);
       }
       break;
   }
 }
 
-// The pairs of the resting boxes and of the declared scenery join the strategy's pairs in the
-// one list, which is then put in canonical order once.
-void Broadphase::Impl::addStaticPairs(const BoxSet& inBoxes, int inThreads) {
-  const std::size_t strategy_pairs = pairs.size();
+// The pairs with the declared scenery join the strategy's pairs, already in canonical order:
+// only the scenery's pairs are sorted, then the two sorted lists are merged (no pair is in
+// both: scenery ids differ from the frame's, and the strategy pairs frame boxes only).
+void Broadphase::Impl::addSceneryPairs(const BoxSet& inBoxes, int inThreads) {
+  if (scenery.size() == 0 || inBoxes.size() == 0) return;
+  PairList& scenery_pairs = buffers.scenery_pairs;
+  scenery_pairs.clear();
   {
     PhaseTimer timer(report.ms_static);
-    if (resting.indexedBoxes() > 0) resting.crossPairs(inBoxes, inThreads, pairs);
-    if (scenery.size() > 0 && inBoxes.size() > 0) {
-      buffers.every_box.resize(inBoxes.size());
-      std::iota(buffers.every_box.begin(), buffers.every_box.end(), 0u);
-      scenery.queryAll(inBoxes, buffers.every_box, inThreads, pairs);
-    }
+    buffers.every_box.resize(inBoxes.size());
+    std::iota(buffers.every_box.begin(), buffers.every_box.end(), 0u);
+    scenery.queryAll(inBoxes, buffers.every_box, inThreads, scenery_pairs);
   }
-  if (pairs.size() == strategy_pairs) return;
+  if (scenery_pairs.empty()) return;
   PhaseTimer timer(report.ms_output);
-  sortPairsCanonical(pairs, buffers.pair_sort);
+  sortPairsCanonical(scenery_pairs, buffers.pair_sort);
+  buffers.merged.resize(pairs.size() + scenery_pairs.size());
+  std::merge(pairs.begin(), pairs.end(), scenery_pairs.begin(), scenery_pairs.end(),
+             buffers.merged.begin());
+  pairs.swap(buffers.merged);
 }
 
 // The report's rows that describe the frame as a whole (the phases and the sweep's rows were
 // filled as the work ran).
 void Broadphase::Impl::describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta) {
-  report.path = framePathOf(inPlan, resting.indexedBoxes() > 0);
+  report.path = inPlan.path;
   report.threads = inPlan.threads;
   report.skin = inPlan.skin;
   report.skin_choice = inPlan.skin_choice;
   report.moved_boxes = inDelta.moved_boxes;
   report.max_displacement = inDelta.max_displacement;
-  report.static_boxes = scenery.size() + resting.indexedBoxes();
+  report.static_boxes = scenery.size();
   report.pairs = pairs.size();
-  if (inPlan.work != FrameWork::kSweep) {
+  if (!isSweep(inPlan.path)) {
     report.primary_axis = sweep.primaryAxis();
     report.secondary_axis = sweep.secondaryAxis();
   }
@@ -249,12 +234,11 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 // that may pair, as the history now holds them.
 void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads) {
   skin.startFrame(inDelta);
-  const BoxSet& swept = setAsideRestingBoxes(inBoxes, inDelta, inThreads);
-  FramePlan frame_plan = plan(inBoxes, swept, inDelta, inThreads);
-  const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, swept.size());
-  FrameSpread swept_spread(swept);  // measured once, by the first part that needs it
+  FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
+  const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, inBoxes.size());
+  FrameSpread spread(inBoxes);  // measured once, by the first part that needs it
   const auto work_start = std::chrono::steady_clock::now();
-  execute(frame_plan, inBoxes, swept_spread);
+  execute(frame_plan, spread);
   if (measured) {
     thread_choice.record(
         *measured, frame_plan.threads,
@@ -266,9 +250,9 @@ void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta
   passes_threads = measured ? thread_choice.preferred(*measured, inThreads) : 0;
   if (!config.skin) {  // the costs only feed the automatic skin's choice
     PhaseTimer timer(report.ms_plan);
-    skin.learn(frame_plan, swept_spread, pairs.size(), report);
+    skin.learn(frame_plan, spread, pairs.size(), report);
   }
-  if (frame_plan.work != FrameWork::kReuse) addStaticPairs(inBoxes, inThreads);
+  if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, inThreads);
   {
     PhaseTimer timer(report.ms_history);
     history.remember(inBoxes);
@@ -348,7 +332,6 @@ void Broadphase::reset() {
   impl_->sweep.forgetCoherence();
   impl_->history.forget();
   impl_->skin.forget();
-  impl_->resting.clear();
   impl_->pairs_valid = false;
 }
 

@@ -1,6 +1,7 @@
 #include "sap_broadphase/core/brute_force.h"
 
 #include <algorithm>
+#include "core/pair_sort.h"
 
 namespace sap_broadphase {
 

@@ -260,7 +260,7 @@ std::vector<ConfigField> makeConfigFields() {
        "worker threads; 0 = all cores, or one where one is measured faster (method auto)",
        getInteger<&C::threads>, setInteger<&C::threads>},
       {"method", ConfigFieldType::kMethod, "auto", 0.0, 0.0, "auto, parallel, sequential or brute",
-       "auto: sequential below parallel_min_boxes or with one thread, else parallel; brute: "
+       "auto: one thread below parallel_min_boxes boxes or with one thread, else parallel; brute: "
        "every pair tested (the oracle)",
        getMethod, setMethod},
       {"primary_axis", ConfigFieldType::kAxis, "x", 0.0, 2.0, "x, y or z (or 0, 1, 2)",
@@ -274,8 +274,18 @@ std::vector<ConfigField> makeConfigFields() {
       {"axis_swap_threshold", ConfigFieldType::kNumber, "0.25", 0.0, kInfinity, "a number >= 0",
        "dispersion D above which a sweep axis is swapped", getNumber<&C::axis_swap_threshold>,
        setNumber<&C::axis_swap_threshold>},
-      {"parallel_min_boxes", ConfigFieldType::kInteger, "12288", 0.0, kLargestCount,
-       "an integer >= 0", "method auto sweeps sequentially below this many boxes",
+      // The one cut-off of method auto. Measured against the one-thread engine with
+      // sap_microbench's BM_SmallFrame (uniform scenes, CPU time of one thread): the small
+      // frame stays ahead up to 2^15 boxes at density 0.35 and beyond 2^16 at 0.05 (at 2^14:
+      // 3.3 against 5.3 ms, and 1.6 against 3.9 ms). Against the parallel engine on two threads
+      // with `sap_bench -e skips` (uniform, density 0.2, every frame swept, 2 cores idle): it
+      // leads 2.04x at 2^13, 1.53x at 2^14 and 1.15x at 2^15 and trails from 2^16 (1.07 / 2.19,
+      // 2.66 / 4.07, 6.99 / 8.04, 20.0 / 15.4 ms). Its candidates grow as n^(5/3) on a uniform
+      // scene, the engine's as n, hence a crossover; 2^14 keeps a margin for denser scenes.
+      {"parallel_min_boxes", ConfigFieldType::kInteger, "16384", 0.0, kLargestCount,
+       "an integer >= 0",
+       "method auto: frames below this many boxes run on one thread (the small-frame path, or "
+       "the sequential sweep under a fixed skin)",
        getInteger<&C::parallel_min_boxes>, setInteger<&C::parallel_min_boxes>},
       {"third_axis_slabs", ConfigFieldType::kInteger, "0", 0.0,
        static_cast<double>(kMaxThirdAxisSlabs), "an integer in 0..64 (0 = auto)",
@@ -284,9 +294,6 @@ std::vector<ConfigField> makeConfigFields() {
       {"reuse_unchanged_frames", ConfigFieldType::kBool, "true", 0.0, 1.0, "true or false",
        "a frame bit for bit equal to the previous one returns its pairs",
        getBool<&C::reuse_unchanged_frames>, setBool<&C::reuse_unchanged_frames>},
-      {"index_static_boxes", ConfigFieldType::kBool, "false", 0.0, 1.0, "true or false",
-       "index boxes that did not move and cannot pair among themselves; sweep only the others",
-       getBool<&C::index_static_boxes>, setBool<&C::index_static_boxes>},
       {"skin", ConfigFieldType::kSkin, "auto", 0.0, kInfinity,
        "auto, off (or 0) or a finite skin >= 0 in the boxes' units",
        "kept candidates: sweep boxes grown by skin / 2 a side; auto chooses it from the motion",

@@ -1,6 +1,7 @@
 #include "core/frame_history.h"
 #include "core/assert.h"
 #include "core/buffers.h"
+#include "core/tuning.h"
 
 #include <omp.h>
 
@@ -18,15 +19,6 @@ void copySlice(const std::vector<T>& inFrom, std::vector<T>& outTo, std::size_t 
   std::copy(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin);
 }
 
-// Copies elements [inBegin, inEnd) when some differ; true when they did.
-bool copyIfDifferent(const std::vector<uint32_t>& inFrom, std::vector<uint32_t>& outTo,
-                     std::size_t inBegin, std::size_t inEnd) {
-  if (std::equal(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin))
-    return false;
-  copySlice(inFrom, outTo, inBegin, inEnd);
-  return true;
-}
-
 uint64_t bitsOf(double inValue) {
   uint64_t bits;
   std::memcpy(&bits, &inValue, sizeof bits);
@@ -38,7 +30,7 @@ struct BlockChanges {
   double max_displacement = 0.0;
 };
 
-constexpr std::size_t kBlock = 512;  // boxes compared, then copied, together
+constexpr std::size_t kBlock = tuning::kHistoryBlockBoxes;
 
 // One bound array over a block of inCount boxes: ORs each box's differing bits into
 // ioDiffering[k] and returns the bits of the largest change, 0 when bit for bit equal,
@@ -141,6 +133,100 @@ bool readRecords(const InterleavedBoxes& inBoxes, std::size_t inBegin, std::size
   return usable;
 }
 
+// One block of the frame as the comparison reads it: its six bound arrays and its ids (in the
+// frame itself for a BoxSet, in the thread's scratch for records), and whether every bound of
+// it is usable.
+struct BlockView {
+  BoundArrays bounds;
+  const uint32_t* ids;
+  bool usable;
+};
+
+// A frame given as a BoxSet: its blocks are views of its arrays; groups and masks are compared
+// and copied with the bounds.
+struct BoxSetFrame {
+  const BoxSet& boxes;
+  struct Scratch {};
+  std::size_t size() const { return boxes.size(); }
+  BlockView block(std::size_t inBegin, std::size_t /*inEnd*/, Scratch& /*ioScratch*/) const {
+    return {boundArrays(boxes, inBegin), boxes.ids.data() + inBegin, true};
+  }
+  std::size_t markFilterChanges(const BoxSet& inLast, std::size_t inBegin, std::size_t inEnd,
+                                uint8_t* ioUnchanged) const {
+    return sap_broadphase::markFilterChanges(boxes, inLast, inBegin, inEnd, ioUnchanged);
+  }
+  void copyFilters(BoxSet& ioLast, std::size_t inBegin, std::size_t inEnd) const {
+    copySlice(boxes.groups, ioLast.groups, inBegin, inEnd);
+    copySlice(boxes.masks, ioLast.masks, inBegin, inEnd);
+  }
+};
+
+// A frame given as records, without groups or masks: each block is read into the thread's
+// scratch (checked on the way), so the caller's memory is read once.
+struct RecordFrame {
+  const InterleavedBoxes& boxes;
+  using Scratch = RecordBlock;
+  std::size_t size() const { return boxes.count; }
+  BlockView block(std::size_t inBegin, std::size_t inEnd, RecordBlock& ioScratch) const {
+    const bool usable = readRecords(boxes, inBegin, inEnd, ioScratch);
+    return {boundArrays(ioScratch), ioScratch.ids, usable};
+  }
+  std::size_t markFilterChanges(const BoxSet&, std::size_t, std::size_t, uint8_t*) const {
+    return 0;
+  }
+  void copyFilters(BoxSet&, std::size_t, std::size_t) const {}
+};
+
+// One pass, each thread over its slice of the boxes, block by block: a block is compared with
+// ioLast's without a branch and, where some box of it differs, copied at once while both are
+// in the cache (a separate copy after the sweep would read both frames from memory again;
+// copying a whole block keeps the copy a plain streaming one, and unchanged boxes in it are
+// rewritten with their own bits). The ids are copied too, so that ioLast equals the frame in
+// every case. ioLast has the frame's size, and groups and masks where the frame has them.
+template <typename Frame>
+FramePass compareAndCopyBlocks(const Frame& inFrame, int inThreads, BoxSet& ioLast,
+                               std::vector<uint8_t>& outUnchanged) {
+  const std::size_t n = inFrame.size();
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  outUnchanged.resize(n);
+  std::size_t moved = 0, filters_changed = 0, other_ids = 0, unusable = 0;
+  double max_displacement = 0.0;
+#pragma omp parallel num_threads(inThreads) \
+    reduction(+ : moved, filters_changed, other_ids, unusable) reduction(max : max_displacement)
+  {
+    typename Frame::Scratch scratch;
+#pragma omp for schedule(static)
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t begin = b * kBlock, end = std::min(n, begin + kBlock), count = end - begin;
+      const BlockView block = inFrame.block(begin, end, scratch);
+      unusable += !block.usable;
+      if (!std::equal(block.ids, block.ids + count, ioLast.ids.begin() + begin)) {
+        std::copy(block.ids, block.ids + count, ioLast.ids.begin() + begin);
+        ++other_ids;
+      }
+      const BlockChanges bounds = compareBounds(block.bounds, boundArrays(ioLast, begin), count,
+                                                outUnchanged.data() + begin);
+      const std::size_t filters =
+          inFrame.markFilterChanges(ioLast, begin, end, outUnchanged.data());
+      if (bounds.changed_boxes > 0 || filters > 0) {
+        for (int axis = 0; axis < 3; ++axis) {
+          std::copy(block.bounds.at[axis], block.bounds.at[axis] + count,
+                    ioLast.lo[axis].begin() + begin);
+          std::copy(block.bounds.at[3 + axis], block.bounds.at[3 + axis] + count,
+                    ioLast.hi[axis].begin() + begin);
+        }
+        inFrame.copyFilters(ioLast, begin, end);
+        moved += countChanged(outUnchanged.data(), begin, end);
+      }
+      filters_changed += filters;
+      max_displacement = std::max(max_displacement, bounds.max_displacement);
+    }
+  }
+  SAP_ASSERT(moved == countChanged(outUnchanged.data(), 0, n), "moved boxes miscounted");
+  SAP_ASSERT(!(max_displacement < 0.0), "a negative or NaN displacement");
+  return {moved, other_ids != 0, unusable != 0, filters_changed != 0, max_displacement};
+}
+
 }  // namespace
 
 const FrameDelta& FrameHistory::load(const InterleavedBoxes& inBoxes, int inThreads,
@@ -159,61 +245,16 @@ const FrameDelta& FrameHistory::load(const InterleavedBoxes& inBoxes, int inThre
     outProblem = validate(last_);
     if (had_last) delta_.relation = FrameRelation::kOtherIds;
   } else {
-    const RecordsLoaded loaded = compareAndLoadBoxByBox(inBoxes, inThreads);
+    const FramePass pass = compareAndCopyBlocks(RecordFrame{inBoxes}, inThreads, last_, unchanged_);
     // Same ids as a frame that passed: no id can repeat, and only a box found unusable on the
     // way needs the full check (which names the lowest bad box with validate()'s words).
-    outProblem = loaded.other_ids || loaded.unusable ? validate(last_) : std::nullopt;
-    if (loaded.other_ids) {
-      delta_ = FrameDelta();
-      delta_.relation = FrameRelation::kOtherIds;
-    } else {
-      delta_.relation =
-          delta_.moved_boxes == 0 ? FrameRelation::kIdentical : FrameRelation::kSameIds;
-      delta_.unchanged = &unchanged_;
-    }
+    outProblem = pass.other_ids || pass.unusable ? validate(last_) : std::nullopt;
+    describeSameSize(pass);
   }
   if (outProblem) forget();
+  SAP_ASSERT(outProblem || last_.size() == inBoxes.count, "the loaded frame lost boxes");
+  SAP_ASSERT(delta_.moved_boxes <= inBoxes.count, "more boxes moved than the frame holds");
   return delta_;
-}
-
-// compareAndCopyBoxByBox() for records: each block is read into a cache-resident scratch
-// (checked on the way), compared with the copy and written into it where some box differs,
-// so the caller's memory is read once and no other copy of the frame is made.
-FrameHistory::RecordsLoaded FrameHistory::compareAndLoadBoxByBox(const InterleavedBoxes& inBoxes,
-                                                                 int inThreads) {
-  const std::size_t n = inBoxes.count;
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  unchanged_.resize(n);
-  std::size_t moved = 0, other_ids = 0, unusable = 0;
-  double max_displacement = 0.0;
-#pragma omp parallel num_threads(inThreads) reduction(+ : moved, other_ids, unusable) \
-    reduction(max : max_displacement)
-  {
-    RecordBlock block;
-#pragma omp for schedule(static)
-    for (std::size_t b = 0; b < blocks; ++b) {
-      const std::size_t begin = b * kBlock, end = std::min(n, begin + kBlock), count = end - begin;
-      unusable += !readRecords(inBoxes, begin, end, block);
-      if (!std::equal(block.ids, block.ids + count, last_.ids.begin() + begin)) {
-        std::copy(block.ids, block.ids + count, last_.ids.begin() + begin);
-        ++other_ids;
-      }
-      const BlockChanges changes = compareBounds(boundArrays(block), boundArrays(last_, begin),
-                                                 count, unchanged_.data() + begin);
-      if (changes.changed_boxes > 0) {
-        for (int axis = 0; axis < 3; ++axis) {
-          std::copy(block.bounds[axis], block.bounds[axis] + count, last_.lo[axis].begin() + begin);
-          std::copy(block.bounds[3 + axis], block.bounds[3 + axis] + count,
-                    last_.hi[axis].begin() + begin);
-        }
-        moved += changes.changed_boxes;
-      }
-      max_displacement = std::max(max_displacement, changes.max_displacement);
-    }
-  }
-  delta_.moved_boxes = moved;
-  delta_.max_displacement = max_displacement;
-  return RecordsLoaded{other_ids != 0, unusable != 0};
 }
 
 const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
@@ -227,53 +268,20 @@ const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
       last_.masks.empty() != inBoxes.masks.empty())
     return delta_;
   copied_ = true;
-  if (!compareAndCopyBoxByBox(inBoxes, inThreads)) {
-    delta_ = FrameDelta();
-    delta_.relation = FrameRelation::kOtherIds;
-    return delta_;
-  }
-  delta_.relation = delta_.moved_boxes == 0 ? FrameRelation::kIdentical : FrameRelation::kSameIds;
-  delta_.unchanged = &unchanged_;
+  describeSameSize(compareAndCopyBlocks(BoxSetFrame{inBoxes}, inThreads, last_, unchanged_));
+  SAP_ASSERT(unchanged_.size() == inBoxes.size(), "one unchanged flag per box");
   return delta_;
 }
 
-// One pass, each thread over its slice of the boxes, block by block: a block is compared with
-// its copy without a branch and, where some box of it differs, copied at once while both are
-// in the cache (a separate copy after the sweep would read both frames from memory again;
-// copying a whole block keeps the copy a plain streaming one, and unchanged boxes in it are
-// rewritten with their own bits). Returns false when some id differs; the ids are copied too,
-// so that last_ equals inBoxes in every case.
-bool FrameHistory::compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads) {
-  const std::size_t n = inBoxes.size();
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  unchanged_.resize(n);
-  std::size_t moved = 0, filters_changed = 0, other_ids = 0;
-  double max_displacement = 0.0;
-#pragma omp parallel for num_threads(inThreads) schedule(static) \
-    reduction(+ : moved, filters_changed, other_ids) reduction(max : max_displacement)
-  for (std::size_t block = 0; block < blocks; ++block) {
-    const std::size_t begin = block * kBlock, end = std::min(n, begin + kBlock);
-    if (copyIfDifferent(inBoxes.ids, last_.ids, begin, end)) ++other_ids;
-    const BlockChanges bounds =
-        compareBounds(boundArrays(inBoxes, begin), boundArrays(last_, begin), end - begin,
-                      unchanged_.data() + begin);
-    const std::size_t filters = markFilterChanges(inBoxes, last_, begin, end, unchanged_.data());
-    if (bounds.changed_boxes > 0 || filters > 0) {
-      for (int axis = 0; axis < 3; ++axis) {
-        copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
-        copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
-      }
-      copySlice(inBoxes.groups, last_.groups, begin, end);
-      copySlice(inBoxes.masks, last_.masks, begin, end);
-      moved += countChanged(unchanged_.data(), begin, end);
-    }
-    filters_changed += filters;
-    max_displacement = std::max(max_displacement, bounds.max_displacement);
-  }
-  delta_.moved_boxes = moved;
-  delta_.filters_changed = filters_changed != 0;
-  delta_.max_displacement = max_displacement;
-  return other_ids == 0;
+void FrameHistory::describeSameSize(const FramePass& inPass) {
+  delta_ = FrameDelta();
+  delta_.relation = FrameRelation::kOtherIds;
+  if (inPass.other_ids) return;
+  delta_.relation = inPass.moved_boxes == 0 ? FrameRelation::kIdentical : FrameRelation::kSameIds;
+  delta_.moved_boxes = inPass.moved_boxes;
+  delta_.filters_changed = inPass.filters_changed;
+  delta_.max_displacement = inPass.max_displacement;
+  delta_.unchanged = &unchanged_;
 }
 
 namespace {

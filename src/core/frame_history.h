@@ -2,8 +2,8 @@
 //
 // Temporal coherence (the paper's partition bounds B, §4.2) is kept by the sweep itself; what
 // the history adds is the knowledge of which boxes moved and how far, which lets a frame skip
-// work: an identical frame returns the last pairs, resting boxes can be indexed instead of
-// swept, and the measured motion chooses the skin of the kept candidates (skin_list.h).
+// work: an identical frame returns the last pairs, and the measured motion chooses the skin of
+// the kept candidates (skin_list.h).
 #pragma once
 
 #include <cstddef>
@@ -37,6 +37,15 @@ struct FrameDelta {
   }
 };
 
+/// What one pass of the history over a frame of the last frame's size found.
+struct FramePass {
+  std::size_t moved_boxes = 0;
+  bool other_ids = false;  ///< some id differs from the last frame's
+  bool unusable = false;   ///< some box has a NaN bound or min > max (records only)
+  bool filters_changed = false;
+  double max_displacement = 0.0;
+};
+
 class FrameHistory {
  public:
   /// Compares inBoxes with the last frame. Where ids, their count and the presence of groups
@@ -67,12 +76,9 @@ class FrameHistory {
   void shrinkToFit();
 
  private:
-  bool compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads);
-  struct RecordsLoaded {
-    bool other_ids = false;  // some id differs from the last frame's
-    bool unusable = false;   // some box has a NaN bound or min > max
-  };
-  RecordsLoaded compareAndLoadBoxByBox(const InterleavedBoxes& inBoxes, int inThreads);
+  // The delta of a frame of the last frame's size, from the one pass that compared and copied
+  // it (frame_history.cpp).
+  void describeSameSize(const FramePass& inPass);
   void copyWholeFrame(const BoxSet& inBoxes, int inThreads);
 
   BoxSet last_;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <iterator>
 
-#include "core/small_frame.h"
 #include "core/tuning.h"
 
 namespace sap_broadphase {
@@ -117,26 +116,8 @@ double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts
   return 0.0;
 }
 
-FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed) {
-  switch (inPlan.work) {
-    case FrameWork::kEmpty:
-      return FramePath::kEmpty;
-    case FrameWork::kBruteForce:
-      return FramePath::kBruteForce;
-    case FrameWork::kReuse:
-      return FramePath::kReused;
-    case FrameWork::kKeptCandidates:
-      return FramePath::kSkin;
-    case FrameWork::kSmallFrame:
-    case FrameWork::kSweep:
-      break;
-  }
-  if (inRestingIndexed) return FramePath::kStatic;
-  return inPlan.work == FrameWork::kSmallFrame ? FramePath::kSmallFrame : inPlan.sweep_path;
-}
-
-bool isSmallFrame(std::size_t inBoxes, int inThreads) {
-  return inBoxes <= (inThreads == 1 ? kSmallFrameMaxBoxesOneThread : kSmallFrameMaxBoxesParallel);
+bool isSmallFrame(const BroadphaseConfig& inConfig, std::size_t inBoxes) {
+  return inBoxes < inConfig.parallel_min_boxes;
 }
 
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
@@ -162,31 +143,29 @@ FramePlan planFrame(const PlanInputs& inInputs) {
   plan.skin_choice = skin_off ? SkinChoice::kOff : SkinChoice::kNotWorthIt;
   if (inInputs.boxes < 2) return plan;  // kEmpty
   if (config.method == Method::kBruteForce) {
-    plan.work = FrameWork::kBruteForce;
+    plan.path = FramePath::kBruteForce;
     return plan;
   }
   if (reusesLastPairs(config, delta, inInputs.last_pairs_valid)) {
-    plan.work = FrameWork::kReuse;
+    plan.path = FramePath::kReused;
     if (inInputs.kept_candidates) plan.skin = inInputs.kept_skin;
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : plan.skin_choice;
     return plan;
   }
   plan.threads = inInputs.threads;
   if (planConsidersKeptCandidates(inInputs) && inInputs.kept_covers) {
-    plan.work = FrameWork::kKeptCandidates;
+    plan.path = FramePath::kSkin;
     plan.skin = inInputs.kept_skin;
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;
     return plan;
   }
-  if (config.method == Method::kAuto && !skin_fixed &&
-      isSmallFrame(inInputs.swept, inInputs.threads)) {
-    plan.work = FrameWork::kSmallFrame;  // no skin: a small frame costs less than its pass
+  if (config.method == Method::kAuto && !skin_fixed && isSmallFrame(config, inInputs.boxes)) {
+    plan.path = FramePath::kSmallFrame;  // no skin: a small frame costs less than its pass
     plan.threads = 1;
     return plan;
   }
-  plan.work = FrameWork::kSweep;
-  plan.sweep_path = sweepPath(config, inInputs.swept, inInputs.threads);
-  if (plan.sweep_path == FramePath::kSequential) plan.threads = 1;
+  plan.path = sweepPath(config, inInputs.boxes, inInputs.threads);
+  if (plan.path == FramePath::kSequential) plan.threads = 1;
   if (skin_off) return plan;
   if (skin_fixed) {
     plan.sweep_skin = *config.skin;
@@ -196,7 +175,7 @@ FramePlan planFrame(const PlanInputs& inInputs) {
   } else if (!delta.sameIds()) {
     plan.skin_choice = SkinChoice::kIdsChanged;
   } else {
-    plan.sweep_skin = chooseSkin(inInputs.motion, inInputs.swept, inInputs.costs, plan.skin_choice);
+    plan.sweep_skin = chooseSkin(inInputs.motion, inInputs.boxes, inInputs.costs, plan.skin_choice);
   }
   plan.skin = plan.sweep_skin;
   // The kept-candidate passes of a grown sweep run on every thread.

@@ -12,15 +12,11 @@
 
 namespace sap_broadphase {
 
-/// The work that computes a frame's pairs (besides the declared scenery, always queried).
-enum class FrameWork : uint8_t {
-  kEmpty,           ///< fewer than two boxes can pair
-  kBruteForce,      ///< all pairs tested
-  kReuse,           ///< identical to the last frame: its pairs stand
-  kKeptCandidates,  ///< every box inside its skin: test the kept candidates only
-  kSweep,           ///< sweep and prune (grown by a skin when sweep_skin > 0)
-  kSmallFrame,      ///< a small frame: one-axis sort and sweep in blocks (small_frame.h)
-};
+/// True when inPath is a sweep and prune (Algorithm 1, or Algorithms 2-4), the one work a skin
+/// can grow the boxes of.
+inline bool isSweep(FramePath inPath) {
+  return inPath == FramePath::kSequential || inPath == FramePath::kParallel;
+}
 
 /// What earlier frames measured, for choosing a skin. A sweep costs a part per box (keys,
 /// sorts, candidate ranges) and a part per box and candidate (pairing, output); a grown
@@ -49,7 +45,6 @@ struct PlanInputs {
   const BroadphaseConfig* config = nullptr;
   FrameDelta delta;
   std::size_t boxes = 0;  ///< boxes that can pair (filtered)
-  std::size_t swept = 0;  ///< boxes left to sweep (after resting boxes went to an index)
   int threads = 1;
   bool last_pairs_valid = false;  ///< the output still holds the last frame's pairs
   bool kept_candidates = false;   ///< a kept-candidate list exists for these boxes
@@ -60,22 +55,23 @@ struct PlanInputs {
   SkinCosts costs;
 };
 
-/// The plan.
+/// The plan: the work that computes a frame's pairs (besides the declared scenery, always
+/// queried), named as the frame reports it (frame_report.h).
 struct FramePlan {
-  FrameWork work = FrameWork::kEmpty;
-  FramePath sweep_path = FramePath::kSequential;  ///< kSweep: kSequential or kParallel
-  int threads = 1;                                ///< threads the work uses
-  double sweep_skin = 0.0;                        ///< kSweep: grow boxes by this skin (0: plain)
-  double skin = 0.0;                              ///< skin of the candidates used this frame
+  FramePath path = FramePath::kEmpty;
+  int threads = 1;          ///< threads the work uses
+  double sweep_skin = 0.0;  ///< a sweep: grow boxes by this skin (0: plain)
+  double skin = 0.0;        ///< skin of the candidates used this frame
   SkinChoice skin_choice = SkinChoice::kOff;
 };
 
 /// The sequential or parallel sweep for inBoxes boxes (Method::kAuto's rule).
 FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
 
-/// True when a frame of inBoxes boxes goes to the small-frame path (Method::kAuto) rather than
-/// the sweep: at or below the measured crossover (small_frame.h).
-bool isSmallFrame(std::size_t inBoxes, int inThreads);
+/// True when a frame of inBoxes boxes goes to the small-frame path (Method::kAuto, no fixed
+/// skin) rather than the sweep, on any thread count: below parallel_min_boxes, the one cut-off
+/// of Method::kAuto (sweepPath's too).
+bool isSmallFrame(const BroadphaseConfig& inConfig, std::size_t inBoxes);
 
 /// True when the frame's pairs are the last frame's: identical boxes, reuse on, the last
 /// pairs still held.
@@ -90,10 +86,6 @@ bool planConsidersKeptCandidates(const PlanInputs& inInputs);
 
 /// Picks the work of a frame.
 FramePlan planFrame(const PlanInputs& inInputs);
-
-/// The path a frame reports for its plan (inRestingIndexed: resting boxes answered by their
-/// index this frame).
-FramePath framePathOf(const FramePlan& inPlan, bool inRestingIndexed);
 
 /// The automatic skin for motion inMotion: the skin whose sweep-then-passes cycle the cost
 /// model expects cheapest per frame, or 0 when none beats a plain sweep. outChoice says why.

@@ -39,8 +39,6 @@ const char* framePathName(FramePath inPath) {
       return "reused";
     case FramePath::kSkin:
       return "skin";
-    case FramePath::kStatic:
-      return "static";
     case FramePath::kSmallFrame:
       return "small";
   }

@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <limits>
 
 #include "core/assert.h"
 #include "core/sort_keys.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 namespace {
@@ -18,8 +18,6 @@ namespace {
 constexpr int kDigitBits = 11;
 constexpr uint32_t kDigitValues = 1u << kDigitBits;
 constexpr int kPasses = 3;  // 11 + 11 + 10 bits cover a 32-bit key
-// Below this size a comparison sort beats clearing three 2048-entry histograms.
-constexpr std::size_t kSmallSort = 256;
 
 inline uint32_t digitOf(uint64_t inItem, int inPass) {
   return static_cast<uint32_t>(inItem >> (32 + inPass * kDigitBits)) & (kDigitValues - 1);
@@ -73,7 +71,7 @@ inline uint8_t lookupPartition(uint32_t inKey, const uint8_t* inTable, const uin
 }  // namespace
 
 uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
-  if (inCount < kSmallSort) {
+  if (inCount < tuning::kSmallIndexSort) {
     // Items are unique (distinct indexes), so sorting whole words is a stable sort by key
     // provided equal keys arrive in index order, which every caller guarantees.
     std::sort(ioItems, ioItems + inCount);
@@ -174,7 +172,8 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
                                               int inThreads) {
   const int partitions = static_cast<int>(inBounds.bounds.size()) + 1;
   const int bound_count = partitions - 1;
-  assert(partitions >= 1 && partitions <= kMaxSortPartitions);  // partition_of_ is 8 bits
+  SAP_ASSERT(partitions >= 1 && partitions <= kMaxSortPartitions,
+             "more sort partitions than partition_of_'s 8 bits number");
   const uint32_t* bounds = inBounds.bounds.data();
   // Each thread's counters sit a cache line past the previous thread's: counters that shared
   // a line would bounce between the cores on every item.

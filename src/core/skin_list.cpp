@@ -15,6 +15,7 @@
 #include "core/buffers.h"
 #include "core/radix_sort.h"
 #include "core/sort_keys.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 namespace {
@@ -117,9 +118,7 @@ int widestAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inMembers) {
   return widest;
 }
 
-/// How many boxes or candidates ahead a pass asks for the cache line it will need: enough to
-/// cover a memory latency with the work of the ones in between.
-constexpr int kPrefetchAhead = 32;
+constexpr int kPrefetchAhead = static_cast<int>(tuning::kSkinPrefetchAhead);
 
 /// Start of part inPart of inParts contiguous ranges of [0, inCount), as even as integers allow.
 std::size_t shareBegin(std::size_t inCount, int inPart, int inParts) {
@@ -268,12 +267,6 @@ void SkinList::keepSpatialCandidates() {
   }
 }
 
-bool SkinList::collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs) {
-  if (!gather(inBoxes, inThreads)) return false;
-  collectGathered(inThreads, outPairs);
-  return true;
-}
-
 bool SkinList::gather(const BoxSet& inBoxes, int inThreads) {
   frame_gathered_ = valid_ && sameCounts(inBoxes) && gatherInside(inBoxes, inThreads);
   return frame_gathered_;
@@ -307,7 +300,7 @@ bool SkinList::sameIdsAndFilters(const BoxSet& inBoxes, std::size_t inBegin,
 // the positions, which stays in the cache). Blocks of boxes end the pass early when one box has
 // left its skin.
 bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
-  constexpr std::size_t kBlock = 4096;
+  constexpr std::size_t kBlock = tuning::kGatherBlockBoxes;
   const std::size_t n = inBoxes.size();
   resizeDiscarding(gathered_, std::size_t{spatial_count_} + std::max(1, inThreads));
   const uint32_t* position_of = position_of_.data();

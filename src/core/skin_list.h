@@ -47,19 +47,15 @@ class SkinList {
   /// candidates; inBoxes are the boxes given to inflate(). Throws std::length_error when there
   /// are 2^32 candidates or more (their rows are indexed in 32 bits).
   void adopt(const BoxSet& inBoxes, const PairList& inCandidates);
-  /// When every box of inBoxes lies inside its inflated box (same ids, groups and masks in the
-  /// same order): writes into outPairs the candidates that overlap exactly in inBoxes, in
-  /// canonical order, and returns true. Otherwise returns false and leaves outPairs alone:
-  /// the caller sweeps (inflate, sweep, adopt), after which collect() answers the frame.
-  bool collect(const BoxSet& inBoxes, int inThreads, PairList& outPairs);
-  /// The first half of collect(): true when every box of inBoxes lies inside its inflated box,
-  /// and then the frame's bounds are gathered for collectGathered(). One read of the frame, so
-  /// that the engine can know before planning whether the candidates answer the frame.
+  /// True when every box of inBoxes lies inside its inflated box (same ids, groups and masks in
+  /// the same order), and then the frame's bounds are gathered for collectGathered(). One read
+  /// of the frame, so that the engine can know before planning whether the candidates answer
+  /// the frame; when they do not, the caller sweeps (inflate, sweep, adopt) instead.
   bool gather(const BoxSet& inBoxes, int inThreads);
-  /// The second half of collect(), after gather() returned true for this frame: the
-  /// candidates that overlap in the gathered bounds, in canonical order, into outPairs.
+  /// After gather() returned true for this frame: the candidates that overlap exactly in the
+  /// gathered bounds, in canonical order, into outPairs.
   void collectGathered(int inThreads, PairList& outPairs);
-  /// The containment test of collect() alone, without computing pairs.
+  /// The containment test of gather() alone, without gathering.
   bool covers(const BoxSet& inBoxes, int inThreads) const;
   /// True while candidates are kept (after adopt(), until clear() or the next inflate()).
   bool valid() const { return valid_; }

@@ -84,8 +84,8 @@ void SkinReuse::learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t
                       const FrameReport& inReport) {
   const BoxSet& swept = ioSwept.boxes();
   const double boxes = static_cast<double>(swept.size());
-  const bool grown_sweep = inPlan.work == FrameWork::kSweep && inPlan.sweep_skin > 0.0;
-  if (inPlan.work == FrameWork::kSweep && swept.size() >= tuning::kMinSkinBoxes) {
+  const bool grown_sweep = isSweep(inPlan.path) && inPlan.sweep_skin > 0.0;
+  if (isSweep(inPlan.path) && swept.size() >= tuning::kMinSkinBoxes) {
     const double candidates = static_cast<double>(grown_sweep ? kept_.candidates() : inSweepPairs);
     const double ms_sweep_per_box = inReport.ms_keys + inReport.ms_sort + inReport.ms_candidates;
     const double ms_sweep_per_item = inReport.ms_pairing + inReport.ms_output;
@@ -101,7 +101,7 @@ void SkinReuse::learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t
           smoothed(costs_.keep_ns_per_candidate, times_.ms_keep * 1e6 / std::max(1.0, candidates));
     }
   }
-  const bool answered_by_pass = inPlan.work == FrameWork::kKeptCandidates || grown_sweep;
+  const bool answered_by_pass = inPlan.path == FramePath::kSkin || grown_sweep;
   if (answered_by_pass && kept_.candidates() > 0) learnPassCosts(times_.ms_pass, boxes);
 }
 

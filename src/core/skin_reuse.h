@@ -29,7 +29,7 @@ class SkinReuse {
   /// of the last grown sweep (same ids, groups and masks). The frame's bounds are then
   /// gathered for answerFromCandidates().
   bool coversFrame(const BoxSet& inSwept, int inThreads, FrameReport& ioReport);
-  /// FrameWork::kKeptCandidates, after coversFrame() said yes: the candidates that overlap
+  /// FramePath::kSkin, after coversFrame() said yes: the candidates that overlap
   /// now, in canonical order, into outPairs (replaced).
   void answerFromCandidates(int inThreads, FrameReport& ioReport, PairList& outPairs);
 

@@ -1,9 +1,9 @@
 #include "core/slab_grid.h"
 
+#include "core/assert.h"
 #include "core/axis_spread.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -25,11 +25,14 @@ SlabGrid chooseSlabGrid(FrameSpread& ioSpread, int inAxis, int inRequested, int 
     count = static_cast<int>(std::min<double>(kMaxSlabs, std::ceil(span / width)));
   }
   count = std::clamp(count, 1, kMaxSlabs);
-  assert(count <= kMaxSlabs);  // RankedSlabs holds slab numbers in 8 bits
+  SAP_ASSERT(count >= 1 && count <= kMaxSlabs, "more slabs than RankedSlabs' 8 bits number");
   grid.count = count;
   grid.origin = spread.lowest;
   grid.width = span / count;
   if (!(grid.width > 0.0)) return SlabGrid();
+  // The last slab reaches the highest finite bound: every box falls in the grid.
+  SAP_ASSERT(grid.slabOf(spread.lowest) == 0 && grid.slabOf(spread.lowest + span) == count - 1,
+             "the slabs do not span the boxes' third-axis bounds");
   return grid;
 }
 

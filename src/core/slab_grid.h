@@ -3,6 +3,7 @@
 
 #include <cstdint>
 
+#include "core/assert.h"
 #include "core/axis_spread.h"
 #include "sap_broadphase/core/config.h"
 
@@ -25,6 +26,7 @@ struct SlabGrid {
     const double position = (inValue - origin) / width;
     if (!(position > 0.0)) return 0;  // also -inf
     if (position >= count - 1) return count - 1;
+    SAP_ASSERT(position >= 0.0 && position < count - 1, "a slab position outside the grid");
     return static_cast<int>(position);
   }
 };

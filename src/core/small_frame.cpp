@@ -16,6 +16,7 @@
 #include "core/key_origin.h"
 #include "core/radix_sort.h"
 #include "core/sort_keys.h"
+#include "core/tuning.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1
@@ -169,9 +170,9 @@ GridAxis gridAxis(FrameSpread& ioSpread, const KeyOrigin& inOrigin, int inAxis,
   const AxisSpread& spread = ioSpread.axis(inAxis, 1);
   const double span = spread.span();
   const double relative = relativeExtent(ioSpread, inAxis);
-  const double by_count = std::sqrt(static_cast<double>(inBoxes) / kSmallFrameBoxesPerCell);
-  const double by_extent = 1.0 / (kSmallFrameCellsPerExtent * relative);
-  const double cells = std::min({by_count, by_extent, double{kSmallFrameMaxCellsPerAxis}});
+  const double by_count = std::sqrt(static_cast<double>(inBoxes) / tuning::kSmallFrameBoxesPerCell);
+  const double by_extent = 1.0 / (tuning::kSmallFrameCellsPerExtent * relative);
+  const double cells = std::min({by_count, by_extent, double{tuning::kSmallFrameMaxCellsPerAxis}});
   if (!(cells >= 2.0) || !std::isfinite(span)) return grid;
   grid.cells = static_cast<uint32_t>(cells);
   grid.base = static_cast<float>(spread.lowest - inOrigin.origin[inAxis]);
@@ -381,10 +382,6 @@ int chooseSmallFrameAxis(FrameSpread& ioSpread) {
     }
   }
   return best_axis;
-}
-
-bool smallFrameUsesAvx2() {
-  return cpuHasAvx2();
 }
 
 void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,

@@ -13,37 +13,10 @@
 
 #include "core/axis_spread.h"
 #include "core/buffers.h"
+#include "core/pair_sort.h"
 #include "sap_broadphase/core/box_set.h"
-#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
-
-/// Largest frame worth handing to pairSmallFrame instead of the one-thread engine. Measured
-/// with sap_microbench's BM_SmallFrame (uniform scenes, CPU time of one thread): the small
-/// frame stays ahead up to 2^15 boxes at density 0.35 and beyond 2^16 at 0.05 (at 2^14: 3.3
-/// against 5.3 ms, and 1.6 against 3.9 ms). Its candidates grow as n^(5/3) on a uniform scene,
-/// the engine's as n, hence a crossover; 2^14 keeps a margin for denser scenes.
-constexpr std::size_t kSmallFrameMaxBoxesOneThread = std::size_t{1} << 14;
-/// The same against the parallel engine on two threads. Measured with `sap_bench -e skips`
-/// (uniform, density 0.2, every frame swept, 2 cores idle): the small frame leads 2.04× at
-/// 2^13, 1.53× at 2^14 and 1.15× at 2^15 and trails from 2^16 (1.07 / 2.19, 2.66 / 4.07,
-/// 6.99 / 8.04, 20.0 / 15.4 ms); 2^14 keeps the margin for denser scenes.
-constexpr std::size_t kSmallFrameMaxBoxesParallel = std::size_t{1} << 14;
-
-/// The cell grid of a small frame (small_frame.cpp): boxes are laid into a grid over the two
-/// axes other than the sweep axis and each cell is swept alone, so a box meets only the
-/// candidates of its own cells instead of every box whose interval it crosses on the sweep
-/// axis. Cells per grid axis: at most sqrt(n / kSmallFrameBoxesPerCell) (a cell's fixed cost
-/// amortised over enough boxes), at most 1 / (kSmallFrameCellsPerExtent × the mean extent
-/// relative to the span) (few boxes copied into two cells), and at most
-/// kSmallFrameMaxCellsPerAxis (a cell index in a byte). Measured on one thread (CPU time,
-/// uniform scenes, d = 0.05 and 0.35, 2^12 to 2^16): 256 boxes a cell led 128 by 0-10 % from
-/// 2^14 up and tied below, 512 and 1024 trailed at 2^12 to 2^14 by up to 20 %, 64 trailed
-/// everywhere; the extent bound (1, 2 or 4 cells per mean extent) changed little, since on
-/// these scenes the count bound is the tighter one.
-constexpr double kSmallFrameBoxesPerCell = 256.0;
-constexpr double kSmallFrameCellsPerExtent = 4.0;
-constexpr uint32_t kSmallFrameMaxCellsPerAxis = 64;
 
 /// Buffers of pairSmallFrame, reused from frame to frame (grown, never shrunk; growth does not
 /// zero them).
@@ -84,8 +57,5 @@ void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList
 
 /// The same, forced onto the portable loop (for tests and benchmarks on AVX2 machines).
 void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
-
-/// True when pairSmallFrame uses the AVX2 blocks on this CPU.
-bool smallFrameUsesAvx2();
 
 }  // namespace sap_broadphase

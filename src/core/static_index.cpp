@@ -304,8 +304,8 @@ void StaticIndex::scanSlots(const QueryBox& inBox, std::size_t inBegin, std::siz
 
 // Queries of a frame land in cells far apart in a large index, so each one waits for its
 // cells' offsets, their slot lists and the slots themselves, one miss after the other. The
-// three are fetched ahead in stages, for the query kPrefetchAhead[stage] positions later:
-// offsets first, the slot lists once the offsets are in, the slots once the lists are in.
+// three are fetched ahead in stages, for the query tuning::kSceneryPrefetchAhead[stage] positions
+// later: offsets first, the slot lists once the offsets are in, the slots once the lists are in.
 void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, int inStage) const {
   if (grid_count_ == 0) return;
   const double box_low[3] = {inQueries.lo[0][inQuery], inQueries.lo[1][inQuery],
@@ -313,7 +313,8 @@ void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, in
   const double box_high[3] = {inQueries.hi[0][inQuery], inQueries.hi[1][inQuery],
                               inQueries.hi[2][inQuery]};
   uint32_t low[3], high[3];
-  if (cellRange(box_low, box_high, low, high) > kMostCellsPrefetched) return;  // a large box
+  if (cellRange(box_low, box_high, low, high) > tuning::kSceneryMostCellsPrefetched)
+    return;  // a large box
   for (uint32_t z = low[2]; z <= high[2]; ++z) {
     for (uint32_t y = low[1]; y <= high[1]; ++y) {
       const std::size_t row = (std::size_t{z} * dims_[1] + y) * dims_[0];
@@ -327,7 +328,8 @@ void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, in
         if (begin < end) __builtin_prefetch(&cell_slots_[begin]);
         continue;
       }
-      for (std::size_t e = begin; e < std::min(end, begin + kMostCellsPrefetched); ++e)
+      for (std::size_t e = begin; e < std::min(end, begin + tuning::kSceneryMostCellsPrefetched);
+           ++e)
         __builtin_prefetch(&slots_[cell_slots_[e]]);
     }
   }
@@ -338,8 +340,8 @@ void StaticIndex::queryRange(const BoxSet& inQueries, const std::vector<uint32_t
                              PairList& outPairs) const {
   for (std::size_t k = inBegin; k < inEnd; ++k) {
     for (int stage = 0; stage < 3; ++stage) {
-      if (k + kPrefetchAhead[stage] < inEnd)
-        prefetchQuery(inQueries, inQueryIndexes[k + kPrefetchAhead[stage]], stage);
+      if (k + tuning::kSceneryPrefetchAhead[stage] < inEnd)
+        prefetchQuery(inQueries, inQueryIndexes[k + tuning::kSceneryPrefetchAhead[stage]], stage);
     }
     query(inQueries, inQueryIndexes[k], outPairs, inOrder);
   }

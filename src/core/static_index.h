@@ -1,5 +1,5 @@
-// An exact index of boxes that do not move: a uniform 3-D grid in CSR form (resting and declared
-// static boxes).
+// An exact index of boxes that do not move, the declared scenery: a uniform 3-D grid in CSR
+// form.
 #pragma once
 
 #include <cstddef>
@@ -88,10 +88,6 @@ class StaticIndex {
   void queryRange(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                   std::size_t inBegin, std::size_t inEnd, PairOrder inOrder,
                   PairList& outPairs) const;
-  /// Queries ahead whose offsets, slot lists and slots are fetched (prefetchQuery's stages).
-  static constexpr std::size_t kPrefetchAhead[3] = {12, 6, 3};
-  /// Most cells (and slots a cell row) a query prefetches.
-  static constexpr std::size_t kMostCellsPrefetched = 27;
   void scanSlots(const QueryBox& inBox, std::size_t inBegin, std::size_t inEnd,
                  PairList& outPairs) const;
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/assert.h"
+
 namespace sap_broadphase {
 namespace {
 
@@ -30,6 +32,8 @@ void SuccTree::resize(uint32_t inSize) {
     words = wordsFor(words);
   }
   levels_.resize(level);
+  SAP_ASSERT(levels_.back().size() == 1 && levels_[0].size() * kWordBits >= inSize,
+             "a SuccTree's levels do not end in one root word over the whole universe");
 }
 
 void SuccTree::clear() {
@@ -58,14 +62,19 @@ void SuccTree::clearBitAndAncestors(uint32_t inValue) {
 }
 
 void SuccTree::insert(uint32_t inValue) {
+  SAP_ASSERT(inValue < size_, "SuccTree::insert beyond the universe");
   setBitAndAncestors(inValue);
+  SAP_ASSERT(contains(inValue) && !empty(), "SuccTree::insert left the value out");
 }
 
 void SuccTree::erase(uint32_t inValue) {
+  SAP_ASSERT(inValue < size_, "SuccTree::erase beyond the universe");
   if (contains(inValue)) clearBitAndAncestors(inValue);
+  SAP_ASSERT(!contains(inValue), "SuccTree::erase left the value in");
 }
 
 void SuccTree::toggle(uint32_t inValue) {
+  SAP_ASSERT(inValue < size_, "SuccTree::toggle beyond the universe");
   if (contains(inValue))
     clearBitAndAncestors(inValue);
   else
@@ -89,6 +98,9 @@ uint32_t SuccTree::next(uint32_t inValue) const {
     --level;
     position = (position << 6) | static_cast<uint32_t>(__builtin_ctzll(levels_[level][position]));
   }
+  // A set summary bit always leads down to a set leaf bit (the levels agree).
+  SAP_ASSERT(position < size_ && position >= inValue && contains(position),
+             "SuccTree::next found no element below a set summary bit");
   return position < size_ ? position : kNone;
 }
 
@@ -107,6 +119,7 @@ void SuccTree::refreshAncestors(uint32_t inWordIndex) {
 }
 
 void SuccTree::symmetricDifference(const SuccTree& inOther) {
+  SAP_ASSERT(size_ == inOther.size_, "symmetric difference of SuccTrees over other universes");
   const std::vector<uint64_t>& other_leaves = inOther.levels_[0];
   std::vector<uint64_t>& leaves = levels_[0];
   if (levels_.size() == 1) {

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/assert.h"
+
 namespace sap_broadphase {
 
 class SuccTree {
@@ -38,6 +40,8 @@ class SuccTree {
   void toggle(uint32_t inValue);
   /// True when inValue is present.
   bool contains(uint32_t inValue) const {
+    SAP_ASSERT(inValue < size_ || (size_ == 0 && inValue == 0),
+               "a SuccTree asked beyond its universe");
     return (levels_[0][inValue >> 6] >> (inValue & 63)) & 1u;
   }
   /// Smallest element, or kNone.
@@ -68,6 +72,9 @@ class SuccTree {
 // Ranges here span at most a few summary words (a pairing partition is 2^15 ranks).
 template <typename Visit>
 void SuccTree::forEachInRange(uint32_t inBegin, uint32_t inEnd, Visit&& inVisit) const {
+  // Callers pass ranges of the tree's own ranks: a candidate range clipped to the sweep's
+  // ranks (whole stream) or to its partition (local ranks).
+  SAP_ASSERT(inEnd <= size_, "a SuccTree range reaches beyond its universe");
   if (inEnd > size_) inEnd = size_;
   if (inBegin >= inEnd) return;
   const uint64_t* leaves = levels_[0].data();
@@ -78,7 +85,9 @@ void SuccTree::forEachInRange(uint32_t inBegin, uint32_t inEnd, Visit&& inVisit)
     if (inWord == first_word) bits &= ~uint64_t{0} << (inBegin & 63);
     if (inWord == last_word) bits &= ~uint64_t{0} >> (63 - ((inEnd - 1) & 63));
     while (bits) {
-      inVisit((inWord << 6) | static_cast<uint32_t>(__builtin_ctzll(bits)));
+      const uint32_t value = (inWord << 6) | static_cast<uint32_t>(__builtin_ctzll(bits));
+      SAP_ASSERT(value >= inBegin && value < inEnd, "a SuccTree range walk left its range");
+      inVisit(value);
       bits &= bits - 1;
     }
   };

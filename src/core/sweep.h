@@ -9,10 +9,11 @@
 #include <vector>
 
 #include "core/buffers.h"
+#include "core/pair_sort.h"
 #include "core/slab_grid.h"
 #include "core/succ_tree.h"
+#include "core/tuning.h"
 #include "sap_broadphase/core/box_set.h"
-#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
 
@@ -73,21 +74,6 @@ struct PairingInput {
   int slab_count = 1;
 };
 
-/// Largest rank partition of the parallel pairing: its slab trees stay cache-resident and
-/// ranks inside it fit in 16 bits.
-constexpr uint32_t kPairingPartitionRanks = 1u << 15;
-
-/// Fewest rank partitions per thread of the parallel pairing (when there are several threads):
-/// enough that handing them out by decreasing work evens the threads out.
-constexpr uint32_t kPairingPartitionsPerThread = 4;
-
-/// Largest total size, in bits (n ranks times the slab count), of the whole-stream trees that
-/// the one-thread pairing sweeps with; above it the thread sweeps rank partitions instead.
-/// Measured on the uniform scene (d = 0.35, 1 thread): whole-stream trees win by 5-10% up to
-/// 2^18 boxes (46 slabs, 1.5 MiB of trees), partitions by a third from 2^19 boxes (58 slabs,
-/// 3.6 MiB), where every insert, erase and range walk on the big trees misses the cache.
-constexpr uint64_t kSequentialTreeBits = uint64_t{1} << 24;
-
 /// How the last frame's pairing scatter laid out its entries: the split and thread count it
 /// was for, and how many entries each (partition, thread) segment held.
 struct ScatterLayout {
@@ -125,13 +111,13 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);
 
 /// Algorithm 1, lines 15-23: every pair, found once, by one thread. Appends to outPairs. When
-/// the trees would exceed kSequentialTreeBits, the thread sweeps the partitions of
+/// the trees would exceed tuning::kSequentialTreeBits, the thread sweeps the partitions of
 /// pairParallel one after another instead, so that its trees stay in cache.
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs);
 
-/// Algorithm 4: rank space split into partitions of at most kPairingPartitionRanks ranks (and at
-/// least kPairingPartitionsPerThread per thread), each swept by one thread with its own
-/// SuccTrees, handed out largest work first (the sweep time each took in the last frame with
+/// Algorithm 4: rank space split into partitions of at most tuning::kPairingPartitionRanks ranks
+/// (and at least tuning::kPairingPartitionsPerThread per thread), each swept by one thread with its
+/// own SuccTrees, handed out largest work first (the sweep time each took in the last frame with
 /// this split, else an estimate); each pair is found in exactly one partition, without locks
 /// or reduction. Unlike the paper, where every thread reads all 2n endpoints, a scatter first
 /// hands each partition only the endpoints that touch it (those whose rank or candidate range

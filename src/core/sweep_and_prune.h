@@ -12,13 +12,13 @@
 
 #include "core/buffers.h"
 #include "core/key_origin.h"
+#include "core/pair_sort.h"
 #include "core/radix_sort.h"
 #include "core/slab_grid.h"
 #include "core/succ_tree.h"
 #include "core/sweep.h"
 #include "sap_broadphase/core/config.h"
 #include "sap_broadphase/core/frame_report.h"
-#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
 

@@ -3,15 +3,16 @@
 
 #include <algorithm>
 
+#include "core/assert.h"
 #include "core/buffers.h"
 #include "core/sweep.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 namespace {
 
-// Endpoints between a record's prefetch and its use: the records are read and written in
-// primary order, at random.
-constexpr std::size_t kRecordPrefetchAhead = 16;
+// The records are read and written in primary order, at random: fetched ahead.
+constexpr std::size_t kRecordPrefetchAhead = tuning::kEndpointPrefetchAhead;
 
 inline bool containsBit(const uint64_t* inBits, uint32_t inIndex) {
   return (inBits[inIndex >> 6] >> (inIndex & 63)) & 1u;
@@ -43,16 +44,32 @@ void sweepCandidateSlice(const uint32_t* inOrder, uint32_t inObjects, std::size_
       if (!inCrossing || !containsBit(inCrossing, endpoint)) range.rank = rank;
       object_of_rank[rank] = endpoint;
       if (minimum == SuccTree::kNone) minimum = rank;
+      SAP_ASSERT(minimum <= rank, "a candidate range starts after its own rank (L > R)");
       range.low = minimum;
       ioActive.insert(rank);
     } else {
       RankRange& range = ranges[endpoint - inObjects];
       const uint32_t rank = range.rank;
       range.high = lows_seen;
+      // (L, written at the low, may belong to another slice's thread: checked after the sweep.)
+      SAP_ASSERT(rank < range.high, "a candidate range ends before its own rank (R >= U)");
+      SAP_ASSERT(ioActive.contains(rank), "a high endpoint whose box is not active");
       ioActive.erase(rank);
       if (rank == minimum) minimum = ioActive.next(rank);
     }
   }
+}
+
+// Every object's candidate range holds its rank, L <= R < U <= n, and R^- inverts R: what
+// pairing relies on to find each pair once (a scan of the frame, asserted builds only).
+[[maybe_unused]] bool rangesAreConsistent(const CandidateRanges& inRanges, uint32_t inObjects) {
+  for (uint32_t object = 0; object < inObjects; ++object) {
+    const RankRange& range = inRanges.of_object[object];
+    if (!(range.low <= range.rank && range.rank < range.high && range.high <= inObjects))
+      return false;
+    if (inRanges.object_of_rank[range.rank] != object) return false;
+  }
+  return true;
 }
 
 // Slice inSlice of inSlices of the primary order: [outBegin, outEnd).
@@ -121,6 +138,8 @@ void seedActiveFromEarlierSlices(uint32_t inObjects, int inSlice, const SweepWor
       bits ^= inWork.slice_objects[words * earlier + word];
     while (bits) {
       const uint32_t object = static_cast<uint32_t>(word * 64 + __builtin_ctzll(bits));
+      SAP_ASSERT(inRanges[object].rank < inWork.lows_before[inSlice],
+                 "a box active at a slice's start was ranked in a later slice");
       outActive.insert(inRanges[object].rank);
       bits &= bits - 1;
     }
@@ -136,6 +155,8 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
   ioActive.resize(inObjects);
   sweepCandidateSlice(inPrimaryOrder, inObjects, 0, 2 * std::size_t{inObjects}, 0, nullptr,
                       ioActive, outRanges);
+  SAP_ASSERT(ioActive.empty(), "a box still active after the whole primary order");
+  SAP_ASSERT(rangesAreConsistent(outRanges, inObjects), "candidate ranges not L <= R < U <= n");
 }
 
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
@@ -173,6 +194,8 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
       active.clear();  // leave the tree empty for the next frame
     }
   }
+  SAP_ASSERT(ioWork.lows_before[slices] == inObjects, "the slices' lows do not add up to n");
+  SAP_ASSERT(rangesAreConsistent(outRanges, inObjects), "candidate ranges not L <= R < U <= n");
 }
 
 }  // namespace sap_broadphase

@@ -3,12 +3,13 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cassert>
 #include <numeric>
 
+#include "core/assert.h"
 #include "core/buffers.h"
 #include "core/phase_timer.h"
 #include "core/sweep.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 namespace {
@@ -22,11 +23,12 @@ constexpr uint64_t kEntryHighBit = uint64_t{1} << 63;
 constexpr uint32_t kRankMask = 0x7FFFFFFFu;
 constexpr uint32_t kLocalRankMask = 0xFFFFu;
 static_assert(kMaxBoxes - 1 <= kRankMask, "every rank must fit in an entry's 31 rank bits");
-static_assert(kPairingPartitionRanks <= kLocalRankMask,
+static_assert(tuning::kPairingPartitionRanks <= kLocalRankMask,
               "a partition's local candidate range (ends included) must fit in 16 bits");
 
 inline uint64_t lowEntry(uint32_t inRank, uint32_t inLocalBegin, uint32_t inLocalEnd) {
-  assert(inRank <= kRankMask && inLocalBegin <= inLocalEnd && inLocalEnd <= kLocalRankMask);
+  SAP_ASSERT(inRank <= kRankMask && inLocalBegin <= inLocalEnd && inLocalEnd <= kLocalRankMask,
+             "a pairing entry's rank or local candidate range does not fit its bits");
   return inRank | (uint64_t{inLocalBegin} << 31) | (uint64_t{inLocalEnd} << 47);
 }
 inline uint64_t highEntry(uint32_t inRank) {
@@ -165,26 +167,33 @@ class PartitionSweep {
       if (k + kPrefetchAhead < size) prefetchRecords(inReader.rankAt(k + kPrefetchAhead));
       inReader.read(k, rank, high, begin, end);
       const RankedSlabs slabs = slabsOf(rank);
+      const bool own_rank = rank >= rank_begin_ && rank < rank_end_;
+      SAP_ASSERT(slabs.first <= slabs.last && slabs.last < input_.slab_count,
+                 "a box's slabs out of the grid");
       if (high) {
+        SAP_ASSERT(!own_rank || trees_[slabs.first].contains(rank - rank_begin_),
+                   "a high endpoint of a box that is not in its slab's active list");
         for (int slab = slabs.first; slab <= slabs.last; ++slab)
           trees_[slab].erase(rank - rank_begin_);
         continue;
       }
+      // A box's own rank lies in its candidate range (L <= R < U), clipped to this sweep's.
+      SAP_ASSERT(!own_rank || (begin <= rank - rank_begin_ && rank - rank_begin_ < end),
+                 "a low endpoint whose candidate range misses its own rank");
+      SAP_ASSERT(end <= rank_end_ - rank_begin_, "a candidate range beyond the sweep's ranks");
       if (begin < end) {
         const uint32_t object = input_.object_of_rank[rank];
         for (int slab = slabs.first; slab <= slabs.last; ++slab)
           testCandidates(slab, begin, end, object, rank);
       }
-      if (rank >= rank_begin_ && rank < rank_end_)
+      if (own_rank)
         for (int slab = slabs.first; slab <= slabs.last; ++slab)
           trees_[slab].insert(rank - rank_begin_);
     }
   }
 
  private:
-  // Endpoints between a record's prefetch and its use: enough to cover a miss to memory at a
-  // few nanoseconds an endpoint.
-  static constexpr std::size_t kPrefetchAhead = 16;
+  static constexpr std::size_t kPrefetchAhead = tuning::kEndpointPrefetchAhead;
 
   void prefetchRecords(uint32_t inRank) const {
     __builtin_prefetch(&input_.keys[inRank]);
@@ -242,8 +251,7 @@ class PartitionSweep {
     }
   }
 
-  // Candidates a block of the two-stage test holds (stack buffer).
-  static constexpr uint32_t kSurvivorBlock = 64;
+  static constexpr uint32_t kSurvivorBlock = tuning::kSurvivorBlock;
 
   const PairingInput& input_;
   const uint32_t rank_begin_;
@@ -313,6 +321,19 @@ inline std::size_t counterStride(uint32_t inPartitions) {
   return 2 * std::size_t{inPartitions} + kCacheLineBytes / sizeof(std::size_t);
 }
 
+// The counted scatter fills each segment exactly: it ends where the next one begins, and the
+// last one ends the entries.
+[[maybe_unused]] bool segmentsArePacked(const SweepWorkspace& inWork, uint32_t inPartitions,
+                                        int inSlices) {
+  const std::size_t segments = std::size_t(inPartitions) * inSlices;
+  for (std::size_t s = 0; s < segments; ++s) {
+    const std::size_t next =
+        s + 1 < segments ? inWork.segment_begin[s + 1] : inWork.partition_entries.size();
+    if (inWork.segment_end[s] != next) return false;
+  }
+  return true;
+}
+
 // Scatter from the exact counts: the secondary stream, a counting pass over it, then the
 // placement pass. Segments are packed without gaps. Also estimates each partition's work, its
 // entries plus the candidate ranks its low entries span, into ioWork.partition_work.
@@ -378,16 +399,16 @@ void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartiti
         ioWork.segment_end[std::size_t(p) * inSlices + slice] = my_counts[p];
     }
   }
+  SAP_ASSERT(segmentsArePacked(ioWork, partitions, inSlices),
+             "the counted scatter left a gap or an overlap between segments");
 }
 
-// Room a segment gets beyond its size in the last frame: coherent frames change each
-// segment's size by a few percent at most.
+// Room a segment gets beyond its size in the last frame (tuning.h).
 inline std::size_t segmentRoom(std::size_t inLastSize) {
-  return inLastSize + inLastSize / 16 + 64;
+  return inLastSize + inLastSize / tuning::kSegmentRoomShare + tuning::kSegmentRoomEntries;
 }
 
-// Endpoints between a record's prefetch and its use in the one-pass scatter.
-constexpr std::size_t kScatterPrefetchAhead = 16;
+constexpr std::size_t kScatterPrefetchAhead = tuning::kEndpointPrefetchAhead;
 
 // Scatters slice inSlice straight from the secondary order and the boxes' records into the
 // segments' room. Returns false when a segment outgrew its room.
@@ -428,8 +449,10 @@ bool scatterSliceIntoRoom(const PairingInput& inInput, int inSlice, int inSlices
       out[cursor[p]++] = entryFor(endpoint, p, inSplit);
     }
   }
-  for (uint32_t p = 0; p < partitions; ++p)
+  for (uint32_t p = 0; p < partitions; ++p) {
+    SAP_ASSERT(cursor[p] <= limit[p], "the one-pass scatter wrote past a segment's room");
     ioWork.segment_end[std::size_t(p) * inSlices + inSlice] = cursor[p];
+  }
   return fits;
 }
 
@@ -443,6 +466,8 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, const Rank
   for (std::size_t s = 0; s < segments; ++s) {
     ioWork.segment_begin[s] = offset;
     offset += segmentRoom(ioWork.last_layout.segment_used[s]);
+    SAP_ASSERT(segmentRoom(ioWork.last_layout.segment_used[s]) > ioWork.last_layout.segment_used[s],
+               "a segment's room does not exceed its last size");
   }
   resizeDiscarding(ioWork.partition_entries, offset);
   const std::size_t stride = counterStride(inSplit.count);
@@ -476,8 +501,12 @@ void scatterToPartitions(const PairingInput& inInput, int inThreads, const RankP
   layout.shift = inSplit.shift;
   layout.partitions = inSplit.count;
   layout.segment_used.resize(segments);
-  for (std::size_t s = 0; s < segments; ++s)
+  for (std::size_t s = 0; s < segments; ++s) {
+    SAP_ASSERT(ioWork.segment_begin[s] <= ioWork.segment_end[s] &&
+                   ioWork.segment_end[s] <= ioWork.partition_entries.size(),
+               "a scattered segment out of the entries");
     layout.segment_used[s] = ioWork.segment_end[s] - ioWork.segment_begin[s];
+  }
 }
 
 // Makes trees [inFirst, inFirst + inCount) of ioTrees empty trees over inSize ranks.
@@ -490,20 +519,33 @@ void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCou
   }
 }
 
-// The rank split: partitions of at most kPairingPartitionRanks ranks, and on several threads
-// at least kPairingPartitionsPerThread per thread, so that handing the partitions out by
-// decreasing measured work evens the threads out on clustered frames too. The size is the
+// The rank split: partitions of at most tuning::kPairingPartitionRanks ranks, and on several
+// threads at least tuning::kPairingPartitionsPerThread per thread, so that handing the partitions
+// out by decreasing measured work evens the threads out on clustered frames too. The size is the
 // largest power of two that gives at least that many partitions.
 RankPartitions partitionRanks(uint32_t inObjects, int inThreads) {
-  const uint32_t by_cache = (inObjects + kPairingPartitionRanks - 1) / kPairingPartitionRanks;
-  const uint32_t by_threads = inThreads > 1 ? inThreads * kPairingPartitionsPerThread : 1;
+  const uint32_t by_cache =
+      (inObjects + tuning::kPairingPartitionRanks - 1) / tuning::kPairingPartitionRanks;
+  const uint32_t by_threads = inThreads > 1 ? inThreads * tuning::kPairingPartitionsPerThread : 1;
   const uint32_t wanted = std::max(by_cache, by_threads);
   const uint32_t largest_size = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
   RankPartitions split;
   while ((uint32_t{2} << split.shift) <= largest_size) ++split.shift;
   split.count = (inObjects + split.size() - 1) >> split.shift;
-  assert(split.size() <= kPairingPartitionRanks);  // local ranks fit lowEntry's 16 bits
+  SAP_ASSERT(split.size() <= tuning::kPairingPartitionRanks,
+             "a partition's local ranks exceed 16 bits");
+  // The partitions cover every rank, and none lies wholly beyond the last rank.
+  SAP_ASSERT(uint64_t{split.count} * split.size() >= inObjects &&
+                 (split.count == 0 || uint64_t{split.count - 1} * split.size() < inObjects),
+             "the rank partitions do not cover ranks 0..n-1 exactly");
   return split;
+}
+
+// Every box a sweep inserted it erased again: the trees are left empty for the next sweep.
+[[maybe_unused]] bool treesAreEmpty(const SuccTree* inTrees, int inCount) {
+  for (int t = 0; t < inCount; ++t)
+    if (!inTrees[t].empty()) return false;
+  return true;
 }
 
 // Sweeps partition inPartition of the scattered entries, segment after segment, with ioTrees
@@ -522,6 +564,8 @@ void sweepPartition(const PairingInput& inInput, SweepWorkspace& ioWork,
     const std::size_t end = ioWork.segment_end[segment];
     sweep.run(PartitionReader{ioWork.partition_entries.data() + begin, end - begin});
   }
+  SAP_ASSERT(treesAreEmpty(ioTrees, inInput.slab_count),
+             "a partition's sweep left boxes in its active lists");
   ioWork.last_layout.partition_ms[inPartition] = millisecondsSince(start);
 }
 
@@ -545,16 +589,28 @@ void orderPartitions(const RankPartitions& inSplit, SweepWorkspace& ioWork) {
   }
 }
 
+// inOrder holds 0..inCount-1, each once: every partition is swept exactly once.
+[[maybe_unused]] bool isPermutation(const std::vector<uint32_t>& inOrder, uint32_t inCount) {
+  std::vector<uint8_t> seen(inCount, 0);
+  for (const uint32_t partition : inOrder) {
+    if (partition >= inCount || seen[partition]) return false;
+    seen[partition] = 1;
+  }
+  return inOrder.size() == inCount;
+}
+
 }  // namespace
 
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
   const uint32_t n = inInput.objects;
-  if (n <= kPairingPartitionRanks ||
-      uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= kSequentialTreeBits) {
+  if (n <= tuning::kPairingPartitionRanks ||
+      uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= tuning::kSequentialTreeBits) {
     buildSecondaryStream(inInput, 1);
     prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
     PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
     sweep.run(WholeStreamReader{inInput.stream_scratch, 2 * std::size_t{n}, n});
+    SAP_ASSERT(treesAreEmpty(ioWork.pairing.data(), inInput.slab_count),
+               "the sweep left boxes in its active lists");
     return;
   }
   // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
@@ -573,6 +629,8 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   const RankPartitions split = partitionRanks(inInput.objects, threads);  // Δ and m
   scatterToPartitions(inInput, threads, split, ioWork);
   orderPartitions(split, ioWork);
+  SAP_ASSERT(isPermutation(ioWork.partition_order, split.count),
+             "partitions handed out twice or never");
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, split.size());
   outPairsPerThread.resize(threads);

@@ -1,21 +1,15 @@
 #include "core/thread_choice.h"
+#include "core/tuning.h"
 
 #include <algorithm>
 
 namespace sap_broadphase {
 namespace {
 
-// Frames whose size differs from the learnt one by more than this factor start afresh: the
-// cost per box of a frame that no longer fits the same caches is another cost.
-constexpr double kSameSizeFactor = 2.0;
-
-// Weight of a frame in the running cost of the count in use (a probe replaces its count's).
-constexpr double kRunningWeight = 0.25;
-
 bool sameSize(std::size_t inA, std::size_t inB) {
   const double a = static_cast<double>(std::max<std::size_t>(inA, 1));
   const double b = static_cast<double>(std::max<std::size_t>(inB, 1));
-  return std::max(a, b) <= kSameSizeFactor * std::min(a, b);
+  return std::max(a, b) <= tuning::kSameSizeFactor * std::min(a, b);
 }
 
 }  // namespace
@@ -52,13 +46,16 @@ void ThreadChoice::record(ThreadedWork inWork, int inThreads, double inMilliseco
   if (learnt.probing) {
     cost = ns_per_box;  // a fresh look at the other count
     const double in_use = learnt.ns_per_box[1 - measured];
-    const bool clear_loss = in_use > 0.0 && ns_per_box >= kClearLoss * in_use;
-    learnt.probe_interval = clear_loss ? std::min(2 * learnt.probe_interval, kLongestProbeInterval)
-                                       : kShortestProbeInterval;
+    const bool clear_loss = in_use > 0.0 && ns_per_box >= tuning::kClearLoss * in_use;
+    learnt.probe_interval = clear_loss
+                                ? std::min(2 * learnt.probe_interval, tuning::kLongestProbeInterval)
+                                : tuning::kShortestProbeInterval;
     learnt.frames_to_probe = learnt.probe_interval;
     learnt.probing = false;
   } else {
-    cost = cost == 0.0 ? ns_per_box : (1.0 - kRunningWeight) * cost + kRunningWeight * ns_per_box;
+    cost = cost == 0.0
+               ? ns_per_box
+               : (1.0 - tuning::kRunningWeight) * cost + tuning::kRunningWeight * ns_per_box;
   }
 }
 

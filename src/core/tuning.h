@@ -15,6 +15,33 @@ namespace sap_broadphase::tuning {
 constexpr int kSortPartitions = 16;
 /// Below this many endpoints one partition is cheaper than bucketing into m of them.
 constexpr std::size_t kMinPartitionedEndpoints = 8192;
+/// Below this many items a comparison sort beats clearing the radix sort's three 2048-entry
+/// histograms.
+constexpr std::size_t kSmallIndexSort = 256;
+/// Endpoints between the prefetch of a box's record and its use, in every pass that reads the
+/// records in sweep order, i.e. at random (candidate ranges, the pairing scatter, the pairing
+/// sweep): enough to cover a miss to memory at a few nanoseconds an endpoint.
+constexpr std::size_t kEndpointPrefetchAhead = 16;
+/// Largest rank partition of the parallel pairing (Algorithm 4): its slab trees stay
+/// cache-resident. Ranks inside it must fit the 16 bits of a pairing entry (static_assert in
+/// sweep_pairing.cpp).
+constexpr uint32_t kPairingPartitionRanks = 1u << 15;
+/// Fewest rank partitions per thread of the parallel pairing (when there are several threads):
+/// enough that handing them out by decreasing work evens the threads out.
+constexpr uint32_t kPairingPartitionsPerThread = 4;
+/// Largest total size, in bits (n ranks times the slab count), of the whole-stream trees that
+/// the one-thread pairing sweeps with; above it the thread sweeps rank partitions instead.
+/// Measured on the uniform scene (d = 0.35, 1 thread): whole-stream trees win by 5-10% up to
+/// 2^18 boxes (46 slabs, 1.5 MiB of trees), partitions by a third from 2^19 boxes (58 slabs,
+/// 3.6 MiB), where every insert, erase and range walk on the big trees misses the cache.
+constexpr uint64_t kSequentialTreeBits = uint64_t{1} << 24;
+/// Candidates the pairing's branch-free key filter collects before the exact tests (a stack
+/// buffer): large enough to amortise the switch between the two loops, small enough for L1.
+constexpr uint32_t kSurvivorBlock = 64;
+/// Room a scatter segment gets beyond its size in the last frame, as a share (1 / this) plus
+/// a constant: coherent frames change each segment's size by a few percent at most.
+constexpr std::size_t kSegmentRoomShare = 16;
+constexpr std::size_t kSegmentRoomEntries = 64;
 
 // ---- Third-axis slab active lists (slab_grid.h) ----
 
@@ -24,7 +51,7 @@ constexpr std::size_t kMinBoxesForSlabs = 2048;
 /// mean boxes sit in more trees.
 constexpr double kSlabWidthInExtents = 2.0;
 
-// ---- Static index: resting boxes and declared scenery (static_index.h, static_split.h) ----
+// ---- Static index of the declared scenery (static_index.h) ----
 
 /// Cell edge in mean box extents. At one extent a box covers about 2^3 cells and a cell holds
 /// about density * 8 boxes; the cap below usually decides instead.
@@ -36,6 +63,28 @@ constexpr double kCellsPerBox = 1.0;
 constexpr uint64_t kMaxCellsPerBox = 64;
 /// Fewest queries worth a thread of their own in queryAll.
 constexpr std::size_t kMinQueriesPerThread = 64;
+/// Queries ahead whose cell offsets, slot lists and slots a query fetches (three stages).
+constexpr std::size_t kSceneryPrefetchAhead[3] = {12, 6, 3};
+/// Most cells (and slots a cell row) a query prefetches: a box over more is large, and its
+/// cells are read in order anyway.
+constexpr std::size_t kSceneryMostCellsPrefetched = 27;
+
+// ---- Small frames (small_frame.h) ----
+
+/// The cell grid of a small frame (small_frame.cpp): boxes are laid into a grid over the two
+/// axes other than the sweep axis and each cell is swept alone, so a box meets only the
+/// candidates of its own cells instead of every box whose interval it crosses on the sweep
+/// axis. Cells per grid axis: at most sqrt(n / kSmallFrameBoxesPerCell) (a cell's fixed cost
+/// amortised over enough boxes), at most 1 / (kSmallFrameCellsPerExtent × the mean extent
+/// relative to the span) (few boxes copied into two cells), and at most
+/// kSmallFrameMaxCellsPerAxis (a cell index in a byte). Measured on one thread (CPU time,
+/// uniform scenes, d = 0.05 and 0.35, 2^12 to 2^16): 256 boxes a cell led 128 by 0-10 % from
+/// 2^14 up and tied below, 512 and 1024 trailed at 2^12 to 2^14 by up to 20 %, 64 trailed
+/// everywhere; the extent bound (1, 2 or 4 cells per mean extent) changed little, since on
+/// these scenes the count bound is the tighter one.
+constexpr double kSmallFrameBoxesPerCell = 256.0;
+constexpr double kSmallFrameCellsPerExtent = 4.0;
+constexpr uint32_t kSmallFrameMaxCellsPerAxis = 64;
 
 // ---- Box queries against the last frame (frame_query.h) ----
 
@@ -50,9 +99,6 @@ constexpr std::size_t kQueryScanBlock = 8192;
 /// Fewest frame boxes worth a thread of their own in a scan.
 constexpr std::size_t kMinScannedBoxesPerThread = 32768;
 
-/// Most distinct group/mask classes looked at among the unchanged boxes.
-constexpr std::size_t kMaxFilterClasses = 64;
-
 // ---- Large-world coordinates (sort keys relative to the frame) ----
 
 /// The keys are float32 of (coordinate - origin). The origin is 0 (the keys of the
@@ -65,9 +111,47 @@ constexpr double kFarFromOriginInSpans = 64.0;
 /// then precision near the boxes would start to suffer and the origin is re-centred.
 constexpr double kOriginDriftInSpans = 0.125;
 
-// ---- Frame history and the plan ----
+// ---- Box copies and the frame history ----
+
+/// Below this many boxes a copy takes less than waking a second thread would.
+constexpr std::size_t kParallelCopyBoxes = std::size_t{1} << 15;
+/// Boxes the history compares, then copies, together: a block of records read into the
+/// thread's stack (6 bounds and an id a box, 28 KB) stays in L1/L2 while it is compared and
+/// written, and a block with no change is never written.
+constexpr std::size_t kHistoryBlockBoxes = 512;
 
 // When buffers are given back after a burst of large frames: memory_policy.h.
+
+// ---- Pair lists (pair_sort.h) ----
+
+/// Pairs of one chunk of a pairing thread's list (8 bytes a pair, 64 KiB): large enough that
+/// starting a chunk is rare, small enough that a thread with few pairs holds little.
+constexpr std::size_t kPairChunkPairs = std::size_t{1} << 13;
+/// Runs of pairs sharing `a` up to this long are insertion-sorted by b, longer ones by
+/// std::sort.
+constexpr std::size_t kPairInsertionSortLimit = 16;
+/// Values of a one thread takes at a time when the runs are sorted in parallel: the runs are
+/// short, so a chunk must hold many of them to be worth a scheduling step.
+constexpr std::size_t kPairRunChunk = 4096;
+/// Below this many pairs one thread merges the threads' parts: a team's barriers and the
+/// second row of counts cost more (measured: 26k pairs of 2^17 boxes, 0.19 ms on one thread,
+/// 0.30 on two).
+constexpr std::size_t kParallelMergePairs = 65536;
+
+// ---- Thread choice (thread_choice.h) ----
+
+/// Frames of a work between two probes of the other thread count, at first and after a close
+/// probe.
+constexpr int kShortestProbeInterval = 16;
+/// The longest wait between probes (after probes that lost clearly, one after another).
+constexpr int kLongestProbeInterval = 256;
+/// A probe loses clearly when its count costs this many times the one in use, or more.
+constexpr double kClearLoss = 1.25;
+/// Frames whose size differs from the learnt one by more than this factor start afresh: the
+/// cost per box of a frame that no longer fits the same caches is another cost.
+constexpr double kSameSizeFactor = 2.0;
+/// Weight of a frame in the running cost of the count in use (a probe replaces its count's).
+constexpr double kRunningWeight = 0.25;
 
 // ---- Automatic skin (kept candidates, skin_list.h) ----
 
@@ -98,5 +182,11 @@ constexpr double kInitialGrowNsPerBox = 10.0;
 constexpr double kInitialKeepNsPerCandidate = 30.0;
 /// Weight of the newest measurement in the running cost averages.
 constexpr double kCostSmoothing = 0.5;
+/// Boxes or candidates ahead a kept-candidate pass asks for the cache line it will need:
+/// enough to cover a memory latency with the work of the ones in between.
+constexpr std::size_t kSkinPrefetchAhead = 32;
+/// Boxes a thread's gather handles between two checks that no box of its share has left its
+/// skin (a box outside ends the pass early).
+constexpr std::size_t kGatherBlockBoxes = 4096;
 
 }  // namespace sap_broadphase::tuning

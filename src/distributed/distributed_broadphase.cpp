@@ -14,6 +14,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/pair_sort.h"
 #include "slab_cuts.h"
 
 namespace sap_broadphase::distributed {

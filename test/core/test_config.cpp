@@ -46,11 +46,10 @@ TEST(ConfigTable, OneRowPerFieldWithUniqueNames) {
   }
   // Every member of BroadphaseConfig: a field added to the struct and not to the table fails
   // here (sameConfig and the node's parameters would silently ignore it).
-  EXPECT_EQ(names,
-            (std::set<std::string>{"threads", "method", "primary_axis", "secondary_axis",
-                                   "axis_swapping", "axis_swap_threshold", "parallel_min_boxes",
-                                   "third_axis_slabs", "reuse_unchanged_frames",
-                                   "index_static_boxes", "skin", "exact_final_test"}));
+  EXPECT_EQ(names, (std::set<std::string>{"threads", "method", "primary_axis", "secondary_axis",
+                                          "axis_swapping", "axis_swap_threshold",
+                                          "parallel_min_boxes", "third_axis_slabs",
+                                          "reuse_unchanged_frames", "skin", "exact_final_test"}));
   EXPECT_EQ(findConfigField("no_such_field"), nullptr);
 }
 
@@ -150,9 +149,8 @@ TEST(ConfigTable, DescribeListsEveryFieldOnce) {
   config.method = Method::kParallel;
   EXPECT_EQ(describeConfig(config),
             "threads 0, method parallel, primary_axis x, secondary_axis y, axis_swapping true, "
-            "axis_swap_threshold 0.25, parallel_min_boxes 12288, third_axis_slabs 0, "
-            "reuse_unchanged_frames true, index_static_boxes false, skin 0.125, "
-            "exact_final_test true");
+            "axis_swap_threshold 0.25, parallel_min_boxes 16384, third_axis_slabs 0, "
+            "reuse_unchanged_frames true, skin 0.125, exact_final_test true");
 }
 
 TEST(MethodNames, OneVocabularyReadBack) {

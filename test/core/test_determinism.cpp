@@ -1,7 +1,7 @@
 // Determinism: a fixed sequence of frames gives pair lists whose hash is pinned below, for
 // every thread count 1..7, every axis pair and every path the engine can take (sequential,
-// parallel, brute, reused, skin kept fixed or chosen automatically, resting boxes indexed,
-// declared scenery). The oracle agrees with the pinned hash too, so a change in the results is
+// parallel, brute, reused, skin kept fixed or chosen automatically, declared
+// scenery). The oracle agrees with the pinned hash too, so a change in the results is
 // caught even where the oracle and the engine would change together (a scene or filter rule).
 #include <gtest/gtest.h>
 
@@ -26,7 +26,6 @@ using test_support::PathCounts;
 // and pinned: a different value means the scenes, the filters or the pair order changed.
 constexpr uint64_t kPinnedSequenceHash = 0x118A34B2399C2953ull;
 
-// The resting boxes are enough for an index (StaticSplit::kMinIndexedBoxes).
 constexpr std::size_t kBoxes = 6000;
 constexpr std::size_t kResting = 4500;  // boxes 0..4499 rest: scenery, pairs with movers only
 constexpr uint32_t kSceneryGroup = 0x2;
@@ -125,11 +124,6 @@ std::vector<PathCase> pathCases() {
        }},
       {"fixed skin", FramePath::kSkin, [](BroadphaseConfig& ioConfig) { ioConfig.skin = 0.6; }},
       {"automatic skin", std::nullopt, [](BroadphaseConfig& ioConfig) { ioConfig.skin.reset(); }},
-      {"resting boxes indexed", FramePath::kStatic,
-       [](BroadphaseConfig& ioConfig) {
-         ioConfig.skin = 0.0;
-         ioConfig.index_static_boxes = true;
-       }},
       {"declared scenery", FramePath::kParallel, method(Method::kParallel), true},
   };
 }

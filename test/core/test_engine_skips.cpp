@@ -91,61 +91,6 @@ TEST(SkinReuse, RejectsNegativeOrInfiniteSkin) {
   EXPECT_THROW(Broadphase{config}, std::invalid_argument);
 }
 
-// Resting boxes whose groups/masks forbid pairs among them go into the static index; the
-// moving rest is swept. Exact every frame, also when a resting box moves or changes class.
-TEST(StaticBoxes, IndexedRestingBoxesGiveExactPairs) {
-  constexpr std::size_t kStatic = 8000, kMoving = 300;
-  SceneConfig config = movingScene(SceneKind::kUniform, 11);
-  config.n = kStatic + kMoving;
-  config.density = 0.1;
-  SceneSimulator scene(config);
-  BoxSet boxes = scene.boxes();
-  boxes.groups.assign(boxes.size(), 0x1);
-  boxes.masks.assign(boxes.size(), 0xFFFFFFFF);
-  for (std::size_t i = 0; i < kStatic; ++i) {
-    boxes.groups[i] = 0x2;  // scenery: collides with movers only
-    boxes.masks[i] = 0x1;
-  }
-  for (int threads : {1, 2, 3}) {
-    BroadphaseConfig engine_config = engineConfig(Method::kAuto, threads, 0, 1);
-    engine_config.index_static_boxes = true;
-    Broadphase broadphase(engine_config);
-    BoxSet frame = boxes;
-    SceneSimulator motion(config);
-    for (int f = 0; f < 8; ++f) {
-      motion.step();
-      for (std::size_t i = kStatic; i < frame.size(); ++i)
-        for (int axis = 0; axis < 3; ++axis) {
-          frame.lo[axis][i] = motion.boxes().lo[axis][i];
-          frame.hi[axis][i] = motion.boxes().hi[axis][i];
-        }
-      if (f == 4) {  // one resting box moves, another joins the movers' class
-        frame.lo[0][17] += 0.5;
-        frame.hi[0][17] += 0.5;
-        frame.groups[20] = 0x1;
-        frame.masks[20] = 0xFFFFFFFF;
-      }
-      ASSERT_EQ(broadphase.update(frame), bruteForcePairs(frame))
-          << "threads " << threads << " frame " << f;
-      if (f >= 1) {
-        EXPECT_EQ(broadphase.stats().path, FramePath::kStatic) << "frame " << f;
-        EXPECT_GE(broadphase.stats().static_boxes, kStatic - 2);
-      }
-    }
-  }
-}
-
-TEST(StaticBoxes, WithoutFiltersNothingIsIndexed) {
-  SceneSimulator scene(movingScene(SceneKind::kUniform, 12));
-  BroadphaseConfig config = engineConfig(Method::kAuto, 2, 0, 1);
-  config.index_static_boxes = true;
-  Broadphase broadphase(config);
-  for (int f = 0; f < 3; ++f) {
-    EXPECT_EQ(broadphase.update(scene.boxes()), bruteForcePairs(scene.boxes()));
-    EXPECT_NE(broadphase.stats().path, FramePath::kStatic);
-  }
-}
-
 // Boxes with group 0 or mask 0 can pair with nothing: they are dropped before the sweep.
 TEST(Filters, BoxesThatCollideWithNothingAreLeftOut) {
   SceneSimulator scene(movingScene(SceneKind::kUniform, 9));

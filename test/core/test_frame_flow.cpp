@@ -91,14 +91,12 @@ struct MixedScene {
 struct SkipCombination {
   std::optional<double> skin;
   bool reuse;
-  bool guessed_static;
   int threads;
 };
 
 std::string describe(const SkipCombination& inSkips) {
   return std::string("skin ") + (inSkips.skin ? std::to_string(*inSkips.skin) : "auto") +
-         " reuse " + std::to_string(inSkips.reuse) + " guessed_static " +
-         std::to_string(inSkips.guessed_static) + " threads " + std::to_string(inSkips.threads);
+         " reuse " + std::to_string(inSkips.reuse) + " threads " + std::to_string(inSkips.threads);
 }
 
 // Every combination of the skips, over frames that rest, drift, jump and repeat, against the
@@ -108,9 +106,7 @@ TEST(FrameFlow, EveryCombinationOfSkipsIsExactOverMovingFrames) {
   for (std::optional<double> skin :
        {std::optional<double>(), std::optional<double>(0.0), std::optional<double>(0.2)})
     for (bool reuse : {false, true})
-      for (bool guessed_static : {false, true})
-        for (int threads : {1, 2, 3})
-          combinations.push_back({skin, reuse, guessed_static, threads});
+      for (int threads : {1, 2, 3}) combinations.push_back({skin, reuse, threads});
   // The frames and their oracle, once: frames 3, 8 and 13 repeat the one before.
   MixedScene scene(4500, 1500, 11);
   std::vector<BoxSet> frames;
@@ -124,7 +120,6 @@ TEST(FrameFlow, EveryCombinationOfSkipsIsExactOverMovingFrames) {
     BroadphaseConfig config;
     config.skin = skips.skin;
     config.reuse_unchanged_frames = skips.reuse;
-    config.index_static_boxes = skips.guessed_static;
     config.threads = skips.threads;
     config.method = Method::kParallel;  // a sweep, not the small-frame path, at this size
     Broadphase engine(config);
@@ -138,12 +133,9 @@ TEST(FrameFlow, EveryCombinationOfSkipsIsExactOverMovingFrames) {
     if (skips.reuse) {
       EXPECT_GT(paths[FramePath::kReused], 0) << describe(skips);
     }
-    if (skips.guessed_static) {
-      EXPECT_GT(paths[FramePath::kStatic], 0) << describe(skips);
-    }
     // A fixed skin is used whatever the timings; whether the automatic one pays depends on
     // measured costs, so it is not asserted.
-    if (skips.skin.value_or(0.0) > 0.0 && !skips.guessed_static) {
+    if (skips.skin.value_or(0.0) > 0.0) {
       EXPECT_GT(paths[FramePath::kSkin], 0) << describe(skips);
     }
   }
@@ -268,16 +260,9 @@ TEST(FrameFlow, PhasesAddUpOnEveryPath) {
   config.skin = 0.5;
   config.reuse_unchanged_frames = false;
   run(config, {boxes, boxes});
-  MixedScene mixed(4500, 500, 3);
-  std::vector<BoxSet> frames;
-  for (int frame = 0; frame < 3; ++frame, mixed.step(frame)) frames.push_back(mixed.boxes);
-  config = BroadphaseConfig();
-  config.index_static_boxes = true;
-  run(config, frames);
   run(BroadphaseConfig(), {boxes});
-  for (FramePath path :
-       {FramePath::kEmpty, FramePath::kSequential, FramePath::kParallel, FramePath::kBruteForce,
-        FramePath::kReused, FramePath::kSkin, FramePath::kStatic})
+  for (FramePath path : {FramePath::kEmpty, FramePath::kSequential, FramePath::kParallel,
+                         FramePath::kBruteForce, FramePath::kReused, FramePath::kSkin})
     EXPECT_GT(seen[path], 0) << framePathName(path);
 }
 

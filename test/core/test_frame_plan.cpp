@@ -32,7 +32,7 @@ PlanInputs coherentFrame(const BroadphaseConfig& inConfig) {
   inputs.delta.relation = FrameRelation::kSameIds;
   inputs.delta.moved_boxes = 100000;
   inputs.delta.max_displacement = 0.01;
-  inputs.boxes = inputs.swept = 100000;
+  inputs.boxes = 100000;
   inputs.threads = 2;
   inputs.last_pairs_valid = true;
   inputs.motion = 0.01;
@@ -43,14 +43,14 @@ PlanInputs coherentFrame(const BroadphaseConfig& inConfig) {
 TEST(FramePlan, FewerThanTwoBoxesIsEmpty) {
   BroadphaseConfig config;
   PlanInputs inputs = coherentFrame(config);
-  inputs.boxes = inputs.swept = 1;
-  EXPECT_EQ(planFrame(inputs).work, FrameWork::kEmpty);
+  inputs.boxes = 1;
+  EXPECT_EQ(planFrame(inputs).path, FramePath::kEmpty);
 }
 
 TEST(FramePlan, BruteForceMethodIsHonoured) {
   BroadphaseConfig config;
   config.method = Method::kBruteForce;
-  EXPECT_EQ(planFrame(coherentFrame(config)).work, FrameWork::kBruteForce);
+  EXPECT_EQ(planFrame(coherentFrame(config)).path, FramePath::kBruteForce);
 }
 
 TEST(FramePlan, IdenticalFrameReusesOnlyWhenAllowedAndHeld) {
@@ -58,12 +58,12 @@ TEST(FramePlan, IdenticalFrameReusesOnlyWhenAllowedAndHeld) {
   config.reuse_unchanged_frames = true;
   PlanInputs inputs = coherentFrame(config);
   inputs.delta.relation = FrameRelation::kIdentical;
-  EXPECT_EQ(planFrame(inputs).work, FrameWork::kReuse);
+  EXPECT_EQ(planFrame(inputs).path, FramePath::kReused);
   inputs.last_pairs_valid = false;
-  EXPECT_NE(planFrame(inputs).work, FrameWork::kReuse);
+  EXPECT_NE(planFrame(inputs).path, FramePath::kReused);
   inputs.last_pairs_valid = true;
   config.reuse_unchanged_frames = false;
-  EXPECT_NE(planFrame(inputs).work, FrameWork::kReuse);
+  EXPECT_NE(planFrame(inputs).path, FramePath::kReused);
 }
 
 TEST(FramePlan, FirstFrameIsAPlainSweepEvenWithAutomaticSkin) {
@@ -71,7 +71,7 @@ TEST(FramePlan, FirstFrameIsAPlainSweepEvenWithAutomaticSkin) {
   PlanInputs inputs = coherentFrame(config);
   inputs.delta = FrameDelta();
   const FramePlan plan = planFrame(inputs);
-  EXPECT_EQ(plan.work, FrameWork::kSweep);
+  EXPECT_EQ(plan.path, FramePath::kParallel);
   EXPECT_EQ(plan.sweep_skin, 0.0);
   EXPECT_EQ(plan.skin_choice, SkinChoice::kFirstFrame);
 }
@@ -89,7 +89,7 @@ TEST(FramePlan, SlowMotionChoosesASkinAndKeptCandidatesAnswerWhileCovered) {
   BroadphaseConfig config;
   PlanInputs inputs = coherentFrame(config);
   const FramePlan sweep = planFrame(inputs);
-  EXPECT_EQ(sweep.work, FrameWork::kSweep);
+  EXPECT_EQ(sweep.path, FramePath::kParallel);
   EXPECT_EQ(sweep.skin_choice, SkinChoice::kChosen);
   EXPECT_GE(sweep.sweep_skin, 2 * inputs.motion);
   EXPECT_EQ(sweep.threads, 2);
@@ -97,11 +97,11 @@ TEST(FramePlan, SlowMotionChoosesASkinAndKeptCandidatesAnswerWhileCovered) {
   inputs.kept_covers = true;
   inputs.kept_skin = sweep.sweep_skin;
   const FramePlan pass = planFrame(inputs);
-  EXPECT_EQ(pass.work, FrameWork::kKeptCandidates);
+  EXPECT_EQ(pass.path, FramePath::kSkin);
   EXPECT_EQ(pass.skin, sweep.sweep_skin);
   EXPECT_EQ(pass.skin_choice, SkinChoice::kKept);
   inputs.kept_covers = false;
-  EXPECT_EQ(planFrame(inputs).work, FrameWork::kSweep);
+  EXPECT_EQ(planFrame(inputs).path, FramePath::kParallel);
 }
 
 TEST(FramePlan, KeptCandidatesAreConsideredOnlyWhereNoEarlierRuleDecides) {
@@ -149,7 +149,7 @@ TEST(FramePlan, FastMotionTurnsTheSkinOff) {
 TEST(FramePlan, SmallFramesAndUnmeasuredCostsTakeNoSkin) {
   BroadphaseConfig config;
   PlanInputs inputs = coherentFrame(config);
-  inputs.boxes = inputs.swept = tuning::kMinSkinBoxes - 1;
+  inputs.boxes = tuning::kMinSkinBoxes - 1;
   EXPECT_EQ(planFrame(inputs).skin_choice, SkinChoice::kNotWorthIt);
   inputs = coherentFrame(config);
   inputs.costs.reference_boxes = 0;
@@ -170,7 +170,7 @@ TEST(FramePlan, FixedSkinAndSkinOffAreObeyed) {
   config.skin = 0.0;
   inputs.kept_candidates = inputs.kept_covers = true;
   plan = planFrame(inputs);
-  EXPECT_EQ(plan.work, FrameWork::kSweep);
+  EXPECT_EQ(plan.path, FramePath::kParallel);
   EXPECT_EQ(plan.sweep_skin, 0.0);
   EXPECT_EQ(plan.skin_choice, SkinChoice::kOff);
 }
@@ -212,18 +212,6 @@ TEST(FramePlan, DearKeepingTurnsTheSkinOff) {
   costs.grow_ns_per_box = 1e6;  // one grown sweep dearer than thousands of plain ones
   EXPECT_EQ(chooseSkin(0.01, 100000, costs, choice), 0.0);
   EXPECT_EQ(choice, SkinChoice::kTooFast);
-}
-
-TEST(FramePlan, PathsNameThePlan) {
-  FramePlan plan;
-  plan.work = FrameWork::kSweep;
-  plan.sweep_path = FramePath::kParallel;
-  EXPECT_EQ(framePathOf(plan, false), FramePath::kParallel);
-  EXPECT_EQ(framePathOf(plan, true), FramePath::kStatic);
-  plan.work = FrameWork::kKeptCandidates;
-  EXPECT_EQ(framePathOf(plan, false), FramePath::kSkin);
-  plan.work = FrameWork::kReuse;
-  EXPECT_EQ(framePathOf(plan, false), FramePath::kReused);
 }
 
 }  // namespace

@@ -41,13 +41,15 @@ BoxSet movedWithin(const BoxSet& inBoxes, double inReach, TestRandom& ioRandom) 
   return moved;
 }
 
-/// Expects collect() to answer inBoxes with the oracle's pairs for 1 to 4 threads.
+/// Expects gather() and collectGathered() to answer inBoxes with the oracle's pairs for 1 to 4
+/// threads.
 void expectExactForAllThreadCounts(SkinList& ioList, const BoxSet& inBoxes, const char* inLabel) {
   const PairList oracle = bruteForcePairs(inBoxes);
   for (int threads = 1; threads <= 4; ++threads) {
     EXPECT_TRUE(ioList.covers(inBoxes, threads)) << inLabel << ", threads " << threads;
     PairList pairs;
-    ASSERT_TRUE(ioList.collect(inBoxes, threads, pairs)) << inLabel << ", threads " << threads;
+    ASSERT_TRUE(ioList.gather(inBoxes, threads)) << inLabel << ", threads " << threads;
+    ioList.collectGathered(threads, pairs);
     EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << ", threads " << threads;
   }
 }
@@ -77,12 +79,9 @@ TEST(SkinList, BoxThatLeavesItsSkinForcesASweep) {
   for (const std::size_t leaver : {std::size_t{0}, std::size_t{417}, boxes.size() - 1}) {
     BoxSet frame = boxes;
     frame.hi[1][leaver] += skin;  // past the margin of skin / 2
-    const PairList untouched = {{7, 8}};
     for (int threads = 1; threads <= 4; ++threads) {
-      PairList pairs = untouched;
       EXPECT_FALSE(list.covers(frame, threads));
-      EXPECT_FALSE(list.collect(frame, threads, pairs)) << "box " << leaver;
-      EXPECT_EQ(pairs, untouched);
+      EXPECT_FALSE(list.gather(frame, threads)) << "box " << leaver;
     }
     SkinList swept;
     keepCandidates(swept, frame, skin);
@@ -95,26 +94,25 @@ TEST(SkinList, ChangedIdsOrFiltersForceASweep) {
   test_support::addRandomFilters(boxes, 5);
   SkinList list;
   keepCandidates(list, boxes, 0.4);
-  PairList pairs;
   BoxSet reordered = boxes;
   std::swap(reordered.ids[3], reordered.ids[4]);
-  EXPECT_FALSE(list.collect(reordered, 1, pairs));
+  EXPECT_FALSE(list.gather(reordered, 1));
   BoxSet regrouped = boxes;
   regrouped.groups[9] ^= 0x4u;
-  EXPECT_FALSE(list.collect(regrouped, 1, pairs));
+  EXPECT_FALSE(list.gather(regrouped, 1));
   BoxSet remasked = boxes;
   remasked.masks[0] ^= 0x1u;
-  EXPECT_FALSE(list.collect(remasked, 2, pairs));
+  EXPECT_FALSE(list.gather(remasked, 2));
   BoxSet fewer = boxes;
   for (auto* column : {&fewer.ids, &fewer.groups, &fewer.masks}) column->pop_back();
   for (int axis = 0; axis < 3; ++axis) {
     fewer.lo[axis].pop_back();
     fewer.hi[axis].pop_back();
   }
-  EXPECT_FALSE(list.collect(fewer, 1, pairs));
-  EXPECT_TRUE(list.collect(boxes, 1, pairs));
+  EXPECT_FALSE(list.gather(fewer, 1));
+  EXPECT_TRUE(list.gather(boxes, 1));
   list.clear();
-  EXPECT_FALSE(list.collect(boxes, 1, pairs));
+  EXPECT_FALSE(list.gather(boxes, 1));
   EXPECT_FALSE(list.covers(boxes, 1));
 }
 
@@ -138,7 +136,8 @@ TEST(SkinList, SignedZerosTouch) {
   }
   expectExactForAllThreadCounts(list, flipped, "zeros of the other sign");
   PairList pairs;
-  ASSERT_TRUE(list.collect(flipped, 1, pairs));
+  ASSERT_TRUE(list.gather(flipped, 1));
+  list.collectGathered(1, pairs);
   EXPECT_EQ(pairs, (PairList{{10, 20}}));
 }
 

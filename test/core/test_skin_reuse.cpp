@@ -84,7 +84,7 @@ TEST(SkinReuse, LearnsTheSweepFromItsOwnPhasesAndThePassFromThePass) {
   report.ms_pairing = 3.0;
   report.ms_output = 1.0;
   FramePlan plain;
-  plain.work = FrameWork::kSweep;
+  plain.path = FramePath::kSequential;
   const std::size_t pairs = bruteForcePairs(boxes).size();
   FrameSpread spread(boxes);
   skin.learn(plain, spread, pairs, report);

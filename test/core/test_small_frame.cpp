@@ -10,6 +10,7 @@
 #include "core/key_origin.h"
 #include "core/small_frame.h"
 #include "core/sort_keys.h"
+#include "core/tuning.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 
@@ -37,7 +38,7 @@ void expectGridMatches(const BoxSet& inBoxes, const std::string& inLabel) {
 }
 
 TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
-  const auto per_cell = static_cast<std::size_t>(kSmallFrameBoxesPerCell);
+  const auto per_cell = static_cast<std::size_t>(tuning::kSmallFrameBoxesPerCell);
   for (std::size_t n : {4 * per_cell + 100, 9 * per_cell + 100, 40 * per_cell}) {
     for (double edge : {0.5, 2.0, 6.0}) {
       const BoxSet boxes = test_support::randomBoxes(n, 100.0, edge, n + 3);
@@ -169,7 +170,7 @@ TEST(SmallFrameGrid, TouchingFacesOnCellEdges) {
 // whose cell edges are exact floats, 0 among them: boxes ending at -0.0 touch boxes starting
 // at 0.0 on each grid axis, right on a cell edge, and must pair across it.
 TEST(SmallFrameGrid, SignedZerosOnACellEdge) {
-  const auto count = static_cast<std::size_t>(16 * kSmallFrameBoxesPerCell + 100);
+  const auto count = static_cast<std::size_t>(16 * tuning::kSmallFrameBoxesPerCell + 100);
   BoxSet boxes = test_support::randomBoxes(count, 120.0, 1.0, 51);
   for (int axis = 0; axis < 3; ++axis) {
     for (std::size_t i = 0; i < boxes.size(); ++i) {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "core/pair_sort.h"
 #include "core/static_index.h"
 #include "sap_broadphase/core/box_set.h"
-#include "sap_broadphase/core/pair_set.h"
 #include "sap_broadphase/core/scenes.h"
 #include "test_support.h"
 

@@ -27,8 +27,7 @@ struct WorldShape {
   double resting_share;
   bool filters;
 };
-// Small: every path but the resting-box index, which only pays from
-// StaticSplit::kMinIndexedBoxes resting boxes on.
+// Small: every path.
 WorldShape smallWorld(bool inFilters) {
   return {600, 0.5, inFilters};
 }
@@ -36,6 +35,7 @@ WorldShape smallWorld(bool inFilters) {
 WorldShape skinWorld(bool inFilters) {
   return {1500, 0.5, inFilters};
 }
+// Mostly resting boxes that, with filters, pair with movers only.
 WorldShape restingWorld() {
   return {4800, 0.9, true};
 }
@@ -57,14 +57,9 @@ void reuseUnchangedFrames(BroadphaseConfig& ioConfig) {
   noSkips(ioConfig);
   ioConfig.reuse_unchanged_frames = true;
 }
-void indexRestingBoxes(BroadphaseConfig& ioConfig) {
-  noSkips(ioConfig);
-  ioConfig.index_static_boxes = true;
-}
 void everySkip(BroadphaseConfig& ioConfig) {
   automaticSkin(ioConfig);
   ioConfig.reuse_unchanged_frames = true;
-  ioConfig.index_static_boxes = true;
 }
 void everySkipWithFixedSkin(BroadphaseConfig& ioConfig) {
   everySkip(ioConfig);
@@ -230,11 +225,6 @@ TEST(StressSkips, UnchangedFramesAreReused) {
   }
 }
 
-TEST(StressSkips, RestingBoxesThatCannotPairAreIndexed) {
-  expectPathTaken(runSequence("resting boxes indexed", indexRestingBoxes, restingWorld(), false),
-                  FramePath::kStatic, 10, "resting boxes indexed");
-}
-
 TEST(StressSkips, DeclaredSceneryIsQueriedEveryFrame) {
   for (bool filters : {false, true}) {
     for (const SequenceOutcome& outcome :
@@ -253,7 +243,6 @@ TEST(StressSkips, EverySkipTogether) {
     const auto outcomes =
         runSequence("every skip", everySkip, filters ? restingWorld() : smallWorld(false), true);
     expectPathTaken(outcomes, FramePath::kReused, 1, "every skip");
-    if (filters) expectPathTaken(outcomes, FramePath::kStatic, 1, "every skip, filters");
     for (const SequenceOutcome& outcome : outcomes)
       EXPECT_GE(outcome.scenery_frames, outcome.frames - outcome.paths[FramePath::kReused])
           << describeConfig(outcome.config);

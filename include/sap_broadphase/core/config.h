@@ -19,7 +19,7 @@ namespace sap_broadphase {
 
 /// Which algorithm computes a frame.
 enum class Method : uint8_t {
-  kAuto,  ///< sequential below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
+  kAuto,  ///< one thread below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
   kParallel,    ///< Algorithms 2, 3 and 4 of the paper
   kSequential,  ///< Algorithm 1 of the paper
   kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
@@ -64,16 +64,14 @@ struct BroadphaseConfig {
   int secondary_axis = 1;             ///< second sweep axis; must differ from primary_axis
   bool axis_swapping = true;          ///< swap a clustered sweep axis with the unused one (§5)
   double axis_swap_threshold = 0.25;  ///< dispersion D above which an axis is swapped
-  std::size_t parallel_min_boxes = 12288;  ///< kAuto runs sequentially below this many boxes
-                                           ///< (measured crossover on 2 cores: sap_bench -e skips)
+  std::size_t parallel_min_boxes = 16384;  ///< kAuto: frames below this many boxes run on one
+                                           ///< thread, the small-frame path (or the sequential
+                                           ///< sweep under a fixed skin); measured crossover
   int third_axis_slabs = 0;                ///< active lists per slab of the unused axis: 0 = auto,
                                            ///< 1 = the paper's single list, k = k slabs (max 64)
   bool reuse_unchanged_frames = true;      ///< a frame bit for bit equal to the previous one
                                            ///< (ids, bounds, groups, masks) returns its pairs; the
                                            ///< comparison is the frame history's, done anyway
-  bool index_static_boxes = false;  ///< keep boxes that did not move since the previous frame
-                                    ///< and whose groups/masks forbid pairs among them in an
-                                    ///< index (static_split.h); sweep only the others
   /// Skin reuse (kept candidates): sweep boxes grown by skin / 2 a side, then test only those
   /// candidates until a box leaves its grown box. Nothing (the default) = automatic: chosen
   /// each sweep from the measured motion and costs, off when it does not pay; 0 = off;

@@ -17,12 +17,11 @@ enum class FramePath : uint8_t {
   kBruteForce,  ///< the oracle
   kReused,      ///< same boxes as the previous frame: its pairs returned without a sweep
   kSkin,        ///< every box inside its skin: the kept candidates tested, no sweep
-  kStatic,      ///< resting boxes answered by the static index, only the rest swept
   kSmallFrame,  ///< a small frame: one-axis sort and sweep in blocks (small_frame.h), one thread
 };
 
 /// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused", "skin",
-/// "static", "small".
+/// "small".
 const char* framePathName(FramePath inPath);
 
 /// Why the skin in force for a frame is what it is.
@@ -58,8 +57,7 @@ struct FrameReport {
   int slabs = 1;                    ///< third-axis slabs used by this frame's pairing (1: the
                                     ///< single list, or no sweep this frame)
   std::size_t skin_candidates = 0;  ///< candidate pairs kept by skin reuse
-  std::size_t static_boxes = 0;     ///< boxes of the static indexes in force: declared scenery,
-                                    ///< and resting boxes indexed this frame
+  std::size_t static_boxes = 0;     ///< boxes of the declared scenery in force
   double skin = 0.0;                ///< skin of the kept candidates used this frame (0: none)
   SkinChoice skin_choice = SkinChoice::kOff;  ///< why that skin
   std::size_t moved_boxes = 0;                ///< boxes whose bounds changed since the last frame
@@ -77,7 +75,7 @@ struct FrameReport {
                                ///< small frame or a brute-force frame)
   double ms_skin = 0.0;        ///< skin reuse: growing the boxes, keeping the grown sweep's
                                ///< candidates, testing the kept candidates
-  double ms_static = 0.0;      ///< queries of the static indexes (declared and resting boxes)
+  double ms_static = 0.0;      ///< queries of the declared scenery's index
   double ms_output = 0.0;      ///< ids and canonical pair order
   double ms_total = 0.0;
 };

@@ -1,0 +1,138 @@
+// Pairs as they leave the engine (pair_set.h): canonical order, the chunked per-thread lists,
+// and every sort and merge (dense ids: counting sort, sparse ids: radix sort, one thread or
+// many) against std::sort.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "core/pair_sort.h"
+#include "test_support.h"
+
+namespace sap_broadphase {
+namespace {
+
+using test_support::TestRandom;
+
+// inCount distinct pairs with a < b (at most half of all pairs of ids below inLargestId), ids
+// below inLargestId, in random order.
+PairList randomPairs(std::size_t inCount, uint32_t inLargestId, uint64_t inSeed) {
+  const double all_pairs = 0.5 * inLargestId * (inLargestId - 1.0);
+  inCount = static_cast<std::size_t>(std::min<double>(static_cast<double>(inCount), all_pairs / 2));
+  TestRandom random(inSeed);
+  PairList pairs;
+  while (pairs.size() < inCount) {
+    while (pairs.size() < inCount) {
+      const uint32_t x = static_cast<uint32_t>(random.below(inLargestId));
+      const uint32_t y = static_cast<uint32_t>(random.below(inLargestId));
+      if (x != y) pairs.push_back(makeIdPair(x, y));
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  }
+  for (std::size_t k = pairs.size(); k > 1; --k) std::swap(pairs[k - 1], pairs[random.below(k)]);
+  return pairs;
+}
+
+PairList sortedCopy(PairList inPairs) {
+  std::sort(inPairs.begin(), inPairs.end());
+  return inPairs;
+}
+
+// inPairs dealt round-robin into inParts chunked lists.
+std::vector<PairChunks> dealt(const PairList& inPairs, std::size_t inParts) {
+  std::vector<PairChunks> parts(inParts);
+  for (std::size_t k = 0; k < inPairs.size(); ++k) parts[k % inParts].push_back(inPairs[k]);
+  return parts;
+}
+
+TEST(PairSet, MakeIdPairPutsTheSmallerIdFirst) {
+  EXPECT_EQ(makeIdPair(9, 4), (IdPair{4, 9}));
+  EXPECT_EQ(makeIdPair(4, 9), (IdPair{4, 9}));
+  EXPECT_TRUE(IdPair({1, 7}) < IdPair({2, 3}));
+  EXPECT_TRUE(IdPair({2, 3}) < IdPair({2, 4}));
+  EXPECT_FALSE(IdPair({2, 4}) < IdPair({2, 4}));
+}
+
+TEST(PairSet, IsCanonicalNeedsOrderUniquenessAndALessThanB) {
+  EXPECT_TRUE(isCanonical({}));
+  EXPECT_TRUE(isCanonical({{0, 1}, {0, 5}, {3, 4}}));
+  EXPECT_FALSE(isCanonical({{0, 5}, {0, 1}}));          // out of order
+  EXPECT_FALSE(isCanonical({{0, 1}, {0, 1}}));          // twice
+  EXPECT_FALSE(isCanonical({{2, 2}}));                  // a == b
+  EXPECT_FALSE(isCanonical({{0, 1}, {5, 3}}));          // a > b
+  EXPECT_FALSE(isCanonical({{1, 2}, {0, 3}, {4, 5}}));  // a decreases
+}
+
+TEST(PairSet, ChunksKeepInsertionOrderAcrossChunksAndClearKeepsNothing) {
+  PairChunks chunks;
+  EXPECT_EQ(chunks.size(), 0u);
+  const std::size_t count = 2 * PairChunks::kChunkPairs + 3;  // three chunks, the last short
+  for (uint32_t k = 0; k < count; ++k) chunks.push_back(IdPair{k, k + 1});
+  EXPECT_EQ(chunks.size(), count);
+  uint32_t expected = 0;
+  chunks.forEach([&](const IdPair& inPair) {
+    EXPECT_EQ(inPair, (IdPair{expected, expected + 1}));
+    ++expected;
+  });
+  EXPECT_EQ(expected, count);
+  chunks.clear();
+  EXPECT_EQ(chunks.size(), 0u);
+  std::size_t visited = 0;
+  chunks.forEach([&](const IdPair&) { ++visited; });
+  EXPECT_EQ(visited, 0u);
+  chunks.push_back(IdPair{5, 6});  // reuses the first chunk
+  EXPECT_EQ(chunks.size(), 1u);
+}
+
+TEST(PairSet, SortMatchesStdSortForDenseAndSparseIds) {
+  PairSortScratch scratch;  // reused across calls, as the engine does
+  for (uint32_t largest_id : {50u, 5000u, 4000000000u}) {  // dense, dense, sparse (radix)
+    for (std::size_t count : {0u, 1u, 2u, 17u, 1000u, 70000u}) {
+      SCOPED_TRACE(::testing::Message() << "ids < " << largest_id << ", " << count << " pairs");
+      const PairList pairs = randomPairs(count, largest_id, count * 31 + largest_id);
+      PairList sorted = pairs;
+      sortPairsCanonical(sorted, scratch);
+      EXPECT_EQ(sorted, sortedCopy(pairs));
+      EXPECT_TRUE(isCanonical(sorted));
+    }
+  }
+}
+
+TEST(PairSet, SortOrdersLongRunsOfOneIdByTheOther) {
+  // One box against many: a run of equal a longer than the insertion-sorted limit.
+  PairList pairs;
+  for (uint32_t b = 1000; b > 1; --b) pairs.push_back({1, b});
+  for (uint32_t b = 3; b < 40; b += 3) pairs.push_back({0, b});
+  PairList sorted = pairs;
+  PairSortScratch scratch;
+  sortPairsCanonical(sorted, scratch);
+  EXPECT_EQ(sorted, sortedCopy(pairs));
+}
+
+TEST(PairSet, MergeOfPartsEqualsSortForEveryThreadCount) {
+  for (uint32_t largest_id : {3000u, 3000000000u}) {
+    // Above the size from which several threads merge, and below it.
+    for (std::size_t count : {500u, 90000u}) {
+      const PairList pairs = randomPairs(count, largest_id, count + largest_id);
+      const PairList expected = sortedCopy(pairs);
+      for (std::size_t parts : {1u, 2u, 5u}) {
+        const std::vector<PairChunks> chunks = dealt(pairs, parts);
+        for (int threads : {1, 2, 3}) {
+          SCOPED_TRACE(::testing::Message() << "ids < " << largest_id << ", " << count << " pairs, "
+                                            << parts << " parts, " << threads << " threads");
+          PairSortScratch scratch;
+          PairList merged = {{7, 8}};  // replaced, not appended to
+          sortPairsCanonical(chunks, merged, scratch, threads);
+          EXPECT_EQ(merged, expected);
+          std::size_t left = 0;  // the parts are left as they were
+          for (const PairChunks& part : chunks) left += part.size();
+          EXPECT_EQ(left, count);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sap_broadphase
