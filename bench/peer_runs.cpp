@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "bench_stats.h"
+#include "core/pair_sort.h"
 
 namespace sap_bench {
 

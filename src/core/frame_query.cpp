@@ -6,6 +6,7 @@
 #include <numeric>
 #include <vector>
 
+#include "core/pair_sort.h"
 #include "core/tuning.h"
 #include "sap_broadphase/core/config.h"  // resolveThreadCount
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/frame_query.h"
+#include "core/pair_sort.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"
 #include "test_support.h"
@@ -220,13 +221,13 @@ TEST(Query, GroupsAndMasksApplyBothWaysAndGroupZeroMeetsNothing) {
 }
 
 // Frames of the paper's scenes on every path the engine takes (sweeps, kept candidates,
-// reused frames, resting boxes indexed, small frames), queried after each frame.
+// reused frames, small frames; frames reused or not), queried after each frame.
 TEST(Query, AfterEveryFrameOfMovingScenes) {
   for (SceneKind kind : {SceneKind::kUniform, SceneKind::kBallCluster, SceneKind::kPlaneCluster}) {
-    for (bool index_static : {false, true}) {
+    for (bool reuse_unchanged : {false, true}) {
       BroadphaseConfig config = engineConfig(Method::kAuto, 2, 0, 1);
       config.parallel_min_boxes = 500;
-      config.index_static_boxes = index_static;
+      config.reuse_unchanged_frames = reuse_unchanged;
       Broadphase engine(config);
       SceneSimulator scene(movingScene(kind, 7, 2000, 0.25, 30));
       for (int frame = 0; frame < 24; ++frame) {
