@@ -306,7 +306,7 @@ sorted. Raises ValueError (InvalidBoxes) naming the first bad box and why.)doc")
 
 Broadphase(**config): every BroadphaseConfig field by its name (threads, method, primary_axis,
 secondary_axis, axis_swapping, axis_swap_threshold, parallel_min_boxes, third_axis_slabs,
-reuse_unchanged_frames, index_static_boxes, skin, exact_final_test); see the config property.)doc")
+reuse_unchanged_frames, skin, exact_final_test); see the config property.)doc")
       .def(py::init<const py::kwargs&>())
       .def("update", &PyBroadphase::update, "boxes"_a, "ids"_a = py::none(),
            "groups"_a = py::none(), "masks"_a = py::none(),
