@@ -6,13 +6,12 @@
 #include <sstream>
 
 #include "core/radix_sort.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 namespace {
 
 constexpr const char* kAxisNames[3] = {"x", "y", "z"};
-// Below this many boxes a copy takes less than waking a second thread would.
-constexpr std::ptrdiff_t kParallelCopyBoxes = std::ptrdiff_t{1} << 15;
 
 std::string formatNumber(double inValue) {
   std::ostringstream text;
@@ -154,21 +153,21 @@ void copyInterleaved(const InterleavedBoxes& inBoxes, BoxSet& outBoxes, int inTh
   const bool filtered = inBoxes.hasFilters();
   outBoxes.groups.resize(filtered ? count : 0);
   outBoxes.masks.resize(filtered ? count : 0);
-  // A 2^20-box frame is 50 MB: every thread copies its slice.
-  const auto boxes = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for num_threads(inThreads) schedule(static) if (boxes >= kParallelCopyBoxes)
-  for (std::ptrdiff_t i = 0; i < boxes; ++i) {
-    const double* box = inBoxes.bounds + 6 * i;
-    for (int axis = 0; axis < 3; ++axis) {
-      outBoxes.lo[axis][i] = box[axis];
-      outBoxes.hi[axis][i] = box[3 + axis];
+  // A 2^20-box frame is 50 MB: copied in work units on the threads (one unit inline).
+  runOverItems(WorkUnits{count}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t i = inBegin; i < inEnd; ++i) {
+      const double* box = inBoxes.bounds + 6 * i;
+      for (int axis = 0; axis < 3; ++axis) {
+        outBoxes.lo[axis][i] = box[axis];
+        outBoxes.hi[axis][i] = box[3 + axis];
+      }
+      outBoxes.ids[i] = inBoxes.ids ? inBoxes.ids[i] : static_cast<uint32_t>(i);
+      if (filtered) {
+        outBoxes.groups[i] = inBoxes.groups ? inBoxes.groups[i] : kDefaultGroup;
+        outBoxes.masks[i] = inBoxes.masks ? inBoxes.masks[i] : kDefaultMask;
+      }
     }
-    outBoxes.ids[i] = inBoxes.ids ? inBoxes.ids[i] : static_cast<uint32_t>(i);
-    if (filtered) {
-      outBoxes.groups[i] = inBoxes.groups ? inBoxes.groups[i] : kDefaultGroup;
-      outBoxes.masks[i] = inBoxes.masks ? inBoxes.masks[i] : kDefaultMask;
-    }
-  }
+  });
 }
 
 std::string ValidationError::message() const {

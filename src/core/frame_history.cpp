@@ -1,8 +1,7 @@
 #include "core/frame_history.h"
 #include "core/assert.h"
 #include "core/buffers.h"
-
-#include <omp.h>
+#include "core/work_units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,6 +36,23 @@ struct BlockChanges {
   std::size_t changed_boxes = 0;
   double max_displacement = 0.0;
 };
+
+// What one work unit of a comparison found (counts of blocks or boxes, as named).
+struct UnitChanges {
+  std::size_t moved = 0;            // boxes
+  std::size_t filters_changed = 0;  // boxes
+  std::size_t other_ids = 0;        // blocks with some other id
+  std::size_t unusable = 0;         // record blocks with a box refused
+  double max_displacement = 0.0;
+};
+
+void addChanges(UnitChanges& ioTotal, const UnitChanges& inUnit) {
+  ioTotal.moved += inUnit.moved;
+  ioTotal.filters_changed += inUnit.filters_changed;
+  ioTotal.other_ids += inUnit.other_ids;
+  ioTotal.unusable += inUnit.unusable;
+  ioTotal.max_displacement = std::max(ioTotal.max_displacement, inUnit.max_displacement);
+}
 
 constexpr std::size_t kBlock = 512;  // boxes compared, then copied, together
 
@@ -182,38 +198,38 @@ const FrameDelta& FrameHistory::load(const InterleavedBoxes& inBoxes, int inThre
 FrameHistory::RecordsLoaded FrameHistory::compareAndLoadBoxByBox(const InterleavedBoxes& inBoxes,
                                                                  int inThreads) {
   const std::size_t n = inBoxes.count;
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
   unchanged_.resize(n);
-  std::size_t moved = 0, other_ids = 0, unusable = 0;
-  double max_displacement = 0.0;
-#pragma omp parallel num_threads(inThreads) reduction(+ : moved, other_ids, unusable) \
-    reduction(max : max_displacement)
-  {
-    RecordBlock block;
-#pragma omp for schedule(static)
-    for (std::size_t b = 0; b < blocks; ++b) {
-      const std::size_t begin = b * kBlock, end = std::min(n, begin + kBlock), count = end - begin;
-      unusable += !readRecords(inBoxes, begin, end, block);
-      if (!std::equal(block.ids, block.ids + count, last_.ids.begin() + begin)) {
-        std::copy(block.ids, block.ids + count, last_.ids.begin() + begin);
-        ++other_ids;
-      }
-      const BlockChanges changes = compareBounds(boundArrays(block), boundArrays(last_, begin),
-                                                 count, unchanged_.data() + begin);
-      if (changes.changed_boxes > 0) {
-        for (int axis = 0; axis < 3; ++axis) {
-          std::copy(block.bounds[axis], block.bounds[axis] + count, last_.lo[axis].begin() + begin);
-          std::copy(block.bounds[3 + axis], block.bounds[3 + axis] + count,
-                    last_.hi[axis].begin() + begin);
+  const UnitChanges changes = reduceOverItems(
+      WorkUnits{n}, inThreads, UnitChanges{},
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        UnitChanges unit;
+        RecordBlock block;
+        for (std::size_t begin = inBegin; begin < inEnd; begin += kBlock) {
+          const std::size_t end = std::min(inEnd, begin + kBlock), count = end - begin;
+          unit.unusable += !readRecords(inBoxes, begin, end, block);
+          if (!std::equal(block.ids, block.ids + count, last_.ids.begin() + begin)) {
+            std::copy(block.ids, block.ids + count, last_.ids.begin() + begin);
+            ++unit.other_ids;
+          }
+          const BlockChanges bounds = compareBounds(boundArrays(block), boundArrays(last_, begin),
+                                                    count, unchanged_.data() + begin);
+          if (bounds.changed_boxes > 0) {
+            for (int axis = 0; axis < 3; ++axis) {
+              std::copy(block.bounds[axis], block.bounds[axis] + count,
+                        last_.lo[axis].begin() + begin);
+              std::copy(block.bounds[3 + axis], block.bounds[3 + axis] + count,
+                        last_.hi[axis].begin() + begin);
+            }
+            unit.moved += bounds.changed_boxes;
+          }
+          unit.max_displacement = std::max(unit.max_displacement, bounds.max_displacement);
         }
-        moved += changes.changed_boxes;
-      }
-      max_displacement = std::max(max_displacement, changes.max_displacement);
-    }
-  }
-  delta_.moved_boxes = moved;
-  delta_.max_displacement = max_displacement;
-  return RecordsLoaded{other_ids != 0, unusable != 0};
+        return unit;
+      },
+      addChanges);
+  delta_.moved_boxes = changes.moved;
+  delta_.max_displacement = changes.max_displacement;
+  return RecordsLoaded{changes.other_ids != 0, changes.unusable != 0};
 }
 
 const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
@@ -237,7 +253,7 @@ const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
   return delta_;
 }
 
-// One pass, each thread over its slice of the boxes, block by block: a block is compared with
+// One pass over the boxes in work units (work_units.h), block by block: a block is compared with
 // its copy without a branch and, where some box of it differs, copied at once while both are
 // in the cache (a separate copy after the sweep would read both frames from memory again;
 // copying a whole block keeps the copy a plain streaming one, and unchanged boxes in it are
@@ -245,35 +261,38 @@ const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
 // so that last_ equals inBoxes in every case.
 bool FrameHistory::compareAndCopyBoxByBox(const BoxSet& inBoxes, int inThreads) {
   const std::size_t n = inBoxes.size();
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
   unchanged_.resize(n);
-  std::size_t moved = 0, filters_changed = 0, other_ids = 0;
-  double max_displacement = 0.0;
-#pragma omp parallel for num_threads(inThreads) schedule(static) \
-    reduction(+ : moved, filters_changed, other_ids) reduction(max : max_displacement)
-  for (std::size_t block = 0; block < blocks; ++block) {
-    const std::size_t begin = block * kBlock, end = std::min(n, begin + kBlock);
-    if (copyIfDifferent(inBoxes.ids, last_.ids, begin, end)) ++other_ids;
-    const BlockChanges bounds =
-        compareBounds(boundArrays(inBoxes, begin), boundArrays(last_, begin), end - begin,
-                      unchanged_.data() + begin);
-    const std::size_t filters = markFilterChanges(inBoxes, last_, begin, end, unchanged_.data());
-    if (bounds.changed_boxes > 0 || filters > 0) {
-      for (int axis = 0; axis < 3; ++axis) {
-        copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
-        copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
-      }
-      copySlice(inBoxes.groups, last_.groups, begin, end);
-      copySlice(inBoxes.masks, last_.masks, begin, end);
-      moved += countChanged(unchanged_.data(), begin, end);
-    }
-    filters_changed += filters;
-    max_displacement = std::max(max_displacement, bounds.max_displacement);
-  }
-  delta_.moved_boxes = moved;
-  delta_.filters_changed = filters_changed != 0;
-  delta_.max_displacement = max_displacement;
-  return other_ids == 0;
+  const UnitChanges changes = reduceOverItems(
+      WorkUnits{n}, inThreads, UnitChanges{},
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        UnitChanges unit;
+        for (std::size_t begin = inBegin; begin < inEnd; begin += kBlock) {
+          const std::size_t end = std::min(inEnd, begin + kBlock);
+          if (copyIfDifferent(inBoxes.ids, last_.ids, begin, end)) ++unit.other_ids;
+          const BlockChanges bounds =
+              compareBounds(boundArrays(inBoxes, begin), boundArrays(last_, begin), end - begin,
+                            unchanged_.data() + begin);
+          const std::size_t filters =
+              markFilterChanges(inBoxes, last_, begin, end, unchanged_.data());
+          if (bounds.changed_boxes > 0 || filters > 0) {
+            for (int axis = 0; axis < 3; ++axis) {
+              copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
+              copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
+            }
+            copySlice(inBoxes.groups, last_.groups, begin, end);
+            copySlice(inBoxes.masks, last_.masks, begin, end);
+            unit.moved += countChanged(unchanged_.data(), begin, end);
+          }
+          unit.filters_changed += filters;
+          unit.max_displacement = std::max(unit.max_displacement, bounds.max_displacement);
+        }
+        return unit;
+      },
+      addChanges);
+  delta_.moved_boxes = changes.moved;
+  delta_.filters_changed = changes.filters_changed != 0;
+  delta_.max_displacement = changes.max_displacement;
+  return changes.other_ids == 0;
 }
 
 namespace {
@@ -298,7 +317,7 @@ void FrameHistory::remember(const BoxSet& inBoxes) {
   SAP_ASSERT(sameBoxes(last_, inBoxes), "the frame history's copy differs from the frame");
 }
 
-// A first frame, or other ids: every box copied, each thread its slice (vectors keep their
+// A first frame, or other ids: every box copied, unit by unit (vectors keep their
 // capacity, so only a larger frame than any before allocates).
 void FrameHistory::copyWholeFrame(const BoxSet& inBoxes, int inThreads) {
   const std::size_t n = inBoxes.size();
@@ -309,19 +328,15 @@ void FrameHistory::copyWholeFrame(const BoxSet& inBoxes, int inThreads) {
   }
   last_.groups.resize(inBoxes.groups.size());
   last_.masks.resize(inBoxes.masks.size());
-#pragma omp parallel num_threads(inThreads)
-  {
-    const auto team = static_cast<std::size_t>(omp_get_num_threads());
-    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
-    const std::size_t begin = n * thread / team, end = n * (thread + 1) / team;
-    copySlice(inBoxes.ids, last_.ids, begin, end);
+  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    copySlice(inBoxes.ids, last_.ids, inBegin, inEnd);
     for (int axis = 0; axis < 3; ++axis) {
-      copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
-      copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
+      copySlice(inBoxes.lo[axis], last_.lo[axis], inBegin, inEnd);
+      copySlice(inBoxes.hi[axis], last_.hi[axis], inBegin, inEnd);
     }
-    copySlice(inBoxes.groups, last_.groups, begin, end);
-    copySlice(inBoxes.masks, last_.masks, begin, end);
-  }
+    copySlice(inBoxes.groups, last_.groups, inBegin, inEnd);
+    copySlice(inBoxes.masks, last_.masks, inBegin, inEnd);
+  });
 }
 
 void FrameHistory::forget() {

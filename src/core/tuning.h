@@ -34,8 +34,6 @@ constexpr double kCellsPerBox = 1.0;
 /// A box covering more cells than this goes to the large list: listing it in every cell would
 /// cost more memory and cell visits than testing it against each query.
 constexpr uint64_t kMaxCellsPerBox = 64;
-/// Fewest queries worth a thread of their own in queryAll.
-constexpr std::size_t kMinQueriesPerThread = 64;
 
 /// Most distinct group/mask classes looked at among the unchanged boxes.
 constexpr std::size_t kMaxFilterClasses = 64;
