@@ -75,11 +75,12 @@ if(TARGET ${PROJECT_NAME}_ros AND EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/test/ros/r
   include(test/ros/ros_tests.cmake)
 endif()
 
-# The per-frame flow: the plan on its own, then every path and combination of skips,
+# The per-frame flow: the plan on its own, the work-unit runner, then every path and combination of skips,
 # declared scenery, the automatic skin and large-world coordinates against the oracle.
 sap_add_gtest(test_frame_flow
   test/core/test_frame_plan.cpp
   test/core/test_thread_choice.cpp
+  test/core/test_work_units.cpp
   test/core/test_frame_flow.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/work_units.h"
+
 namespace sap_broadphase {
 
 AxisSpread measureAxisSpread(const BoxSet& inBoxes, int inAxis, int inThreads,
@@ -11,25 +13,29 @@ AxisSpread measureAxisSpread(const BoxSet& inBoxes, int inAxis, int inThreads,
   const double* high = inBoxes.hi[inAxis].data();
   const uint32_t* indexes = inIndexes ? inIndexes->data() : nullptr;
   const std::size_t count = inIndexes ? inIndexes->size() : inBoxes.size();
-  AxisSpread spread;
-  double lowest = spread.lowest, highest = spread.highest, extent_sum = 0.0;
-  std::size_t finite_boxes = 0;
-#pragma omp parallel for num_threads(inThreads) schedule(static) reduction(min : lowest) \
-    reduction(max : highest) reduction(+ : extent_sum, finite_boxes)
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t i = indexes ? indexes[k] : k;
-    if (std::isfinite(low[i])) lowest = std::min(lowest, low[i]);
-    if (std::isfinite(high[i])) highest = std::max(highest, high[i]);
-    const double extent = high[i] - low[i];  // inf for infinite or overflowing intervals
-    if (std::isfinite(extent)) {
-      extent_sum += extent;
-      ++finite_boxes;
-    }
-  }
-  spread.lowest = lowest;
-  spread.highest = highest;
-  spread.extent_sum = extent_sum;
-  spread.finite_boxes = finite_boxes;
+  // Per-unit partial sums folded in unit order: the same spread for any thread count.
+  AxisSpread spread = reduceOverItems(
+      WorkUnits{count}, inThreads, AxisSpread{},
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        AxisSpread unit;
+        for (std::size_t k = inBegin; k < inEnd; ++k) {
+          const std::size_t i = indexes ? indexes[k] : k;
+          if (std::isfinite(low[i])) unit.lowest = std::min(unit.lowest, low[i]);
+          if (std::isfinite(high[i])) unit.highest = std::max(unit.highest, high[i]);
+          const double extent = high[i] - low[i];  // inf for infinite or overflowing intervals
+          if (std::isfinite(extent)) {
+            unit.extent_sum += extent;
+            ++unit.finite_boxes;
+          }
+        }
+        return unit;
+      },
+      [](AxisSpread& ioTotal, const AxisSpread& inUnit) {
+        ioTotal.lowest = std::min(ioTotal.lowest, inUnit.lowest);
+        ioTotal.highest = std::max(ioTotal.highest, inUnit.highest);
+        ioTotal.extent_sum += inUnit.extent_sum;
+        ioTotal.finite_boxes += inUnit.finite_boxes;
+      });
   return spread;
 }
 

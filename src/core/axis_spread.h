@@ -40,8 +40,8 @@ class FrameSpread {
  public:
   explicit FrameSpread(const BoxSet& inBoxes) : boxes_(&inBoxes) {}
 
-  /// The spread on inAxis, measured on inThreads threads if not measured yet (the thread count
-  /// changes only how extent_sum's additions are grouped).
+  /// The spread on inAxis, measured on up to inThreads threads if not measured yet (the same
+  /// spread for any thread count).
   const AxisSpread& axis(int inAxis, int inThreads) {
     if (!measured_[inAxis]) {
       spreads_[inAxis] = measureAxisSpread(*boxes_, inAxis, inThreads);

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "core/radix_sort.h"
-#include "core/tuning.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -153,22 +153,21 @@ void copyInterleaved(const InterleavedBoxes& inBoxes, BoxSet& outBoxes, int inTh
   const bool filtered = inBoxes.hasFilters();
   outBoxes.groups.resize(filtered ? count : 0);
   outBoxes.masks.resize(filtered ? count : 0);
-  // A 2^20-box frame is 50 MB: every thread copies its slice.
-  const auto boxes = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for num_threads(inThreads) \
-    schedule(static) if (boxes >= static_cast <std::ptrdiff_t>(tuning::kParallelCopyBoxes))
-  for (std::ptrdiff_t i = 0; i < boxes; ++i) {
-    const double* box = inBoxes.bounds + 6 * i;
-    for (int axis = 0; axis < 3; ++axis) {
-      outBoxes.lo[axis][i] = box[axis];
-      outBoxes.hi[axis][i] = box[3 + axis];
+  // A 2^20-box frame is 50 MB: copied in work units on the threads (one unit inline).
+  runOverItems(WorkUnits{count}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t i = inBegin; i < inEnd; ++i) {
+      const double* box = inBoxes.bounds + 6 * i;
+      for (int axis = 0; axis < 3; ++axis) {
+        outBoxes.lo[axis][i] = box[axis];
+        outBoxes.hi[axis][i] = box[3 + axis];
+      }
+      outBoxes.ids[i] = inBoxes.ids ? inBoxes.ids[i] : static_cast<uint32_t>(i);
+      if (filtered) {
+        outBoxes.groups[i] = inBoxes.groups ? inBoxes.groups[i] : kDefaultGroup;
+        outBoxes.masks[i] = inBoxes.masks ? inBoxes.masks[i] : kDefaultMask;
+      }
     }
-    outBoxes.ids[i] = inBoxes.ids ? inBoxes.ids[i] : static_cast<uint32_t>(i);
-    if (filtered) {
-      outBoxes.groups[i] = inBoxes.groups ? inBoxes.groups[i] : kDefaultGroup;
-      outBoxes.masks[i] = inBoxes.masks ? inBoxes.masks[i] : kDefaultMask;
-    }
-  }
+  });
 }
 
 std::string ValidationError::message() const {

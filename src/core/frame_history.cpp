@@ -2,8 +2,7 @@
 #include "core/assert.h"
 #include "core/buffers.h"
 #include "core/tuning.h"
-
-#include <omp.h>
+#include "core/work_units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +29,25 @@ struct BlockChanges {
   double max_displacement = 0.0;
 };
 
+// What one work unit of a comparison found (counts of blocks or boxes, as named).
+struct UnitChanges {
+  std::size_t moved = 0;            // boxes
+  std::size_t filters_changed = 0;  // boxes
+  std::size_t other_ids = 0;        // blocks with some other id
+  std::size_t unusable = 0;         // record blocks with a box refused
+  double max_displacement = 0.0;
+};
+
+void addChanges(UnitChanges& ioTotal, const UnitChanges& inUnit) {
+  ioTotal.moved += inUnit.moved;
+  ioTotal.filters_changed += inUnit.filters_changed;
+  ioTotal.other_ids += inUnit.other_ids;
+  ioTotal.unusable += inUnit.unusable;
+  ioTotal.max_displacement = std::max(ioTotal.max_displacement, inUnit.max_displacement);
+}
+
 constexpr std::size_t kBlock = tuning::kHistoryBlockBoxes;
+static_assert(kUnitBoxes % kBlock == 0, "a work unit is whole blocks");
 
 // One bound array over a block of inCount boxes: ORs each box's differing bits into
 // ioDiffering[k] and returns the bits of the largest change, 0 when bit for bit equal,
@@ -177,7 +194,7 @@ struct RecordFrame {
   void copyFilters(BoxSet&, std::size_t, std::size_t) const {}
 };
 
-// One pass, each thread over its slice of the boxes, block by block: a block is compared with
+// One pass over the boxes in work units (work_units.h), block by block: a block is compared with
 // ioLast's without a branch and, where some box of it differs, copied at once while both are
 // in the cache (a separate copy after the sweep would read both frames from memory again;
 // copying a whole block keeps the copy a plain streaming one, and unchanged boxes in it are
@@ -187,44 +204,44 @@ template <typename Frame>
 FramePass compareAndCopyBlocks(const Frame& inFrame, int inThreads, BoxSet& ioLast,
                                std::vector<uint8_t>& outUnchanged) {
   const std::size_t n = inFrame.size();
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
   outUnchanged.resize(n);
-  std::size_t moved = 0, filters_changed = 0, other_ids = 0, unusable = 0;
-  double max_displacement = 0.0;
-#pragma omp parallel num_threads(inThreads) \
-    reduction(+ : moved, filters_changed, other_ids, unusable) reduction(max : max_displacement)
-  {
-    typename Frame::Scratch scratch;
-#pragma omp for schedule(static)
-    for (std::size_t b = 0; b < blocks; ++b) {
-      const std::size_t begin = b * kBlock, end = std::min(n, begin + kBlock), count = end - begin;
-      const BlockView block = inFrame.block(begin, end, scratch);
-      unusable += !block.usable;
-      if (!std::equal(block.ids, block.ids + count, ioLast.ids.begin() + begin)) {
-        std::copy(block.ids, block.ids + count, ioLast.ids.begin() + begin);
-        ++other_ids;
-      }
-      const BlockChanges bounds = compareBounds(block.bounds, boundArrays(ioLast, begin), count,
-                                                outUnchanged.data() + begin);
-      const std::size_t filters =
-          inFrame.markFilterChanges(ioLast, begin, end, outUnchanged.data());
-      if (bounds.changed_boxes > 0 || filters > 0) {
-        for (int axis = 0; axis < 3; ++axis) {
-          std::copy(block.bounds.at[axis], block.bounds.at[axis] + count,
-                    ioLast.lo[axis].begin() + begin);
-          std::copy(block.bounds.at[3 + axis], block.bounds.at[3 + axis] + count,
-                    ioLast.hi[axis].begin() + begin);
+  const UnitChanges changes = reduceOverItems(
+      WorkUnits{n}, inThreads, UnitChanges{},
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        UnitChanges unit;
+        typename Frame::Scratch scratch;
+        for (std::size_t begin = inBegin; begin < inEnd; begin += kBlock) {
+          const std::size_t end = std::min(inEnd, begin + kBlock), count = end - begin;
+          const BlockView block = inFrame.block(begin, end, scratch);
+          unit.unusable += !block.usable;
+          if (!std::equal(block.ids, block.ids + count, ioLast.ids.begin() + begin)) {
+            std::copy(block.ids, block.ids + count, ioLast.ids.begin() + begin);
+            ++unit.other_ids;
+          }
+          const BlockChanges bounds = compareBounds(block.bounds, boundArrays(ioLast, begin),
+                                                    count, outUnchanged.data() + begin);
+          const std::size_t filters =
+              inFrame.markFilterChanges(ioLast, begin, end, outUnchanged.data());
+          if (bounds.changed_boxes > 0 || filters > 0) {
+            for (int axis = 0; axis < 3; ++axis) {
+              std::copy(block.bounds.at[axis], block.bounds.at[axis] + count,
+                        ioLast.lo[axis].begin() + begin);
+              std::copy(block.bounds.at[3 + axis], block.bounds.at[3 + axis] + count,
+                        ioLast.hi[axis].begin() + begin);
+            }
+            inFrame.copyFilters(ioLast, begin, end);
+            unit.moved += countChanged(outUnchanged.data(), begin, end);
+          }
+          unit.filters_changed += filters;
+          unit.max_displacement = std::max(unit.max_displacement, bounds.max_displacement);
         }
-        inFrame.copyFilters(ioLast, begin, end);
-        moved += countChanged(outUnchanged.data(), begin, end);
-      }
-      filters_changed += filters;
-      max_displacement = std::max(max_displacement, bounds.max_displacement);
-    }
-  }
-  SAP_ASSERT(moved == countChanged(outUnchanged.data(), 0, n), "moved boxes miscounted");
-  SAP_ASSERT(!(max_displacement < 0.0), "a negative or NaN displacement");
-  return {moved, other_ids != 0, unusable != 0, filters_changed != 0, max_displacement};
+        return unit;
+      },
+      addChanges);
+  SAP_ASSERT(changes.moved == countChanged(outUnchanged.data(), 0, n), "moved boxes miscounted");
+  SAP_ASSERT(!(changes.max_displacement < 0.0), "a negative or NaN displacement");
+  return {changes.moved, changes.other_ids != 0, changes.unusable != 0,
+          changes.filters_changed != 0, changes.max_displacement};
 }
 
 }  // namespace
@@ -306,7 +323,7 @@ void FrameHistory::remember(const BoxSet& inBoxes) {
   SAP_ASSERT(sameBoxes(last_, inBoxes), "the frame history's copy differs from the frame");
 }
 
-// A first frame, or other ids: every box copied, each thread its slice (vectors keep their
+// A first frame, or other ids: every box copied, unit by unit (vectors keep their
 // capacity, so only a larger frame than any before allocates).
 void FrameHistory::copyWholeFrame(const BoxSet& inBoxes, int inThreads) {
   const std::size_t n = inBoxes.size();
@@ -317,19 +334,15 @@ void FrameHistory::copyWholeFrame(const BoxSet& inBoxes, int inThreads) {
   }
   last_.groups.resize(inBoxes.groups.size());
   last_.masks.resize(inBoxes.masks.size());
-#pragma omp parallel num_threads(inThreads)
-  {
-    const auto team = static_cast<std::size_t>(omp_get_num_threads());
-    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
-    const std::size_t begin = n * thread / team, end = n * (thread + 1) / team;
-    copySlice(inBoxes.ids, last_.ids, begin, end);
+  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    copySlice(inBoxes.ids, last_.ids, inBegin, inEnd);
     for (int axis = 0; axis < 3; ++axis) {
-      copySlice(inBoxes.lo[axis], last_.lo[axis], begin, end);
-      copySlice(inBoxes.hi[axis], last_.hi[axis], begin, end);
+      copySlice(inBoxes.lo[axis], last_.lo[axis], inBegin, inEnd);
+      copySlice(inBoxes.hi[axis], last_.hi[axis], inBegin, inEnd);
     }
-    copySlice(inBoxes.groups, last_.groups, begin, end);
-    copySlice(inBoxes.masks, last_.masks, begin, end);
-  }
+    copySlice(inBoxes.groups, last_.groups, inBegin, inEnd);
+    copySlice(inBoxes.masks, last_.masks, inBegin, inEnd);
+  });
 }
 
 void FrameHistory::forget() {

@@ -3,8 +3,7 @@
 #include "core/assert.h"
 #include "core/buffers.h"
 #include "core/tuning.h"
-
-#include <omp.h>
+#include "core/work_units.h"
 
 #include <algorithm>
 
@@ -62,9 +61,9 @@ void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
   }
 }
 
-// bucketSort of the per-thread parts on inThreads threads: each part counted and placed by one
-// thread, the offsets' prefix sum split into ranges of a, the runs of equal a sorted by b in
-// chunks handed out dynamically. ioOffsets holds one row of counts per part; after placing,
+// bucketSort of the per-thread parts on up to inThreads threads: each part counted and placed by
+// one thread, the offsets' prefix sum split into ranges of a, the runs of equal a sorted by b in
+// chunks, all handed out dynamically. ioOffsets holds one row of counts per part; after placing,
 // the last part's row ends each run of a. Same result as bucketSort: the layout is part 0's
 // pairs of a, then part 1's, ..., and every run is then sorted by b.
 void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal,
@@ -76,45 +75,49 @@ void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal
   resizeDiscarding(outSorted, inTotal);
   uint32_t* offsets = ioOffsets.data();
   IdPair* sorted = outSorted.data();
-  const int threads = std::max(1, inThreads);
-  std::vector<uint32_t> range_base(threads + 1, 0);  // pairs before each thread's range of a
-#pragma omp parallel num_threads(threads)
+  // The values of a are cut into more ranges than threads, and every step's parts or ranges are
+  // claimed dynamically (work_units.h).
+  const int ranges = unitsForThreads(inThreads);
+  std::vector<uint32_t> range_base(ranges + 1, 0);  // pairs before each range of a
+  auto rangeBegin = [&](int inRange) { return row * inRange / ranges; };
+#pragma omp parallel num_threads(openTeam(std::max <std::size_t>(parts, ranges), inThreads))
   {
-    const int thread = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    for (std::size_t part = thread; part < parts; part += team) {
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t part = 0; part < parts; ++part) {
       uint32_t* counts = offsets + part * row;
       std::fill(counts, counts + row, 0u);
       inParts[part].forEach([&](const IdPair& inPair) { ++counts[inPair.a]; });
     }
-#pragma omp barrier
-    const std::size_t a_begin = row * thread / team;
-    const std::size_t a_end = row * (thread + 1) / team;
-    uint32_t in_range = 0;
-    for (std::size_t part = 0; part < parts; ++part)
-      for (std::size_t a = a_begin; a < a_end; ++a) in_range += offsets[part * row + a];
-    range_base[thread + 1] = in_range;
-#pragma omp barrier
+#pragma omp for schedule(dynamic, 1)
+    for (int range = 0; range < ranges; ++range) {
+      uint32_t in_range = 0;
+      for (std::size_t part = 0; part < parts; ++part)
+        for (std::size_t a = rangeBegin(range); a < rangeBegin(range + 1); ++a)
+          in_range += offsets[part * row + a];
+      range_base[range + 1] = in_range;
+    }
 #pragma omp single
     {
-      for (int t = 0; t < team; ++t) range_base[t + 1] += range_base[t];
-      SAP_ASSERT(range_base[team] == inTotal, "the threads' ranges of a miss some pairs");
+      for (int range = 0; range < ranges; ++range) range_base[range + 1] += range_base[range];
+      SAP_ASSERT(range_base[ranges] == inTotal, "the ranges of a miss some pairs");
     }
-    uint32_t next = range_base[thread];
-    for (std::size_t a = a_begin; a < a_end; ++a) {
-      for (std::size_t part = 0; part < parts; ++part) {
-        uint32_t& slot = offsets[part * row + a];
-        const uint32_t count = slot;
-        slot = next;
-        next += count;
+#pragma omp for schedule(dynamic, 1)
+    for (int range = 0; range < ranges; ++range) {
+      uint32_t next = range_base[range];
+      for (std::size_t a = rangeBegin(range); a < rangeBegin(range + 1); ++a) {
+        for (std::size_t part = 0; part < parts; ++part) {
+          uint32_t& slot = offsets[part * row + a];
+          const uint32_t count = slot;
+          slot = next;
+          next += count;
+        }
       }
     }
-#pragma omp barrier
-    for (std::size_t part = thread; part < parts; part += team) {
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t part = 0; part < parts; ++part) {
       uint32_t* next_slot = offsets + part * row;
       inParts[part].forEach([&](const IdPair& inPair) { sorted[next_slot[inPair.a]++] = inPair; });
     }
-#pragma omp barrier
     const uint32_t* run_end = offsets + (parts - 1) * row;
     constexpr std::size_t kRunChunk = tuning::kPairRunChunk;
 #pragma omp for schedule(dynamic, 1)
@@ -204,7 +207,8 @@ void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPai
   const int threads =
       static_cast<int>(std::min<std::size_t>(std::max(1, inThreads), inParts.size()));
   uint32_t largest_a = 0;
-#pragma omp parallel for num_threads(threads) reduction(max : largest_a) schedule(static, 1)
+  const int team = openTeam(inParts.size(), inThreads);
+#pragma omp parallel for num_threads(team) reduction(max : largest_a) schedule(dynamic, 1)
   for (std::size_t part = 0; part < inParts.size(); ++part)
     inParts[part].forEach([&](const IdPair& inPair) { largest_a = std::max(largest_a, inPair.a); });
   if (denseEnough(largest_a, total)) {

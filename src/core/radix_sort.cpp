@@ -1,8 +1,6 @@
 #include "core/radix_sort.h"
 #include "core/buffers.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +9,7 @@
 #include "core/assert.h"
 #include "core/sort_keys.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -144,16 +143,27 @@ double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, ui
 void PartitionedSorter::initialiseBoundsFromSpan(const uint64_t* inPacked, uint32_t inCount,
                                                  int inPartitions, int inThreads,
                                                  AxisBounds& ioBounds) {
-  float lowest = std::numeric_limits<float>::infinity();
-  float highest = -std::numeric_limits<float>::infinity();
-#pragma omp parallel for num_threads(inThreads) reduction(min : lowest) reduction(max : highest)
-  for (uint32_t k = 0; k < inCount; ++k) {
-    const float value = keyToFloat(static_cast<uint32_t>(inPacked[k] >> 32));
-    if (std::isfinite(value)) {
-      lowest = std::min(lowest, value);
-      highest = std::max(highest, value);
-    }
-  }
+  struct Span {
+    float lowest = std::numeric_limits<float>::infinity();
+    float highest = -std::numeric_limits<float>::infinity();
+  };
+  const auto [lowest, highest] = reduceOverItems(
+      WorkUnits{inCount}, inThreads, Span{},
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        Span unit;
+        for (std::size_t k = inBegin; k < inEnd; ++k) {
+          const float value = keyToFloat(static_cast<uint32_t>(inPacked[k] >> 32));
+          if (std::isfinite(value)) {
+            unit.lowest = std::min(unit.lowest, value);
+            unit.highest = std::max(unit.highest, value);
+          }
+        }
+        return unit;
+      },
+      [](Span& ioTotal, const Span& inUnit) {
+        ioTotal.lowest = std::min(ioTotal.lowest, inUnit.lowest);
+        ioTotal.highest = std::max(ioTotal.highest, inUnit.highest);
+      });
   ioBounds.bounds.resize(inPartitions - 1);
   const bool have_span = lowest <= highest;
   for (int p = 1; p < inPartitions; ++p) {
@@ -165,8 +175,9 @@ void PartitionedSorter::initialiseBoundsFromSpan(const uint64_t* inPacked, uint3
   ioBounds.from_previous_frame = false;
 }
 
-// Algorithm 2, lines 1-3: each thread counts, then places, its contiguous slice of the items,
-// so every partition receives its items in index order (the sort stays stable).
+// Algorithm 2, lines 1-3: each unit (a contiguous slice of the items; more units than threads,
+// claimed dynamically) is counted, then placed, so every partition receives its items in index
+// order (the sort stays stable).
 void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t* outScattered,
                                               uint32_t inCount, const AxisBounds& inBounds,
                                               int inThreads) {
@@ -175,41 +186,44 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
   SAP_ASSERT(partitions >= 1 && partitions <= kMaxSortPartitions,
              "more sort partitions than partition_of_'s 8 bits number");
   const uint32_t* bounds = inBounds.bounds.data();
-  // Each thread's counters sit a cache line past the previous thread's: counters that shared
-  // a line would bounce between the cores on every item.
+  const int units = unitsForThreads(inThreads);
+  // Each unit's counters sit a cache line past the previous unit's: counters that shared a
+  // line would bounce between the cores on every item.
   const std::size_t stride =
       static_cast<std::size_t>(partitions) + kCacheLineBytes / sizeof(uint32_t);
-  counts_.assign(static_cast<std::size_t>(inThreads) * stride, 0);
+  counts_.assign(static_cast<std::size_t>(units) * stride, 0);
   resizeDiscarding(partition_of_, inCount);
   prefix_table_.resize(kPrefixCount);
   partition_begin_.assign(partitions + 1, 0);
   partition_size_.assign(partitions, 0);
-#pragma omp parallel num_threads(inThreads)
+  auto share = [](uint64_t inTotal, int inUnit, int inUnits) {
+    return static_cast<uint32_t>(inTotal * inUnit / inUnits);
+  };
+#pragma omp parallel num_threads(openTeam(units, inThreads))
   {
-    const int thread = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    const uint32_t begin = static_cast<uint32_t>(uint64_t{inCount} * thread / team);
-    const uint32_t end = static_cast<uint32_t>(uint64_t{inCount} * (thread + 1) / team);
-    uint32_t* my_counts = &counts_[static_cast<std::size_t>(thread) * stride];
     uint8_t* partition_of = partition_of_.data();
-    // The prefix table, a slice a thread (65536 entries, a serial part otherwise).
-    fillPrefixTable(
-        bounds, bound_count, static_cast<uint32_t>(uint64_t{kPrefixCount} * thread / team),
-        static_cast<uint32_t>(uint64_t{kPrefixCount} * (thread + 1) / team), prefix_table_.data());
-#pragma omp barrier
-    for (uint32_t k = begin; k < end; ++k) {
-      const uint32_t key = static_cast<uint32_t>(inPacked[k] >> 32);
-      partition_of[k] = lookupPartition(key, prefix_table_.data(), bounds, bound_count);
-      ++my_counts[partition_of[k]];
+    // The prefix table, a share a unit (65536 entries, a serial part otherwise).
+#pragma omp for schedule(dynamic, 1)
+    for (int unit = 0; unit < units; ++unit)
+      fillPrefixTable(bounds, bound_count, share(kPrefixCount, unit, units),
+                      share(kPrefixCount, unit + 1, units), prefix_table_.data());
+#pragma omp for schedule(dynamic, 1)
+    for (int unit = 0; unit < units; ++unit) {
+      uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
+      const uint32_t end = share(inCount, unit + 1, units);
+      for (uint32_t k = share(inCount, unit, units); k < end; ++k) {
+        const uint32_t key = static_cast<uint32_t>(inPacked[k] >> 32);
+        partition_of[k] = lookupPartition(key, prefix_table_.data(), bounds, bound_count);
+        ++unit_counts[partition_of[k]];
+      }
     }
-#pragma omp barrier
 #pragma omp single
     {
       std::size_t offset = 0;
       for (int p = 0; p < partitions; ++p) {
         partition_begin_[p] = offset;
-        for (int t = 0; t < team; ++t) {
-          uint32_t& slot = counts_[static_cast<std::size_t>(t) * stride + p];
+        for (int unit = 0; unit < units; ++unit) {
+          uint32_t& slot = counts_[static_cast<std::size_t>(unit) * stride + p];
           const uint32_t size = slot;
           slot = static_cast<uint32_t>(offset);
           offset += size;
@@ -218,7 +232,13 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
       }
       partition_begin_[partitions] = offset;
     }
-    for (uint32_t k = begin; k < end; ++k) outScattered[my_counts[partition_of[k]]++] = inPacked[k];
+#pragma omp for schedule(dynamic, 1) nowait
+    for (int unit = 0; unit < units; ++unit) {
+      uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
+      const uint32_t end = share(inCount, unit + 1, units);
+      for (uint32_t k = share(inCount, unit, units); k < end; ++k)
+        outScattered[unit_counts[partition_of[k]]++] = inPacked[k];
+    }
   }
 }
 
@@ -230,7 +250,7 @@ void PartitionedSorter::sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* io
   const int partitions = static_cast<int>(partition_size_.size());
   const std::size_t sample_step = inCount / partitions;
   bound_samples_.assign(partitions - 1, 0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(inThreads)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(openTeam(partitions, inThreads))
   for (int p = 0; p < partitions; ++p) {
     const std::size_t begin = partition_begin_[p];
     const std::size_t size = partition_size_[p];

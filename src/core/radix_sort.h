@@ -62,7 +62,7 @@ class PartitionedSorter {
   Buffer<uint64_t> owned_scratch_;
   Buffer<uint8_t> partition_of_;              // partition of each key, found once
   std::vector<uint8_t> prefix_table_;         // partition by the key's top 16 bits
-  std::vector<uint32_t> counts_;              // [thread][partition]
+  std::vector<uint32_t> counts_;              // [unit][partition]
   std::vector<std::size_t> partition_begin_;  // m + 1 offsets
   std::vector<uint32_t> partition_size_;
   std::vector<uint32_t> bound_samples_;  // next frame's B, read off the sorted partitions

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -16,6 +17,7 @@
 #include "core/radix_sort.h"
 #include "core/sort_keys.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -138,39 +140,41 @@ bool sameSlice(const std::vector<uint32_t>& inA, const std::vector<uint32_t>& in
 bool SkinList::covers(const BoxSet& inBoxes, int inThreads) const {
   if (!valid_ || !sameCounts(inBoxes)) return false;
   const std::size_t n = inBoxes.size();
-  bool inside = true;
-#pragma omp parallel num_threads(inThreads) reduction(&& : inside)
-  {
-    const int thread = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    const std::size_t begin = shareBegin(n, thread, team), end = shareBegin(n, thread + 1, team);
-    inside = sameIdsAndFilters(inBoxes, begin, end);
-    for (std::size_t i = begin; i < end && inside; ++i) inside = boxInside(inBoxes, reference_, i);
-  }
-  return inside;
+  return reduceOverItems(
+      WorkUnits{n}, inThreads, true,
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        bool inside = sameIdsAndFilters(inBoxes, inBegin, inEnd);
+        for (std::size_t i = inBegin; i < inEnd && inside; ++i)
+          inside = boxInside(inBoxes, reference_, i);
+        return inside;
+      },
+      [](bool& ioAll, bool inUnit) { ioAll = ioAll && inUnit; });
 }
 
 const BoxSet& SkinList::inflate(const BoxSet& inBoxes, double inSkin, int inThreads) {
   const double margin = inSkin / 2;
   const double infinity = std::numeric_limits<double>::infinity();
-  const auto n = static_cast<std::ptrdiff_t>(inBoxes.size());
+  const std::size_t n = inBoxes.size();
   reference_.ids = inBoxes.ids;
   reference_.groups = inBoxes.groups;
   reference_.masks = inBoxes.masks;
   for (int axis = 0; axis < 3; ++axis) {
     resizeDiscarding(reference_.lo[axis], inBoxes.size());
     resizeDiscarding(reference_.hi[axis], inBoxes.size());
-    const double* low = inBoxes.lo[axis].data();
-    const double* high = inBoxes.hi[axis].data();
-    double* grown_low = reference_.lo[axis].data();
-    double* grown_high = reference_.hi[axis].data();
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
-      // One step further out than the rounded sum: the inflated box contains the exact one.
-      grown_low[i] = std::nextafter(low[i] - margin, -infinity);
-      grown_high[i] = std::nextafter(high[i] + margin, infinity);
-    }
   }
+  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double* low = inBoxes.lo[axis].data();
+      const double* high = inBoxes.hi[axis].data();
+      double* grown_low = reference_.lo[axis].data();
+      double* grown_high = reference_.hi[axis].data();
+      for (std::size_t i = inBegin; i < inEnd; ++i) {
+        // One step further out than the rounded sum: the inflated box contains the exact one.
+        grown_low[i] = std::nextafter(low[i] - margin, -infinity);
+        grown_high[i] = std::nextafter(high[i] + margin, infinity);
+      }
+    }
+  });
   valid_ = false;  // until adopt() receives this sweep's candidates
   frame_gathered_ = false;
   return reference_;
@@ -306,15 +310,12 @@ bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
   const uint32_t* position_of = position_of_.data();
   BoundsRecord* gathered = gathered_.data();
   const uint32_t scratch = spatial_count_;
-  bool inside = true;
-#pragma omp parallel num_threads(inThreads)
-  {
-    const int thread = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    const std::size_t end = shareBegin(n, thread + 1, team);
-    bool mine = true;
-    for (std::size_t block = shareBegin(n, thread, team); mine && block < end; block += kBlock) {
-      const std::size_t block_end = std::min(end, block + kBlock);
+  std::atomic<bool> inside{true};
+  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    const int thread = omp_get_thread_num();  // its scratch record (0 when run inline)
+    bool mine = inside.load(std::memory_order_relaxed);
+    for (std::size_t block = inBegin; mine && block < inEnd; block += kBlock) {
+      const std::size_t block_end = std::min(inEnd, block + kBlock);
       mine = sameIdsAndFilters(inBoxes, block, block_end);
       for (std::size_t i = block; i < block_end; ++i) {
         // The line written kPrefetchAhead boxes later is fetched now, so that the scattered
@@ -326,12 +327,9 @@ bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
         gathered[position == scratch ? position + thread : position] = recordOf(inBoxes, i);
       }
     }
-    if (!mine) {
-#pragma omp atomic write
-      inside = false;
-    }
-  }
-  return inside;
+    if (!mine) inside.store(false, std::memory_order_relaxed);
+  });
+  return inside.load();
 }
 
 // In (first, partner) order: the first box's record is read again and again, the partner's
@@ -344,16 +342,14 @@ void SkinList::testSpatialCandidates(int inThreads) {
   const uint32_t* partner = partner_positions_.data();
   const uint32_t* slot = canonical_slots_.data();
   const BoundsRecord* gathered = gathered_.data();
-#pragma omp parallel num_threads(inThreads)
-  {
-    const int thread = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(thread);
-    std::fill(verdicts, verdicts + words, 0);
-#pragma omp master
-    verdict_rows_ = team;
-    const auto end = static_cast<std::ptrdiff_t>(shareBegin(count, thread + 1, team));
-    for (auto k = static_cast<std::ptrdiff_t>(shareBegin(count, thread, team)); k < end; ++k) {
+  const WorkUnits units{static_cast<std::size_t>(count)};
+  verdict_rows_ = teamForUnits(units.count(), inThreads);
+  std::fill(verdicts_.begin(), verdicts_.begin() + words * verdict_rows_, 0);
+  runOverItems(units, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    // Each team thread sets bits in its own row (row 0 when run inline); copyHits merges them.
+    uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(omp_get_thread_num());
+    const auto end = static_cast<std::ptrdiff_t>(inEnd);
+    for (auto k = static_cast<std::ptrdiff_t>(inBegin); k < end; ++k) {
       // Partners lie ahead of the first box, mostly in lines no candidate has read yet, and
       // the verdict bits of consecutive candidates lie anywhere in the bit set.
       if (k + kPrefetchAhead < end) {
@@ -363,39 +359,43 @@ void SkinList::testSpatialCandidates(int inThreads) {
       const uint64_t overlap = recordsOverlap(gathered[first[k]], gathered[partner[k]]);
       verdicts[slot[k] / 64] |= overlap << (slot[k] % 64);
     }
-  }
+  });
 }
 
-// Canonical candidates whose verdict is set, in order: each thread merges the verdict rows of
-// the test's threads over its share of words and counts them, then copies its hits behind the
-// shares before it, so the list is the same for any thread count.
+// Canonical candidates whose verdict is set, in order: the words are cut into shares (more
+// than threads, claimed dynamically); each share's verdict rows are merged and counted, then
+// its hits copied behind the shares before it, so the list is the same for any thread count.
 void SkinList::copyHits(int inThreads, PairList& outPairs) {
   const std::size_t words = verdictWords();
-  std::vector<std::size_t> share_start(static_cast<std::size_t>(std::max(1, inThreads)) + 1, 0);
-  uint64_t* merged = verdicts_.data();  // the first thread's row receives the others'
-#pragma omp parallel num_threads(inThreads)
+  const int shares = unitsForThreads(inThreads);
+  std::vector<std::size_t> share_start(static_cast<std::size_t>(shares) + 1, 0);
+  uint64_t* merged = verdicts_.data();  // the first row receives the others'
+#pragma omp parallel num_threads(openTeam(shares, inThreads))
   {
-    const int thread = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    const std::size_t begin = shareBegin(words, thread, team);
-    const std::size_t end = shareBegin(words, thread + 1, team);
-    std::size_t hits = 0;
-    for (std::size_t word = begin; word < end; ++word) {
-      for (int row = 1; row < verdict_rows_; ++row) merged[word] |= merged[words * row + word];
-      hits += static_cast<std::size_t>(__builtin_popcountll(merged[word]));
+#pragma omp for schedule(dynamic, 1)
+    for (int share = 0; share < shares; ++share) {
+      std::size_t hits = 0;
+      for (std::size_t word = shareBegin(words, share, shares);
+           word < shareBegin(words, share + 1, shares); ++word) {
+        for (int row = 1; row < verdict_rows_; ++row) merged[word] |= merged[words * row + word];
+        hits += static_cast<std::size_t>(__builtin_popcountll(merged[word]));
+      }
+      share_start[share + 1] = hits;
     }
-    share_start[thread + 1] = hits;
-#pragma omp barrier
 #pragma omp single
     {
-      for (int part = 0; part < team; ++part) share_start[part + 1] += share_start[part];
-      resizeDiscarding(outPairs, share_start[team]);
+      for (int share = 0; share < shares; ++share) share_start[share + 1] += share_start[share];
+      resizeDiscarding(outPairs, share_start[shares]);
     }
-    IdPair* out = outPairs.data() + share_start[thread];
-    for (std::size_t word = begin; word < end; ++word) {
-      const IdPair* candidates = canonical_pairs_.data() + 64 * word;
-      for (uint64_t bits = merged[word]; bits != 0; bits &= bits - 1)
-        *out++ = candidates[__builtin_ctzll(bits)];
+#pragma omp for schedule(dynamic, 1) nowait
+    for (int share = 0; share < shares; ++share) {
+      IdPair* out = outPairs.data() + share_start[share];
+      for (std::size_t word = shareBegin(words, share, shares);
+           word < shareBegin(words, share + 1, shares); ++word) {
+        const IdPair* candidates = canonical_pairs_.data() + 64 * word;
+        for (uint64_t bits = merged[word]; bits != 0; bits &= bits - 1)
+          *out++ = candidates[__builtin_ctzll(bits)];
+      }
     }
   }
 }

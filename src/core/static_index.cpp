@@ -3,8 +3,6 @@
 #include "core/assert.h"
 #include "core/axis_spread.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +11,7 @@
 #include "sap_broadphase/core/config.h"  // resolveThreadCount
 
 #include "core/tuning.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 
@@ -349,24 +348,18 @@ void StaticIndex::queryRange(const BoxSet& inQueries, const std::vector<uint32_t
 
 void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                            int inThreads, PairList& outPairs, PairOrder inOrder) const {
-  const std::size_t count = inQueryIndexes.size();
-  const int threads = static_cast<int>(
-      std::min<std::size_t>(resolveThreadCount(inThreads),
-                            std::max<std::size_t>(1, count / tuning::kMinQueriesPerThread)));
-  if (threads == 1) {
-    queryRange(inQueries, inQueryIndexes, 0, count, inOrder, outPairs);
+  // Units of queries, each unit's pairs in its own part, the parts joined in unit order: the
+  // sequential order for any thread count (a frame of one unit queries inline).
+  const WorkUnits units{inQueryIndexes.size()};
+  if (units.count() <= 1) {
+    queryRange(inQueries, inQueryIndexes, 0, units.items, inOrder, outPairs);
     return;
   }
-  // Contiguous shares, so that each thread prefetches its own next queries and the parts,
-  // joined in thread order, are the sequential order.
-  std::vector<PairList> parts(threads);
-#pragma omp parallel num_threads(threads)
-  {
-    const int thread = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    queryRange(inQueries, inQueryIndexes, count * thread / team, count * (thread + 1) / team,
-               inOrder, parts[thread]);
-  }
+  std::vector<PairList> parts(units.count());
+  runUnits(units.count(), resolveThreadCount(inThreads), [&](std::size_t inUnit) {
+    queryRange(inQueries, inQueryIndexes, units.begin(inUnit), units.end(inUnit), inOrder,
+               parts[inUnit]);
+  });
   std::size_t total = outPairs.size();
   for (const PairList& part : parts) total += part.size();
   outPairs.reserve(total);

@@ -77,10 +77,10 @@ struct PairingInput {
 /// How the last frame's pairing scatter laid out its entries: the split and thread count it
 /// was for, and how many entries each (partition, thread) segment held.
 struct ScatterLayout {
-  int threads = 0;
+  int slices = 0;  ///< slices of the secondary order (work units, more than threads)
   uint32_t shift = 0;
   uint32_t partitions = 0;
-  std::vector<std::size_t> segment_used;  ///< [partition * threads + thread]
+  std::vector<std::size_t> segment_used;  ///< [partition * slices + slice]
   std::vector<double> partition_ms;       ///< measured sweep time of each partition
 };
 
@@ -91,8 +91,8 @@ struct SweepWorkspace {
   std::vector<uint32_t> lows_before;   ///< Algorithm 3: rank counter at the slice's start
   std::vector<SuccTree> pairing;       ///< Algorithm 4: slab_count trees per thread
   Buffer<uint64_t> partition_entries;  ///< Algorithm 4: endpoints by partition
-  /// Algorithm 4: each partition's entries are one segment per thread (the thread's slice of
-  /// the secondary order), [segment_begin, segment_end), [partition * threads + thread].
+  /// Algorithm 4: each partition's entries are one segment per slice of the secondary order,
+  /// [segment_begin, segment_end), [partition * slices + slice].
   std::vector<std::size_t> segment_begin;
   std::vector<std::size_t> segment_end;
   std::vector<std::size_t> scatter_counts;  ///< [slice][partition] counters and limits
@@ -105,8 +105,9 @@ struct SweepWorkspace {
 void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObjects,
                                  SuccTree& ioActive, CandidateRanges& outRanges);
 
-/// Algorithm 3: the same result computed by inThreads threads on equal slices of the order,
-/// with per-slice sets (of objects, not ranks) joined by an all-prefix symmetric difference.
+/// Algorithm 3: the same result computed by up to inThreads threads on equal slices of the
+/// order (more slices than threads, claimed dynamically), with per-slice sets (of objects, not
+/// ranks) joined by an all-prefix symmetric difference.
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);
 

@@ -11,6 +11,7 @@
 #include "core/phase_timer.h"
 #include "core/sort_keys.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 
@@ -73,11 +74,12 @@ double SweepAndPrune::sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
     resizeDiscarding(sweep_order_, endpoints);
     uint64_t* packed = endpoint_words_.data();
     const KeyOrigin origin = key_origin_;
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-    for (uint32_t i = 0; i < n; ++i) {
-      packed[i] = packKeyIndex(origin.low(inAxis, low[i]), i);
-      packed[i + n] = packKeyIndex(origin.high(inAxis, high[i]), i + n);
-    }
+    runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+      for (auto i = static_cast<uint32_t>(inBegin); i < inEnd; ++i) {
+        packed[i] = packKeyIndex(origin.low(inAxis, low[i]), i);
+        packed[i + n] = packKeyIndex(origin.high(inAxis, high[i]), i + n);
+      }
+    });
   }
   PhaseTimer timer(ioReport.ms_sort);
   uint64_t* packed = endpoint_words_.data();
@@ -103,21 +105,22 @@ void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, FrameSpread& ioSpread, i
   // Reads the boxes in input order (sequential streams of the SoA arrays) and writes each one's
   // record at its rank: one scattered write a box instead of six scattered reads.
   const RankRange* ranges_of_object = ranges_.of_object.data();
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t rank = ranges_of_object[i].rank;
-    RankedKeys& keys = ranked_keys_[rank];
-    for (int axis = 0; axis < 3; ++axis) {
-      keys.lo[axis] = origin.low(axis, inBoxes.lo[axis][i]);
-      keys.hi[axis] = origin.high(axis, inBoxes.hi[axis][i]);
+  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (auto i = static_cast<uint32_t>(inBegin); i < inEnd; ++i) {
+      const uint32_t rank = ranges_of_object[i].rank;
+      RankedKeys& keys = ranked_keys_[rank];
+      for (int axis = 0; axis < 3; ++axis) {
+        keys.lo[axis] = origin.low(axis, inBoxes.lo[axis][i]);
+        keys.hi[axis] = origin.high(axis, inBoxes.hi[axis][i]);
+      }
+      SAP_ASSERT(keys.lo[0] <= keys.hi[0] && keys.lo[1] <= keys.hi[1] && keys.lo[2] <= keys.hi[2],
+                 "a key record with lo > hi (keys must round outward)");
+      if (slabbed)
+        ranked_slabs_[rank] = {static_cast<uint8_t>(slab_grid_.slabOf(third_low[i])),
+                               static_cast<uint8_t>(slab_grid_.slabOf(third_high[i]))};
+      if (filtered) ranked_filters_[rank] = {inBoxes.group(i), inBoxes.mask(i)};
     }
-    SAP_ASSERT(keys.lo[0] <= keys.hi[0] && keys.lo[1] <= keys.hi[1] && keys.lo[2] <= keys.hi[2],
-               "a key record with lo > hi (keys must round outward)");
-    if (slabbed)
-      ranked_slabs_[rank] = {static_cast<uint8_t>(slab_grid_.slabOf(third_low[i])),
-                             static_cast<uint8_t>(slab_grid_.slabOf(third_high[i]))};
-    if (filtered) ranked_filters_[rank] = {inBoxes.group(i), inBoxes.mask(i)};
-  }
+  });
 }
 
 void SweepAndPrune::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads,

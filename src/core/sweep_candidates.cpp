@@ -1,5 +1,4 @@
 // Candidate generation on the primary axis: Algorithm 1 (lines 5-14) and Algorithm 3.
-#include <omp.h>
 
 #include <algorithm>
 
@@ -7,6 +6,7 @@
 #include "core/buffers.h"
 #include "core/sweep.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -161,7 +161,9 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
 
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges) {
-  const int slices = std::max(1, inThreads);
+  // More slices than threads, each phase's slices claimed dynamically (work_units.h): a
+  // descheduled thread's slices are swept by the others.
+  const int slices = unitsForThreads(inThreads);
   const std::size_t words = (std::size_t{inObjects} + 63) / 64;
   resizeDiscarding(outRanges.of_object, inObjects);
   resizeDiscarding(outRanges.object_of_rank, inObjects);
@@ -169,21 +171,18 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
   ioWork.slice_start.resize(slices);
   ioWork.lows_before.assign(slices + 1, 0);
   RankRange* ranges = outRanges.of_object.data();
-#pragma omp parallel num_threads(slices)
+#pragma omp parallel num_threads(openTeam(slices, inThreads))
   {
-    // Slice t is thread t's; a team smaller than asked for (inside another parallel region)
-    // has each thread take every team-th slice.
-    const int first_slice = omp_get_thread_num();
-    const int team = omp_get_num_threads();
-    for (int slice = first_slice; slice < slices; slice += team)
+#pragma omp for schedule(dynamic, 1)
+    for (int slice = 0; slice < slices; ++slice)
       countAndCollectCrossing(inPrimaryOrder, inObjects, slice, slices, ioWork);
-#pragma omp barrier
 #pragma omp single
     for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-    for (int slice = first_slice; slice < slices; slice += team)
+#pragma omp for schedule(dynamic, 1)
+    for (int slice = 0; slice < slices; ++slice)
       rankLeavingBoxes(inPrimaryOrder, inObjects, slice, slices, ioWork, ranges);
-#pragma omp barrier
-    for (int slice = first_slice; slice < slices; slice += team) {
+#pragma omp for schedule(dynamic, 1) nowait
+    for (int slice = 0; slice < slices; ++slice) {
       SuccTree& active = ioWork.slice_start[slice];
       seedActiveFromEarlierSlices(inObjects, slice, ioWork, ranges, active);
       // Lines 16-23, with the ranks of the boxes that start in the slice.

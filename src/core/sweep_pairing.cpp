@@ -10,6 +10,7 @@
 #include "core/phase_timer.h"
 #include "core/sweep.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -75,16 +76,17 @@ inline Endpoint endpointOfStream(const uint64_t* inStream, std::size_t inK) {
           secondary_stream::high(inStream, inK)};
 }
 
-// Writes the secondary stream of the whole order, inThreads threads.
+// Writes the secondary stream of the whole order, on up to inThreads threads.
 void buildSecondaryStream(const PairingInput& inInput, int inThreads) {
   const std::size_t endpoints = 2 * std::size_t{inInput.objects};
   uint64_t* stream = inInput.stream_scratch;
-#pragma omp parallel for num_threads(inThreads) schedule(static)
-  for (std::size_t k = 0; k < endpoints; ++k) {
-    const Endpoint endpoint = endpointOfOrder(inInput, k);
-    stream[2 * k] = endpoint.rank_and_kind | (uint64_t{endpoint.low} << 32);
-    stream[2 * k + 1] = endpoint.high;
-  }
+  runOverItems(WorkUnits{endpoints}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) {
+      const Endpoint endpoint = endpointOfOrder(inInput, k);
+      stream[2 * k] = endpoint.rank_and_kind | (uint64_t{endpoint.low} << 32);
+      stream[2 * k + 1] = endpoint.high;
+    }
+  });
 }
 
 // Keys overlap on every axis. Without branches: all six comparisons, combined with bitwise
@@ -307,8 +309,8 @@ inline uint64_t entryFor(const Endpoint& inEndpoint, uint32_t inPartition,
 
 // Slice inSlice of inSlices of the secondary order, [outBegin, outEnd): the same every frame
 // for the same n and slice count, so that a segment's size carries over from frame to frame.
-// Slice t is thread t's; a team smaller than asked for (inside another parallel region) has
-// each thread take every team-th slice, so the layout never depends on the team's size.
+// Slices are work units (more than threads, claimed dynamically), so the layout never
+// depends on the team's size.
 inline void sliceOf(uint32_t inObjects, int inSlice, int inSlices, std::size_t& outBegin,
                     std::size_t& outEnd) {
   const std::size_t endpoints = 2 * std::size_t{inObjects};
@@ -337,20 +339,20 @@ inline std::size_t counterStride(uint32_t inPartitions) {
 // Scatter from the exact counts: the secondary stream, a counting pass over it, then the
 // placement pass. Segments are packed without gaps. Also estimates each partition's work, its
 // entries plus the candidate ranks its low entries span, into ioWork.partition_work.
-void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
-                    SweepWorkspace& ioWork) {
-  buildSecondaryStream(inInput, inSlices);
+void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
+                    const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+  buildSecondaryStream(inInput, inThreads);
   const uint64_t* stream = inInput.stream_scratch;
   const uint32_t partitions = inSplit.count;
   std::vector<std::size_t>& counts = ioWork.scatter_counts;
   const std::size_t stride = counterStride(partitions);
   counts.assign(std::size_t(inSlices) * stride, 0);
   ioWork.partition_work.assign(partitions, 0);
-#pragma omp parallel num_threads(inSlices)
+#pragma omp parallel num_threads(openTeam(inSlices, inThreads))
   {
-    const int team = omp_get_num_threads();
     uint32_t first = 0, last = 0;
-    for (int slice = omp_get_thread_num(); slice < inSlices; slice += team) {
+#pragma omp for schedule(dynamic, 1)
+    for (int slice = 0; slice < inSlices; ++slice) {
       std::size_t begin = 0, end = 0;
       sliceOf(inInput.objects, slice, inSlices, begin, end);
       // Entry counts at [0, partitions), work at [partitions, 2 * partitions).
@@ -365,7 +367,6 @@ void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartiti
         my_work[first] += (endpoint.high - endpoint.low) & ~highMask(endpoint.rank_and_kind);
       }
     }
-#pragma omp barrier
 #pragma omp single
     {
       std::size_t offset = 0;
@@ -385,7 +386,8 @@ void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartiti
       resizeDiscarding(ioWork.partition_entries, offset);
     }
     uint64_t* out = ioWork.partition_entries.data();
-    for (int slice = omp_get_thread_num(); slice < inSlices; slice += team) {
+#pragma omp for schedule(dynamic, 1) nowait
+    for (int slice = 0; slice < inSlices; ++slice) {
       std::size_t begin = 0, end = 0;
       sliceOf(inInput.objects, slice, inSlices, begin, end);
       std::size_t* my_counts = &counts[std::size_t(slice) * stride];
@@ -459,8 +461,8 @@ bool scatterSliceIntoRoom(const PairingInput& inInput, int inSlice, int inSlices
 // Scatter in one pass, straight from the secondary order and the boxes' records, into
 // segments sized from the last frame's (no stream, no counting pass). Returns false, with the
 // entries incomplete, when a segment outgrew its room: then the caller scatters counted.
-bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
-                           SweepWorkspace& ioWork) {
+bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThreads,
+                           const RankPartitions& inSplit, SweepWorkspace& ioWork) {
   const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   std::size_t offset = 0;
   for (std::size_t s = 0; s < segments; ++s) {
@@ -473,8 +475,9 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, const Rank
   const std::size_t stride = counterStride(inSplit.count);
   ioWork.scatter_counts.assign(std::size_t(inSlices) * stride, 0);
   bool fits = true;
-#pragma omp parallel num_threads(inSlices) reduction(&& : fits)
-  for (int slice = omp_get_thread_num(); slice < inSlices; slice += omp_get_num_threads()) {
+#pragma omp parallel for num_threads(openTeam(inSlices, inThreads)) schedule(dynamic, 1) \
+    reduction(&& : fits)
+  for (int slice = 0; slice < inSlices; ++slice) {
     std::size_t* cursor = &ioWork.scatter_counts[std::size_t(slice) * stride];
     fits = scatterSliceIntoRoom(inInput, slice, inSlices, inSplit, cursor, ioWork) && fits;
   }
@@ -482,22 +485,22 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, const Rank
 }
 
 // Copies each endpoint of the secondary order to the entry segments of the partitions it
-// matters to, keeping sweep order within each (thread t's segment of a partition holds the
-// entries of its slice of the order, so the segments in thread order are in sweep order).
-// When the last frame had the same split, straight into its layout; otherwise, or when a
-// segment outgrows it, counted.
-void scatterToPartitions(const PairingInput& inInput, int inThreads, const RankPartitions& inSplit,
-                         SweepWorkspace& ioWork) {
-  const std::size_t segments = std::size_t(inSplit.count) * inThreads;
+// matters to, keeping sweep order within each (slice s's segment of a partition holds the
+// entries of slice s of the order, so the segments in slice order are in sweep order), the
+// inSlices slices on up to inThreads threads. When the last frame had the same split, straight
+// into its layout; otherwise, or when a segment outgrows it, counted.
+void scatterToPartitions(const PairingInput& inInput, int inSlices, int inThreads,
+                         const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+  const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   ioWork.segment_begin.resize(segments);
   ioWork.segment_end.resize(segments);
   ScatterLayout& layout = ioWork.last_layout;
-  const bool same_split = layout.threads == inThreads && layout.shift == inSplit.shift &&
+  const bool same_split = layout.slices == inSlices && layout.shift == inSplit.shift &&
                           layout.partitions == inSplit.count;
-  if (!same_split || !scatterIntoLastLayout(inInput, inThreads, inSplit, ioWork))
-    scatterCounted(inInput, inThreads, inSplit, ioWork);
+  if (!same_split || !scatterIntoLastLayout(inInput, inSlices, inThreads, inSplit, ioWork))
+    scatterCounted(inInput, inSlices, inThreads, inSplit, ioWork);
   if (!same_split) layout.partition_ms.assign(inSplit.count, 0.0);
-  layout.threads = inThreads;
+  layout.slices = inSlices;
   layout.shift = inSplit.shift;
   layout.partitions = inSplit.count;
   layout.segment_used.resize(segments);
@@ -552,14 +555,14 @@ RankPartitions partitionRanks(uint32_t inObjects, int inThreads) {
 // (slab_count trees of the partition's size, left empty again by the sweep), and records how
 // long it took.
 void sweepPartition(const PairingInput& inInput, SweepWorkspace& ioWork,
-                    const RankPartitions& inSplit, int inThreads, uint32_t inPartition,
+                    const RankPartitions& inSplit, int inSlices, uint32_t inPartition,
                     SuccTree* ioTrees, PairChunks& outPairs) {
   const Clock::time_point start = Clock::now();
   const uint32_t rank_begin = inSplit.begin(inPartition);
   const uint32_t rank_end = std::min(inInput.objects, rank_begin + inSplit.size());
   PartitionSweep sweep(inInput, rank_begin, rank_end, ioTrees, outPairs);
-  for (int t = 0; t < inThreads; ++t) {
-    const std::size_t segment = std::size_t(inPartition) * inThreads + t;
+  for (int slice = 0; slice < inSlices; ++slice) {
+    const std::size_t segment = std::size_t(inPartition) * inSlices + slice;
     const std::size_t begin = ioWork.segment_begin[segment];
     const std::size_t end = ioWork.segment_end[segment];
     sweep.run(PartitionReader{ioWork.partition_entries.data() + begin, end - begin});
@@ -617,7 +620,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
   // order; on the big trees every insert, erase and range walk would miss the cache.
   const RankPartitions split = partitionRanks(n, 1);
-  scatterToPartitions(inInput, 1, split, ioWork);
+  scatterToPartitions(inInput, 1, 1, split, ioWork);
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
   for (uint32_t p = 0; p < split.count; ++p)
     sweepPartition(inInput, ioWork, split, 1, p, ioWork.pairing.data(), outPairs);
@@ -627,22 +630,23 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
                   std::vector<PairChunks>& outPairsPerThread) {
   const int threads = std::max(1, inThreads);
   const RankPartitions split = partitionRanks(inInput.objects, threads);  // Δ and m
-  scatterToPartitions(inInput, threads, split, ioWork);
+  const int slices = unitsForThreads(threads);
+  scatterToPartitions(inInput, slices, threads, split, ioWork);
   orderPartitions(split, ioWork);
   SAP_ASSERT(isPermutation(ioWork.partition_order, split.count),
              "partitions handed out twice or never");
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, split.size());
   outPairsPerThread.resize(threads);
-#pragma omp parallel num_threads(threads)
+  for (PairChunks& pairs : outPairsPerThread) pairs.clear();  // a smaller team leaves some
+#pragma omp parallel num_threads(openTeam(split.count, threads))
   {
     const int thread = omp_get_thread_num();
     SuccTree* trees = &ioWork.pairing[std::size_t(thread) * slab_count];
     PairChunks& pairs = outPairsPerThread[thread];
-    pairs.clear();
 #pragma omp for schedule(dynamic, 1)
     for (uint32_t k = 0; k < split.count; ++k)
-      sweepPartition(inInput, ioWork, split, threads, ioWork.partition_order[k], trees, pairs);
+      sweepPartition(inInput, ioWork, split, slices, ioWork.partition_order[k], trees, pairs);
   }
 }
 

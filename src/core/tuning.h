@@ -61,8 +61,6 @@ constexpr double kCellsPerBox = 1.0;
 /// A box covering more cells than this goes to the large list: listing it in every cell would
 /// cost more memory and cell visits than testing it against each query.
 constexpr uint64_t kMaxCellsPerBox = 64;
-/// Fewest queries worth a thread of their own in queryAll.
-constexpr std::size_t kMinQueriesPerThread = 64;
 /// Queries ahead whose cell offsets, slot lists and slots a query fetches (three stages).
 constexpr std::size_t kSceneryPrefetchAhead[3] = {12, 6, 3};
 /// Most cells (and slots a cell row) a query prefetches: a box over more is large, and its
@@ -113,8 +111,6 @@ constexpr double kOriginDriftInSpans = 0.125;
 
 // ---- Box copies and the frame history ----
 
-/// Below this many boxes a copy takes less than waking a second thread would.
-constexpr std::size_t kParallelCopyBoxes = std::size_t{1} << 15;
 /// Boxes the history compares, then copies, together: a block of records read into the
 /// thread's stack (6 bounds and an id a box, 28 KB) stays in L1/L2 while it is compared and
 /// written, and a block with no change is never written.
