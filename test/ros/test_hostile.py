@@ -67,13 +67,20 @@ def marker_array_claiming_markers(count):
     return struct.pack("<I", count)
 
 
+def box_marker(marker_type, ns, marker_id, x=0.0):
+    """A unit CUBE or CUBE_LIST marker in `map`, centred at (x, 0, 0)."""
+    marker = Marker(type=marker_type, action=Marker.ADD, ns=ns, id=marker_id)
+    marker.header.frame_id = "map"
+    marker.pose.orientation.w = 1.0
+    marker.pose.position.x = x
+    marker.scale.x = marker.scale.y = marker.scale.z = 1.0
+    return marker
+
+
 def cube_list_claiming_points(count):
     """One CUBE_LIST marker whose points prefix claims `count` points, none following (the
     marker's other fields do)."""
-    marker = Marker(type=Marker.CUBE_LIST, action=Marker.ADD, ns="lying", id=1)
-    marker.header.frame_id = "map"
-    marker.pose.orientation.w = 1.0
-    marker.scale.x = marker.scale.y = marker.scale.z = 1.0
+    marker = box_marker(Marker.CUBE_LIST, "lying", 1)
     whole = serialized(MarkerArray(markers=[marker]))
     # points is the first array after frame_locked; with no points, colors, text or mesh, the
     # marker ends with: points (4), colors (4), text (4), mesh_resource (4), mesh_use_embedded (1).
@@ -138,17 +145,8 @@ class Hostile(unittest.TestCase):
 
     def wait_refusal(self, accept, republish):
         """Waits for a refusal in stats that accept() likes, republishing meanwhile."""
-        seen = 0
-        deadline = rospy.get_time() + WAIT
-        while rospy.get_time() < deadline:
-            republish()
-            with self.lock:
-                self.lock.wait(0.5)
-                for msg in self.stats[seen:]:
-                    if msg.path == "refused" and accept(msg.last_refusal):
-                        return msg
-                seen = len(self.stats)
-        return None
+        return self.wait_stats(lambda msg: msg.path == "refused" and accept(msg.last_refusal),
+                               republish, 0)
 
     def expect_alive(self):
         """The node still computes: a BoxArray frame on `boxes` is answered."""
@@ -212,10 +210,7 @@ class Hostile(unittest.TestCase):
         forgotten: when it comes back with another cube, its old cube is not in the world."""
         self.expect_alive()  # `boxes` holds 2 boxes for good (source_timeout 0)
         pub = self.publisher("leaving_markers", MarkerArray._type, MarkerArray._md5sum)
-        cube = Marker(type=Marker.CUBE, action=Marker.ADD, ns="leaving", id=1)
-        cube.header.frame_id = "map"
-        cube.pose.orientation.w = 1.0
-        cube.scale.x = cube.scale.y = cube.scale.z = 1.0
+        cube = box_marker(Marker.CUBE, "leaving", 1)
         send = lambda markers: pub.publish(pub.data_class(serialized(MarkerArray(markers))))
         with self.lock:
             seen = len(self.stats)
@@ -231,11 +226,7 @@ class Hostile(unittest.TestCase):
         self.assertIsNotNone(timed_out, "the marker source never timed out")
         with self.lock:
             seen = len(self.stats)
-        other = Marker(type=Marker.CUBE, action=Marker.ADD, ns="leaving", id=2)
-        other.header.frame_id = "map"
-        other.pose.orientation.w = 1.0
-        other.pose.position.x = 10.0
-        other.scale.x = other.scale.y = other.scale.z = 1.0
+        other = box_marker(Marker.CUBE, "leaving", 2, x=10.0)
         back = self.wait_stats(lambda s: s.sources == 2 and s.path != "refused",
                                lambda: send([other]), seen)
         self.assertIsNotNone(back, "the marker source never joined again")
