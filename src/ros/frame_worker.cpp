@@ -115,6 +115,7 @@ void FrameWorker::run() {
           if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
             computeFrame();
           ingest_.publishIdNames();
+          ingest_.countLostMessages();
           status_.updateDiagnostics();
         },
         [&](const std::string& inWhat) { recoverFrom(inWhat); });

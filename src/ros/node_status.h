@@ -47,6 +47,9 @@ class NodeStatus {
   void refuse(const std_msgs::Header& inHeader, std::size_t inBoxes, const std::string& inReason);
   /// Counts and logs a source frame that found no transform (any thread).
   void skip(const std::string& inMessage);
+  /// Counts and logs inCount messages of a stateful source (MarkerArray: each message says what
+  /// changed) lost in its subscriber queue before they were read (worker thread).
+  void lose(uint64_t inCount, const std::string& inTopic);
   /// Counts and logs a source gone silent (worker thread).
   void timeOut(const std::string& inMessage);
   /// Counts a computed frame and publishes its stats with the engine's report.
@@ -65,6 +68,7 @@ class NodeStatus {
     uint64_t refused = 0;        // invalid frames, and sources left out of a frame
     uint64_t skipped = 0;        // source frames without a transform into ~fixed_frame
     uint64_t timed_out = 0;      // sources dropped after ~source_timeout of silence
+    uint64_t lost = 0;           // MarkerArray messages lost in a subscriber queue
     uint64_t computed = 0;       // frames computed
     std::string last_refusal;    // why the last frame or source was refused
     std::string last_error;      // the last refusal, skip or time-out, for /diagnostics

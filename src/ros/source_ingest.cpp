@@ -1,7 +1,12 @@
 // SourceIngest: subscriptions, the latest frame of each source, tf2.
 #include "source_ingest.h"
 
+#include <algorithm>
 #include <utility>
+
+#include <ros/network.h>
+#include <ros/xmlrpc_manager.h>
+#include <xmlrpcpp/XmlRpcClient.h>
 
 #include <tf2/exceptions.h>
 #include <topic_tools/shape_shifter.h>
@@ -15,6 +20,12 @@
 namespace sap_broadphase {
 
 namespace {
+
+/// Subscriber queue of a MarkerArray source at least: a burst of incremental updates (rviz
+/// tools publish one marker per message) waits here while the callback converts.
+constexpr int kStatefulQueueSize = 1000;
+/// Wall seconds between two looks at roscpp's drop counts.
+constexpr double kLossCheckSeconds = 0.5;
 
 /// The node's output topic that inTopic resolves to, or nullptr.
 const char* ownOutputNamed(const ros::NodeHandle& inNode, const std::string& inTopic) {
@@ -68,6 +79,12 @@ void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, 
     status_.refuse(std_msgs::Header(), 0, sourceName(key) + ": " + inReason);
   };
   const WireLayout& layout = wireLayout(inSpec.type);
+  if (inSpec.type == InputType::kMarkerArray) {
+    // A MarkerArray only says what changed: a message lost in the queue is an update the
+    // node never sees. Its queue holds a burst; what it still drops is counted.
+    inQueueSize = std::max(inQueueSize, kStatefulQueueSize);
+    stateful_topics_.push_back(ioNode.resolveName(topic));
+  }
   if (inSpec.takesBoxArrayAsIs()) {
     using Event = const ros::MessageEvent<BoxArray const>&;
     options.initByFullCallbackType<Event>(topic, static_cast<uint32_t>(inQueueSize), [](Event) {});
@@ -255,6 +272,55 @@ void SourceIngest::take(std::map<SourceKey, Delivery>& outDeliveries, BoxArrayCo
     }
   }
   any_waiting_ = !waiting_.empty() || pending_scenery_;
+}
+
+void SourceIngest::countLostMessages() {
+  const auto now = std::chrono::steady_clock::now();
+  if (stateful_topics_.empty() ||
+      now - loss_checked_ < std::chrono::duration<double>(kLossCheckSeconds))
+    return;
+  loss_checked_ = now;
+  // roscpp counts, per publisher link, the messages its full subscriber queue dropped, and
+  // tells them only through the node's XML-RPC getBusStats: subscriptions are [[topic,
+  // [[connection id, bytes, messages, drops, ...], ...]], ...].
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(ros::XMLRPCManager::instance()->getServerURI(), host, port)) return;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue params, result;
+  params[0] = ros::this_node::getName();
+  using Value = XmlRpc::XmlRpcValue;
+  if (!client.execute("getBusStats", params, result) || result.getType() != Value::TypeArray ||
+      result.size() < 2)
+    return;
+  // The protocol's answer is [code, text, [publications, subscriptions, services]]; roscpp's
+  // server (noetic) writes its statistics over the code and text: [publications,
+  // subscriptions, ...]. Both are read.
+  Value* found = nullptr;
+  if (result[0].getType() == Value::TypeArray)
+    found = &result[1];
+  else if (result.size() >= 3 && result[2].getType() == Value::TypeArray && result[2].size() >= 2)
+    found = &result[2][1];
+  if (!found || found->getType() != Value::TypeArray) return;
+  Value& subscriptions = *found;
+  std::map<std::pair<std::string, int>, int> drops;
+  for (int i = 0; i < subscriptions.size(); ++i) {
+    const std::string topic = subscriptions[i][0];
+    if (std::find(stateful_topics_.begin(), stateful_topics_.end(), topic) ==
+        stateful_topics_.end())
+      continue;
+    XmlRpc::XmlRpcValue& links = subscriptions[i][1];
+    uint64_t lost = 0;
+    for (int k = 0; k < links.size(); ++k) {
+      const std::pair<std::string, int> link{topic, static_cast<int>(links[k][0])};
+      const int count = links[k][3];
+      const auto seen = drops_seen_.find(link);
+      lost += static_cast<uint64_t>(count - (seen == drops_seen_.end() ? 0 : seen->second));
+      drops[link] = count;
+    }
+    if (lost > 0) status_.lose(lost, topic);
+  }
+  drops_seen_ = std::move(drops);  // links gone are forgotten
 }
 
 void SourceIngest::forget(const SourceKey& inKey) {

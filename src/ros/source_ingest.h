@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -76,6 +77,10 @@ class SourceIngest {
   /// time (worker thread, once per round: a burst of new names costs one message, not one per
   /// name).
   void publishIdNames();
+  /// Counts the MarkerArray messages roscpp dropped from a full subscriber queue since the last
+  /// call (roscpp's own count, read from the node's getBusStats) into the status. Looks at
+  /// most every kLossCheckSeconds (worker thread).
+  void countLostMessages();
   /// The source inKey timed out: its adapter forgets the publisher's state (worker thread).
   void forget(const SourceKey& inKey);
 
@@ -124,6 +129,10 @@ class SourceIngest {
   std::mutex id_names_mutex_;
   std::size_t id_names_published_ = 0;  // names in the last ~id_names (under the mutex above)
   std_msgs::Header id_names_header_;    // of the last message an adapter converted
+
+  std::vector<std::string> stateful_topics_;  // resolved names of the MarkerArray sources
+  std::map<std::pair<std::string, int>, int> drops_seen_;  // by topic and connection id
+  std::chrono::steady_clock::time_point loss_checked_;     // (worker thread)
 
   std::mutex mutex_;                       // guards what the worker takes
   std::map<SourceKey, Delivery> pending_;  // ready for the worker
