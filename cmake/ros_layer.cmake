@@ -13,6 +13,7 @@ add_library(${PROJECT_NAME}_ros
   src/ros/node_reconfigure.cpp
   src/ros/node_status.cpp
   src/ros/pairs_service.cpp
+  src/ros/publisher_probe.cpp
   src/ros/source_ingest.cpp
   src/ros/sources.cpp
   src/ros/wire_layout.cpp

@@ -112,6 +112,13 @@ void NodeStatus::lose(uint64_t inCount, const std::string& inTopic) {
   ROS_WARN_THROTTLE(log_period_, "sap_broadphase: %s", message.c_str());
 }
 
+void NodeStatus::setRefusedPublishers(const std::vector<std::string>& inNames) {
+  std::string names;
+  for (const std::string& name : inNames) names += (names.empty() ? "" : ", ") + name;
+  std::lock_guard<std::mutex> lock(mutex_);
+  counters_.refused_publishers = names;
+}
+
 void NodeStatus::timeOut(const std::string& inMessage) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -197,6 +204,7 @@ void NodeStatus::diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus)
   ioStatus.add("frames skipped (no transform)", counters_.skipped);
   ioStatus.add("sources timed out", counters_.timed_out);
   ioStatus.add("MarkerArray messages lost", counters_.lost);
+  ioStatus.add("refused publishers", counters_.refused_publishers);
   ioStatus.add("last error", counters_.last_error);
   reported_ = counters_;
   reported_at_ = now;

@@ -64,6 +64,17 @@ SourceIngest::SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams,
     subscribe(ioNode, spec, inParams.boxes_queue_size);
   }
   if (!adapters_.empty()) id_names_pub_ = ioNode.advertise<IdNames>("id_names", 1, true);
+  publisher_probe_ = std::make_unique<PublisherProbe>(
+      probed_topics_,
+      [this](const std::string& inTopic, const std::string& inPublisher,
+             const std::string& inReason) {
+        status_.refuse(std_msgs::Header(), 0,
+                       sourceName(SourceKey{inTopic, inPublisher, ""}) + ": " + inReason +
+                           ": its connection is refused");
+      },
+      [this](const std::vector<std::string>& inRefused) {
+        status_.setRefusedPublishers(inRefused);
+      });
 }
 
 void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, int inQueueSize) {
@@ -117,9 +128,18 @@ void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, 
           return checkPublishedType(type, field("type"), field("md5sum"));
         },
         refuse);
+    // The definition the node decodes, not "*": roscpp would fix the topic's MD5 sum to its
+    // first publisher's, and one publisher of another definition would lock the others out.
+    // Publishers of another definition are refused by roscpp and named by the probe.
+    options.md5sum = inputTypeInfo(type).md5;
+    options.datatype = inputTypeInfo(type).name;
   }
   options.transport_hints = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(ioNode.subscribe(options));
+  const InputType type = inSpec.type;
+  probed_topics_.emplace_back(ioNode.resolveName(topic), [type](const PublishedType& inPublished) {
+    return checkPublishedType(type, inPublished.type, inPublished.md5);
+  });
 }
 
 void SourceIngest::refuseUnhandled(const std::string& inTopic, const std::string& inWhat) {
@@ -186,6 +206,7 @@ SourceIngest::~SourceIngest() {
 }
 
 void SourceIngest::stop() {
+  publisher_probe_.reset();
   // A subscriber's shutdown waits for its callback in progress; the listener's reset joins its
   // thread, the only one that calls the tf2 change listener.
   for (ros::Subscriber& subscriber : subscribers_) subscriber.shutdown();

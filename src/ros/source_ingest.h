@@ -21,6 +21,7 @@
 
 #include "node_params.h"
 #include "node_status.h"
+#include "publisher_probe.h"
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sources.h"
@@ -130,7 +131,9 @@ class SourceIngest {
   std::size_t id_names_published_ = 0;  // names in the last ~id_names (under the mutex above)
   std_msgs::Header id_names_header_;    // of the last message an adapter converted
 
-  std::vector<std::string> stateful_topics_;  // resolved names of the MarkerArray sources
+  std::vector<std::pair<std::string, PublisherProbe::Check>> probed_topics_;  // resolved
+  std::unique_ptr<PublisherProbe> publisher_probe_;  // after the subscriptions, stopped first
+  std::vector<std::string> stateful_topics_;         // resolved names of the MarkerArray sources
   std::map<std::pair<std::string, int>, int> drops_seen_;  // by topic and connection id
   std::chrono::steady_clock::time_point loss_checked_;     // (worker thread)
 

@@ -17,6 +17,7 @@ import unittest
 import genpy
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray
 from sap_broadphase.msg import BoxArray, FrameStats, PairArray
 from sap_broadphase.srv import ComputePairs, ComputePairsRequest, ComputePairsResponse
 from std_msgs.msg import Header
@@ -268,6 +269,46 @@ class Hostile(unittest.TestCase):
         told = self.wait_stats(lambda s: s.messages_lost > 0 or s.boxes >= count,
                                lambda: boxes.publish(frame), seen)
         self.assertIsNotNone(told, "markers of the burst lost without a trace")
+
+    def test_a_publisher_of_another_md5_never_locks_the_topic(self):
+        """wrong_md5_publisher publishes on shared_vision from the start: it is refused by name
+        (stats and /diagnostics), and this test's publisher of the right definition, connecting
+        after it, still feeds the source (its box pairs with those of `boxes`)."""
+        self.expect_alive()
+        refusal = self.wait_refusal(
+            lambda text: "/wrong_md5_publisher" in text and "shared_vision" in text and
+            "with MD5 sum 00000000000000000000000000000000" in text, lambda: None)
+        self.assertIsNotNone(refusal, "the publisher of another MD5 sum was not refused by name")
+        named = threading.Event()
+
+        def on_diagnostics(msg):
+            for status in msg.status:
+                for pair in status.values:
+                    if pair.key == "refused publishers" and "/wrong_md5_publisher" in pair.value:
+                        named.set()
+
+        diagnostics = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+        self.assertTrue(named.wait(WAIT), "/diagnostics does not name the refused publisher")
+        diagnostics.unregister()
+        classes = foreign_classes("vision_msgs/BoundingBox3DArray")
+        array_class = classes["vision_msgs/BoundingBox3DArray"]
+        box = classes["vision_msgs/BoundingBox3D"]()
+        box.center.orientation.w = 1.0
+        box.center.position.x = 0.5
+        box.size.x = box.size.y = box.size.z = 1.0
+        array = array_class(boxes=[box])
+        array.header.frame_id = "map"
+        pub = self.publisher("shared_vision", array_class._type, array_class._md5sum)
+        with self.lock:
+            seen = len(self.pairs)
+        deadline = rospy.get_time() + WAIT
+        while rospy.get_time() < deadline:
+            pub.publish(pub.data_class(serialized(array)))
+            with self.lock:
+                self.lock.wait(0.5)
+                if any(50000 <= i < 60000 for p in self.pairs[seen:] for i in p.pairs):
+                    return
+        self.fail("the right publisher of shared_vision never fed the source")
 
     def call_raw(self, data):
         request_class = raw_class(ComputePairsRequest._type, ComputePairsRequest._md5sum)
