@@ -310,6 +310,57 @@ class Hostile(unittest.TestCase):
                     return
         self.fail("the right publisher of shared_vision never fed the source")
 
+    def test_sources_of_every_type_with_a_fixed_frame(self):
+        """The `framed` node (~fixed_frame map, tf map -> robot: +10 in x): a box of every
+        source type, published in `robot` around (0.5, 0, 0), is moved into `map` and pairs
+        with the BoxArray box [10, 11] x [0, 1]^2 published there."""
+        def unit_box(box, pose_field, size_field):
+            pose = getattr(box, pose_field)
+            pose.position.x = 0.5
+            pose.orientation.w = 1.0
+            size = getattr(box, size_field)
+            size.x = size.y = size.z = 1.0
+            return box
+
+        messages = {"markers_in": MarkerArray([box_marker(Marker.CUBE, "m", 0, x=0.5)])}
+        for m in messages["markers_in"].markers:
+            m.header.frame_id = "robot"
+        vision = foreign_classes("vision_msgs/BoundingBox3DArray")
+        array = vision["vision_msgs/BoundingBox3DArray"](
+            boxes=[unit_box(vision["vision_msgs/BoundingBox3D"](), "center", "size")])
+        messages["vision_in"] = array
+        detections = foreign_classes("vision_msgs/Detection3DArray")
+        detection = detections["vision_msgs/Detection3D"]()
+        unit_box(detection.bbox, "center", "size")
+        messages["detections_in"] = detections["vision_msgs/Detection3DArray"](
+            detections=[detection])
+        jsk = foreign_classes("jsk_recognition_msgs/BoundingBoxArray")
+        messages["jsk_in"] = jsk["jsk_recognition_msgs/BoundingBoxArray"](
+            boxes=[unit_box(jsk["jsk_recognition_msgs/BoundingBox"](), "pose", "dimensions")])
+        messages["boxes_offset"] = BoxArray(bounds=[0, -0.5, -0.5, 1, 0.5, 0.5])
+        for message in messages.values():
+            if hasattr(message, "header"):
+                message.header.frame_id = "robot"
+        publishers = {topic: self.publisher("framed/" + topic, message._type, message._md5sum)
+                      for topic, message in messages.items()}
+        anchor = BoxArray(ids=[1], bounds=[10, 0, 0, 11, 1, 1])
+        anchor.header.frame_id = "map"
+        anchor_pub = self.publisher("framed/boxes", BoxArray._type, BoxArray._md5sum)
+        expected = {(1, offset) for offset in (1000, 2000, 3000, 4000, 5000)}
+        got = set()
+        pairs_seen = []
+        pairs_sub = rospy.Subscriber("framed/pairs", PairArray, pairs_seen.append)
+        deadline = rospy.get_time() + WAIT
+        while rospy.get_time() < deadline and not expected <= got:
+            anchor_pub.publish(anchor_pub.data_class(serialized(anchor)))
+            for topic, message in messages.items():
+                publishers[topic].publish(publishers[topic].data_class(serialized(message)))
+            rospy.sleep(0.5)
+            for msg in list(pairs_seen):
+                got.update(zip(msg.pairs[0::2], msg.pairs[1::2]))
+        pairs_sub.unregister()
+        self.assertLessEqual(expected, got, "missing pairs with the fixed frame's box")
+
     def call_raw(self, data):
         request_class = raw_class(ComputePairsRequest._type, ComputePairsRequest._md5sum)
 
