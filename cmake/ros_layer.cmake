@@ -13,8 +13,10 @@ add_library(${PROJECT_NAME}_ros
   src/ros/node_reconfigure.cpp
   src/ros/node_status.cpp
   src/ros/pairs_service.cpp
+  src/ros/publisher_probe.cpp
   src/ros/source_ingest.cpp
   src/ros/sources.cpp
+  src/ros/wire_layout.cpp
 )
 target_link_libraries(${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
 # node_reconfigure.cpp and node_params.cpp include the header generated from cfg/BroadphaseNode.cfg.

@@ -5,14 +5,16 @@
 #   scripts/fuzz.sh                       # 20000 runs per target
 #   scripts/fuzz.sh --runs 100000
 #   scripts/fuzz.sh --seconds 120         # per target
-#   scripts/fuzz.sh --target text         # one target: text, boxset, box_array or sequence
+#   scripts/fuzz.sh --target text         # one target: text, boxset, box_array, sequence or wire
 #   scripts/fuzz.sh --save                # merge new coverage into fuzz/corpus/ afterwards
 #
 # Targets: fuzz_text (readBoxText, round trip, engine vs oracle), fuzz_boxset (validate() on
 # raw box sets, engine vs oracle), fuzz_box_array (BoxArray deserialization and the ROS
 # conversions, engine vs oracle), fuzz_sequence (the input picks a configuration, with every
 # skip switchable, and the edits between frames; one engine, every frame vs the oracle,
-# fuzz/sequence_checks.h). The ROS message headers are generated here with gencpp, so
+# fuzz/sequence_checks.h), fuzz_wire (every type the node reads from the wire, arbitrary,
+# truncated and lying bytes through WireLayout and roscpp, fuzz/wire_checks.h). The ROS
+# message headers are generated here with gencpp, so
 # no catkin workspace is needed. Crashes land in build/fuzz/crashes/; copy each one into
 # fuzz/regressions/<target>/ so that test_fuzz_replay (test/stress) replays it for ever.
 # Exits non-zero when a target finds a crash.
@@ -21,7 +23,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT="$ROOT/build/fuzz"
 RUNS=20000
 SECONDS_PER_TARGET=""
-TARGETS=(text boxset box_array sequence)
+TARGETS=(text boxset box_array sequence wire)
 SAVE=0
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -38,7 +40,8 @@ CXX=${CXX_FUZZ:-clang++}
 command -v "$CXX" >/dev/null || { echo "fuzz.sh: $CXX not found (apt-get install clang libclang-rt-dev libomp-dev)" >&2; exit 2; }
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 FLAGS="-std=c++17 -O1 -g -fno-omit-frame-pointer -fopenmp -Wall -Wextra $SAN"
-INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/fuzz -I$ROOT/test/stress -I$OUT/gen"
+INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/src/ros -I$ROOT/fuzz -I$ROOT/test/stress -I$OUT/gen"
+FLAGS="$FLAGS -DSAP_ADAPTERS_MSGS_DIR=\"$ROOT/src/ros/adapters_msgs\""
 mkdir -p "$OUT/obj" "$OUT/gen/sap_broadphase" "$OUT/crashes"
 
 # ROS message headers straight from the .msg files (Debian's gencpp).
@@ -49,6 +52,11 @@ for msg in BoxArray PairArray; do
       -o "$OUT/gen/sap_broadphase" -e /usr/share/gencpp >/dev/null
   fi
 done
+if [ ! -f "$OUT/gen/sap_broadphase/ComputePairs.h" ] || [ "$ROOT/srv/ComputePairs.srv" -nt "$OUT/gen/sap_broadphase/ComputePairs.h" ]; then
+  PYENV_VERSION=system /usr/bin/python3 /usr/lib/gencpp/gen_cpp.py "$ROOT/srv/ComputePairs.srv" \
+    -Isap_broadphase:"$ROOT/msg" -Istd_msgs:/usr/share/std_msgs/msg -p sap_broadphase \
+    -o "$OUT/gen/sap_broadphase" -e /usr/share/gencpp >/dev/null
+fi
 
 # Objects: instrumented for coverage (fuzzer-no-link) and the sanitizers; rebuilt when older
 # than their source or any header.
@@ -66,6 +74,7 @@ export -f compile
 export CXX FLAGS INCLUDES ROOT newest_header
 sources=("$ROOT"/src/core/*.cpp "$ROOT/src/ros/conversions.cpp" "$ROOT/fuzz/fuzz_checks.cpp" \
          "$ROOT/fuzz/box_array_checks.cpp" "$ROOT/fuzz/sequence_checks.cpp" \
+         "$ROOT/fuzz/wire_checks.cpp" "$ROOT/src/ros/wire_layout.cpp" \
          "$ROOT/test/stress/stress_sequences.cpp" "$ROOT"/fuzz/fuzz_*.cpp)
 for src in "${sources[@]}"; do echo "$src $OUT/obj/$(basename "$src" .cpp).o"; done | \
   xargs -P2 -n2 bash -c 'compile "$0" "$1"'
@@ -82,6 +91,8 @@ link boxset
 link box_array "$OUT/obj/box_array_checks.o" "$OUT/obj/conversions.o" \
   -lroscpp_serialization -lrostime -lcpp_common
 link sequence "$OUT/obj/sequence_checks.o"
+link wire "$OUT/obj/wire_checks.o" "$OUT/obj/wire_layout.o" -lroscpp_serialization -lrostime \
+  -lcpp_common
 
 # Runs: ASan must not abort on allocations it cannot serve (roscpp-style bad_alloc is
 # handled by the targets); OpenMP threads wait passively on this small machine.

@@ -174,10 +174,45 @@ std::string inputTypeNames() {
   return names;
 }
 
+const WireLayout& wireLayout(InputType inType) {
+  // One layout per type, built on first use (thread-safe) and kept for the life of the process.
+  static const WireLayout kLayouts[] = {
+      WireLayout(inputTypeInfo(InputType::kBoxArray).name,
+                 inputTypeInfo(InputType::kBoxArray).definition),
+      WireLayout(inputTypeInfo(InputType::kMarkerArray).name,
+                 inputTypeInfo(InputType::kMarkerArray).definition),
+      WireLayout(inputTypeInfo(InputType::kBoundingBox3DArray).name,
+                 inputTypeInfo(InputType::kBoundingBox3DArray).definition),
+      WireLayout(inputTypeInfo(InputType::kDetection3DArray).name,
+                 inputTypeInfo(InputType::kDetection3DArray).definition),
+      WireLayout(inputTypeInfo(InputType::kJskBoundingBoxArray).name,
+                 inputTypeInfo(InputType::kJskBoundingBoxArray).definition),
+  };
+  for (const WireLayout& layout : kLayouts)
+    if (layout.typeName() == inputTypeInfo(inType).name) return layout;
+  return kLayouts[0];
+}
+
+std::optional<std::string> checkPublishedType(InputType inExpected, const std::string& inType,
+                                              const std::string& inMd5) {
+  const InputTypeInfo& expected = inputTypeInfo(inExpected);
+  if (inType != expected.name) {
+    return "a " + inType + " message, but the entry's type is " + expected.name +
+           ": set the type the topic carries (" + inputTypeNames() + ")";
+  }
+  if (inMd5 != expected.md5) {
+    return std::string(expected.name) + " with MD5 sum " + inMd5 + ", not " + expected.md5 +
+           " (the ROS 1 definition the node decodes): another version of the message";
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> decodeWireBoxes(InputType inType, const uint8_t* inData, uint32_t inSize,
                                            DecodedBoxes& outDecoded) {
   outDecoded.header = std_msgs::Header();
   outDecoded.boxes.clear();
+  // Every length prefix against the bytes that follow it, before the readers below allocate.
+  if (auto reason = wireLayout(inType).check(inData, inSize)) return reason;
   // IStream only reads, but takes a non-const pointer.
   ros::serialization::IStream stream(const_cast<uint8_t*>(inData), inSize);
   std::optional<std::string> reason;
@@ -235,7 +270,8 @@ std::optional<uint32_t> IdTable::idOf(const std::string& inName) {
   auto found = ids_.find(inName);
   if (found != ids_.end()) return found->second;
   const uint64_t id = uint64_t{offset_} + names_.size();
-  if (id > std::numeric_limits<uint32_t>::max()) return std::nullopt;
+  if (id > std::numeric_limits<uint32_t>::max() || names_.size() >= kMaxNamesPerSource)
+    return std::nullopt;
   ids_.emplace(inName, static_cast<uint32_t>(id));
   names_.push_back(inName);
   return static_cast<uint32_t>(id);
@@ -249,45 +285,41 @@ SourceAdapter::SourceAdapter(const SourceSpec& inSpec) : spec_(inSpec), ids_(inS
 std::optional<std::string> SourceAdapter::convert(const topic_tools::ShapeShifter& inMsg,
                                                   const std::string& inPublisher,
                                                   BoxArray& outBoxes) {
-  const InputTypeInfo& expected = inputTypeInfo(spec_.type);
   // The node names the source (topic and publisher) in front of these refusals.
-  if (inMsg.getDataType() != expected.name) {
-    return "a " + inMsg.getDataType() + " message, but the entry's type is " + expected.name +
-           ": set the type the topic carries (" + inputTypeNames() + ")";
-  }
-  if (inMsg.getMD5Sum() != expected.md5) {
-    return std::string(expected.name) + " with MD5 sum " + inMsg.getMD5Sum() + ", not " +
-           expected.md5 +
-           " (the ROS 1 definition the node decodes): another version of the message";
-  }
+  if (auto reason = checkPublishedType(spec_.type, inMsg.getDataType(), inMsg.getMD5Sum()))
+    return reason;
+  const InputTypeInfo& expected = inputTypeInfo(spec_.type);
+  std::vector<uint8_t> bytes(inMsg.size());
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  inMsg.write(out);
+  // roscpp believes length prefixes: the bytes are checked against the layout first, so that
+  // what is allocated below is bounded by the message's size on the wire.
+  if (auto reason = wireLayout(spec_.type).check(bytes.data(), bytes.size())) return reason;
   try {
-    if (spec_.type == InputType::kMarkerArray)
-      return convertMarkers(*inMsg.instantiate<visualization_msgs::MarkerArray>(), inPublisher,
-                            outBoxes);
+    ros::serialization::IStream in(bytes.data(), static_cast<uint32_t>(bytes.size()));
+    if (spec_.type == InputType::kMarkerArray) {
+      visualization_msgs::MarkerArray markers;
+      ros::serialization::deserialize(in, markers);
+      return convertMarkers(markers, inPublisher, outBoxes);
+    }
     if (spec_.type == InputType::kBoxArray) {
-      outBoxes = *inMsg.instantiate<BoxArray>();
+      ros::serialization::deserialize(in, outBoxes);
       return applyOverrides(outBoxes);
     }
   } catch (const ros::Exception& exception) {  // bytes shorter than the type's layout
     return std::string(expected.name) + " that cannot be read: " + exception.what();
   }
-  std::lock_guard<std::mutex> lock(mutex_);
-  wire_.resize(inMsg.size());
-  ros::serialization::OStream stream(wire_.data(), static_cast<uint32_t>(wire_.size()));
-  inMsg.write(stream);
-  if (auto reason =
-          decodeWireBoxes(spec_.type, wire_.data(), static_cast<uint32_t>(wire_.size()), decoded_))
-    return reason;
-  return toBoxArray(decoded_.header, decoded_.boxes, outBoxes);
+  return convertWire(spec_.type, bytes, outBoxes);
 }
 
 std::optional<std::string> SourceAdapter::convertWire(InputType inType,
                                                       const std::vector<uint8_t>& inData,
                                                       BoxArray& outBoxes) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (auto reason =
-          decodeWireBoxes(inType, inData.data(), static_cast<uint32_t>(inData.size()), decoded_))
-    return reason;
+  const auto reason =
+      decodeWireBoxes(inType, inData.data(), static_cast<uint32_t>(inData.size()), decoded_);
+  outBoxes.header = decoded_.header;  // what a refusal names, when the header was read
+  if (reason) return reason;
   return toBoxArray(decoded_.header, decoded_.boxes, outBoxes);
 }
 
@@ -295,6 +327,8 @@ std::optional<std::string> SourceAdapter::convertMarkers(
     const visualization_msgs::MarkerArray& inMsg, const std::string& inPublisher,
     BoxArray& outBoxes) {
   std::lock_guard<std::mutex> lock(mutex_);
+  // A refusal names the frame and stamp of the message's first marker.
+  if (!inMsg.markers.empty()) outBoxes.header = inMsg.markers.front().header;
   // Applied to a copy: a refused message leaves the publisher's markers as they were.
   MarkerSet next = marker_sets_[inPublisher];
   bool stamped = false;
@@ -343,9 +377,9 @@ std::optional<std::string> SourceAdapter::convertMarkers(
 std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inHeader,
                                                      const std::vector<PosedBox>& inBoxes,
                                                      BoxArray& outBoxes) {
+  outBoxes.header = inHeader;
   for (const PosedBox& box : inBoxes)
     if (auto reason = checkPosedBox(box)) return reason;
-  outBoxes.header = inHeader;
   outBoxes.ids.clear();
   outBoxes.bounds.clear();
   outBoxes.groups.clear();
@@ -355,8 +389,10 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
   for (const PosedBox& box : inBoxes) {
     const std::optional<uint32_t> id = ids_.idOf(box.name);
     if (!id) {
-      return "box '" + box.name + "': no id left: id_offset " + std::to_string(spec_.id_offset) +
-             " plus " + std::to_string(ids_.names().size()) + " names passes 2^32 - 1";
+      return "box '" + box.name + "': no id left: the source has named " +
+             std::to_string(ids_.names().size()) + " boxes (at most " +
+             std::to_string(kMaxNamesPerSource) + ", and id_offset " +
+             std::to_string(spec_.id_offset) + " plus the names must stay below 2^32)";
     }
     outBoxes.ids.push_back(*id);
     // The box in its own frame; a point's box is widened by an ulp each way so the rounding of
@@ -428,6 +464,16 @@ void SourceAdapter::appendIdNames(std::vector<uint32_t>& ioIds,
 std::size_t SourceAdapter::nameCount() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return ids_.names().size();
+}
+
+void SourceAdapter::dropPublisher(const std::string& inPublisher) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  marker_sets_.erase(inPublisher);
+}
+
+std::size_t SourceAdapter::publisherCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return marker_sets_.size();
 }
 
 }  // namespace sap_broadphase

@@ -25,6 +25,7 @@
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/core/box_set.h"
 #include "source_spec.h"
+#include "wire_layout.h"
 
 namespace sap_broadphase {
 
@@ -43,6 +44,13 @@ const InputTypeInfo& inputTypeInfo(InputType inType);
 std::optional<InputType> inputTypeByName(const std::string& inName);
 /// "sap_broadphase/BoxArray, visualization_msgs/MarkerArray, ...": for refusals.
 std::string inputTypeNames();
+/// The wire layout of inType, read once from its definition: every message of a source is
+/// checked against it before it is deserialized.
+const WireLayout& wireLayout(InputType inType);
+/// Why a publisher of type inType and MD5 sum inMd5 cannot feed a source of inExpected, or
+/// nothing (the source's name goes in front).
+std::optional<std::string> checkPublishedType(InputType inExpected, const std::string& inType,
+                                              const std::string& inMd5);
 
 /// A box as the messages give it: a box of `size` centred on `centre`, in the frame that `pose`
 /// places in the message's frame.
@@ -70,13 +78,18 @@ std::optional<std::string> decodeWireBoxes(InputType inType, const uint8_t* inDa
 /// all-zero quaternion is read as the identity, as rviz does). Returns the reason, or nothing.
 std::optional<std::string> checkPosedBox(const PosedBox& inBox);
 
+/// Names a source may give ids to: each costs about 350 bytes (the name twice, a map node) for
+/// the life of the node, so a publisher inventing a new name per message cannot grow the node
+/// without bound. A box whose name would pass the cap is refused, saying so.
+constexpr std::size_t kMaxNamesPerSource = std::size_t{1} << 18;
+
 /// Stable ids for the names of a source: the k-th name seen gets id_offset + k, for the life of
 /// the node, whatever order later messages list them in.
 class IdTable {
  public:
   explicit IdTable(uint32_t inOffset) : offset_(inOffset) {}
   /// The id of inName (registered when new), or nothing when the offset plus the number of
-  /// names would pass 2^32 - 1.
+  /// names would pass 2^32 - 1 or the table holds kMaxNamesPerSource names.
   std::optional<uint32_t> idOf(const std::string& inName);
   /// The names in id order: names()[k] has id offset() + k.
   const std::vector<std::string>& names() const { return names_; }
@@ -116,6 +129,11 @@ class SourceAdapter {
   void appendIdNames(std::vector<uint32_t>& ioIds, std::vector<std::string>& ioNames) const;
   /// Number of names given an id so far (grows only: a change means ~id_names is out of date).
   std::size_t nameCount() const;
+  /// Forgets the marker set of inPublisher, whose source timed out: a publisher that left
+  /// costs nothing after its time-out, and one that comes back starts from an empty set.
+  void dropPublisher(const std::string& inPublisher);
+  /// Number of publishers whose marker sets are kept.
+  std::size_t publisherCount() const;
 
  private:
   /// One publisher's markers, by (ns, id), and the frame of the last set converted.
@@ -134,7 +152,6 @@ class SourceAdapter {
   mutable std::mutex mutex_;
   IdTable ids_;
   std::map<std::string, MarkerSet> marker_sets_;  // by publisher
-  std::vector<uint8_t> wire_;                     // a ShapeShifter's bytes, reused
   DecodedBoxes decoded_;                          // reused
   BoxSet one_box_;                                // a box moved by its pose, reused
 };

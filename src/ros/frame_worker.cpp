@@ -5,6 +5,7 @@
 #include <chrono>
 #include <utility>
 
+#include "checked_callbacks.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
@@ -60,7 +61,7 @@ void FrameWorker::reconfigure(const NodeParams& inSettings) {
   wake_.notify_one();
 }
 
-bool FrameWorker::waitUntil(const ros::Time& inDeadline) {
+bool FrameWorker::waitUntil(const ros::Time& inDeadline, const ros::Duration& inPeriod) {
   // With a fixed ~rate, deliveries wait for the tick; only settings and stopping do not.
   const bool fixed_rate = params_.rate > 0.0;
   std::unique_lock<std::mutex> lock(mutex_);
@@ -68,7 +69,8 @@ bool FrameWorker::waitUntil(const ros::Time& inDeadline) {
     if (stopping_) return false;
     if (woken_ && (!fixed_rate || pending_settings_)) break;
     const ros::Time now = ros::Time::now();
-    if (now >= inDeadline) break;
+    // Past the deadline, or the clock went back (the deadline is more than a period ahead).
+    if (now >= inDeadline || now + inPeriod < inDeadline) break;
     double seconds = (inDeadline - now).toSec();
     if (ros::Time::isSimTime()) seconds = std::min(seconds, kSimTimePollSeconds);
     wake_.wait_for(lock, std::chrono::duration<double>(seconds));
@@ -82,7 +84,7 @@ void FrameWorker::run() {
   const ros::Duration period(fixed_rate ? 1.0 / params_.rate : kHousekeepingSeconds);
   ros::Time next_tick = ros::Time::now() + period;
   for (;;) {
-    if (!waitUntil(next_tick)) return;
+    if (!waitUntil(next_tick, period)) return;
     std::optional<NodeParams> settings;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -93,6 +95,8 @@ void FrameWorker::run() {
     if (settings) applySettings(*settings);
 
     const ros::Time now = ros::Time::now();
+    if (now < last_now_) restartClock(now);
+    last_now_ = now;
     if (now + period < next_tick) next_tick = now + period;  // the clock went back (a bag loop)
     const bool tick = now >= next_tick;
     // Ticks keep their phase; one that is more than a period late (a slow frame, /clock
@@ -103,13 +107,40 @@ void FrameWorker::run() {
     }
     if (fixed_rate && !tick) continue;  // woken for settings only
 
-    const bool scenery_changed = takeScenery();
-    const bool sources_changed = takeDeliveries();
-    expireSources();
-    if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
-      computeFrame();
-    status_.updateDiagnostics();
+    runGuarded(
+        [&] {
+          const bool scenery_changed = takeScenery();
+          const bool sources_changed = takeDeliveries();
+          expireSources();
+          if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
+            computeFrame();
+          ingest_.publishIdNames();
+          ingest_.countLostMessages();
+          status_.updateDiagnostics();
+        },
+        [&](const std::string& inWhat) { recoverFrom(inWhat); });
   }
+}
+
+void FrameWorker::restartClock(const ros::Time& inNow) {
+  // As tf2 and rosbag users expect of ROS 1 ("detected jump back in time"): the times kept
+  // from the old clock mean nothing on the new one.
+  ROS_WARN(
+      "sap_broadphase: detected jump back in time of %.3f s: receipt times and time-outs "
+      "of %zu sources start again",
+      (last_now_ - inNow).toSec(), sources_.size());
+  sources_.restartClock(inNow);
+  ingest_.restartClock(inNow);
+  status_.restartClock();
+}
+
+void FrameWorker::recoverFrom(const std::string& inWhat) {
+  // An exception (std::bad_alloc of a frame too large for the memory left) may have left the
+  // engine's temporal state half updated: the next frame starts on a new engine.
+  status_.refuse(std_msgs::Header(), 0,
+                 "a frame could not be computed (" + inWhat + "): refused, new engine");
+  engine_ = Broadphase(params_.engine);
+  if (static_boxes_.size() > 0) engine_.setStaticBoxes(static_boxes_);
 }
 
 void FrameWorker::applySettings(const NodeParams& inSettings) {
@@ -180,6 +211,7 @@ void FrameWorker::expireSources() {
     return params_.source_timeout;
   };
   for (const SourceKey& key : sources_.expire(ros::Time::now(), timeout_of)) {
+    ingest_.forget(key);
     const bool own = timeout_of(key) != params_.source_timeout;
     status_.timeOut(sourceName(key) + " silent for more than " +
                     (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +
@@ -195,11 +227,10 @@ void FrameWorker::computeFrame() {
       sources_.assemble(static_ids_, fixed_frame.empty() ? static_frame_ : fixed_frame, world_,
                         assembly, outputs_.wantsMarkers());
   if (!fixed_frame.empty()) assembly.header.frame_id = fixed_frame;
-  for (const RefusedFrame& refused : assembly.refused_frames)
-    status_.refuse(refused.header, refused.boxes, refused.reason);
+  for (const auto* refused_list : {&assembly.refused_frames, &assembly.refusals})
+    for (const RefusedFrame& refused : *refused_list)
+      status_.refuse(refused.header, refused.boxes, refused.reason);
   for (std::size_t i = 0; i < assembly.frames_accepted; ++i) status_.countProcessed();
-  for (const std::string& refusal : assembly.refusals)
-    status_.refuse(assembly.header, world.size(), refusal);
   if (world_watch_.shouldGiveBack(world_.size(), world_.ids.capacity())) shrinkBoxSet(world_);
   if (assembly.sources_merged == 0) return;
 

@@ -43,8 +43,9 @@ class FrameWorker {
  private:
   /// Waits for work, takes it in, computes; until the destructor says stop.
   void run();
-  /// Waits until woken or inDeadline (ROS time). False when the worker must stop.
-  bool waitUntil(const ros::Time& inDeadline);
+  /// Waits until woken or inDeadline (ROS time), or until the clock goes back more than
+  /// inPeriod before it. False when the worker must stop.
+  bool waitUntil(const ros::Time& inDeadline, const ros::Duration& inPeriod);
   /// A new engine (scenery declared again) when the engine settings changed; markers.
   void applySettings(const NodeParams& inSettings);
   /// Takes the deliveries into the sources. True when the world changed.
@@ -53,6 +54,10 @@ class FrameWorker {
   bool takeScenery();
   /// Drops silent sources, counts and logs each once.
   void expireSources();
+  /// The ROS clock went back to inNow: receipt times and time-outs start again from it.
+  void restartClock(const ros::Time& inNow);
+  /// Counts and logs an exception (inWhat) that ended a round of the loop; a new engine.
+  void recoverFrom(const std::string& inWhat);
   /// Merges the sources, computes and publishes one frame.
   void computeFrame();
   /// The engine on a world that is one source's frame as published, which the engine checks
@@ -69,6 +74,8 @@ class FrameWorker {
   bool woken_ = false;
   bool stopping_ = false;
   std::optional<NodeParams> pending_settings_;
+  ros::Time last_now_;  // ROS time of the last round (worker thread): a later one before it is a
+                        // jump back in time
 
   Broadphase engine_;
   SourceSet sources_;

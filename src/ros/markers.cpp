@@ -67,17 +67,23 @@ geometry_msgs::Point boxCenter(const BoxSet& inBoxes, std::size_t i) {
 /// Maps box ids to indices; ids 0..n-1 in order (the common case) need no table.
 class IdIndex {
  public:
-  explicit IdIndex(const BoxSet& inBoxes) {
-    const std::size_t count = inBoxes.size();
-    for (std::size_t i = 0; i < count && identity_; ++i) identity_ = inBoxes.ids[i] == i;
+  static constexpr std::size_t kAbsent = static_cast<std::size_t>(-1);
+  explicit IdIndex(const BoxSet& inBoxes) : count_(inBoxes.size()) {
+    for (std::size_t i = 0; i < count_ && identity_; ++i) identity_ = inBoxes.ids[i] == i;
     if (identity_) return;
-    table_.reserve(count);
-    for (std::size_t i = 0; i < count; ++i) table_.emplace(inBoxes.ids[i], i);
+    table_.reserve(count_);
+    for (std::size_t i = 0; i < count_; ++i) table_.emplace(inBoxes.ids[i], i);
   }
-  /// Index of the box with id inId (the id must exist).
-  std::size_t operator()(uint32_t inId) const { return identity_ ? inId : table_.at(inId); }
+  /// Index of the box with id inId, or kAbsent: a pair's other box may be one of the scenery
+  /// (static_boxes), which the engine pairs with the moving boxes but the world does not hold.
+  std::size_t operator()(uint32_t inId) const {
+    if (identity_) return inId < count_ ? inId : kAbsent;
+    const auto found = table_.find(inId);
+    return found == table_.end() ? kAbsent : found->second;
+  }
 
  private:
+  std::size_t count_;
   bool identity_ = true;
   std::unordered_map<uint32_t, std::size_t> table_;
 };
@@ -111,8 +117,10 @@ MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
   const IdIndex index_of(inBoxes);
   std::vector<char> colliding(count, 0);
   for (const IdPair& pair : inPairs) {
-    colliding[index_of(pair.a)] = 1;
-    colliding[index_of(pair.b)] = 1;
+    for (const uint32_t id : {pair.a, pair.b}) {
+      const std::size_t index = index_of(id);
+      if (index != IdIndex::kAbsent) colliding[index] = 1;
+    }
   }
   std::vector<char> drawn(count, 0);
   std::vector<std::size_t> drawn_colliding, drawn_other;
@@ -165,7 +173,7 @@ MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
     for (const IdPair& pair : inPairs) {
       if (links >= inOptions.max_boxes) break;
       const std::size_t a = index_of(pair.a), b = index_of(pair.b);
-      if (!drawn[a] || !drawn[b]) continue;
+      if (a == IdIndex::kAbsent || b == IdIndex::kAbsent || !drawn[a] || !drawn[b]) continue;
       link_marker.points.push_back(boxCenter(inBoxes, a));
       link_marker.points.push_back(boxCenter(inBoxes, b));
       ++links;

@@ -38,7 +38,9 @@ constexpr const char* kPairLinkNamespace = "pair_links";
 
 /// Fills outMarkers (replaced): a DELETEALL, then the colliding boxes of inPairs as one
 /// LINE_LIST (24 points a box, always present, maybe empty), then, if enabled and not empty,
-/// the non-colliding boxes and the pair links. Header (frame and stamp) from inHeader.
+/// the non-colliding boxes and the pair links. Header (frame and stamp) from inHeader. A pair
+/// may name a box inBoxes does not hold (the scenery of static_boxes): its box in inBoxes is
+/// drawn as colliding, the other is not drawn and has no link.
 MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
                           const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
                           visualization_msgs::MarkerArray& outMarkers);

@@ -35,9 +35,6 @@ class BroadphaseNode {
   BroadphaseNode(const BroadphaseNode&) = delete;
   BroadphaseNode& operator=(const BroadphaseNode&) = delete;
 
-  /// The ingest, for subscriptions of other input types to deliver into.
-  SourceIngest& ingest() { return ingest_; }
-
  private:
   /// Wakes the worker once it exists: a nodelet manager may run a source callback while the
   /// constructor is still building the worker.

@@ -99,6 +99,26 @@ void NodeStatus::skip(const std::string& inMessage) {
   ROS_WARN_THROTTLE(log_period_, "sap_broadphase: %s", inMessage.c_str());
 }
 
+void NodeStatus::lose(uint64_t inCount, const std::string& inTopic) {
+  const std::string message =
+      "'" + inTopic + "': " + std::to_string(inCount) +
+      " MarkerArray messages lost in the subscriber queue (a burst faster than the node reads): "
+      "the marker set misses their changes until the publisher sends them again";
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    counters_.lost += inCount;
+    counters_.last_error = message;
+  }
+  ROS_WARN_THROTTLE(log_period_, "sap_broadphase: %s", message.c_str());
+}
+
+void NodeStatus::setRefusedPublishers(const std::vector<std::string>& inNames) {
+  std::string names;
+  for (const std::string& name : inNames) names += (names.empty() ? "" : ", ") + name;
+  std::lock_guard<std::mutex> lock(mutex_);
+  counters_.refused_publishers = names;
+}
+
 void NodeStatus::timeOut(const std::string& inMessage) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -106,6 +126,15 @@ void NodeStatus::timeOut(const std::string& inMessage) {
     counters_.last_error = inMessage;
   }
   ROS_WARN("sap_broadphase: %s", inMessage.c_str());
+}
+
+void NodeStatus::restartClock() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    reported_at_ = ros::Time();
+  }
+  // The updater waits for a time of the old clock: it reports now and counts from now.
+  diagnostics_.force_update();
 }
 
 void NodeStatus::frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine) {
@@ -143,6 +172,7 @@ FrameStats NodeStatus::makeStats(const std_msgs::Header& inHeader, std::size_t i
   stats.frames_computed = counters_.computed;
   stats.sources = counters_.live_sources;
   stats.sources_timed_out = counters_.timed_out;
+  stats.messages_lost = counters_.lost;
   stats.last_refusal = counters_.last_refusal;
   return stats;
 }
@@ -154,7 +184,8 @@ void NodeStatus::diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus)
   const uint64_t new_refusals = counters_.refused - reported_.refused;
   const uint64_t new_skips = counters_.skipped - reported_.skipped;
   const uint64_t new_time_outs = counters_.timed_out - reported_.timed_out;
-  if (new_refusals + new_skips + new_time_outs > 0)
+  const uint64_t new_losses = counters_.lost - reported_.lost;
+  if (new_refusals + new_skips + new_time_outs + new_losses > 0)
     ioStatus.summary(diagnostic_msgs::DiagnosticStatus::WARN, counters_.last_error);
   else if (counters_.computed == 0)
     ioStatus.summary(diagnostic_msgs::DiagnosticStatus::OK, "waiting for boxes");
@@ -172,6 +203,8 @@ void NodeStatus::diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus)
   ioStatus.add("refusals", counters_.refused);
   ioStatus.add("frames skipped (no transform)", counters_.skipped);
   ioStatus.add("sources timed out", counters_.timed_out);
+  ioStatus.add("MarkerArray messages lost", counters_.lost);
+  ioStatus.add("refused publishers", counters_.refused_publishers);
   ioStatus.add("last error", counters_.last_error);
   reported_ = counters_;
   reported_at_ = now;

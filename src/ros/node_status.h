@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
@@ -47,28 +48,39 @@ class NodeStatus {
   void refuse(const std_msgs::Header& inHeader, std::size_t inBoxes, const std::string& inReason);
   /// Counts and logs a source frame that found no transform (any thread).
   void skip(const std::string& inMessage);
+  /// Counts and logs inCount messages of a stateful source (MarkerArray: each message says what
+  /// changed) lost in its subscriber queue before they were read (worker thread).
+  void lose(uint64_t inCount, const std::string& inTopic);
+  /// The publishers refused now for their type or MD5 sum, "topic: /publisher", named in
+  /// /diagnostics (any thread).
+  void setRefusedPublishers(const std::vector<std::string>& inNames);
   /// Counts and logs a source gone silent (worker thread).
   void timeOut(const std::string& inMessage);
   /// Counts a computed frame and publishes its stats with the engine's report.
   void frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine);
+  /// The ROS clock went back: the diagnostics' period and rate start again from now (worker
+  /// thread).
+  void restartClock();
   /// Publishes /diagnostics when its period has passed (worker thread).
   void updateDiagnostics() { diagnostics_.update(); }
 
  private:
   struct Counters {
-    uint64_t received = 0;       // source frames received
-    uint64_t processed = 0;      // source frames taken into the world
-    uint64_t dropped = 0;        // source frames replaced before the worker took them
-    uint64_t refused = 0;        // invalid frames, and sources left out of a frame
-    uint64_t skipped = 0;        // source frames without a transform into ~fixed_frame
-    uint64_t timed_out = 0;      // sources dropped after ~source_timeout of silence
-    uint64_t computed = 0;       // frames computed
-    std::string last_refusal;    // why the last frame or source was refused
-    std::string last_error;      // the last refusal, skip or time-out, for /diagnostics
-    uint32_t live_sources = 0;   // sources of the last computed frame's world
-    uint32_t static_boxes = 0;   // boxes of the scenery in force
-    double last_ms_total = 0.0;  // latency of the last computed frame
-    double max_ms_total = 0.0;   // largest latency since the last diagnostics report
+    uint64_t received = 0;           // source frames received
+    uint64_t processed = 0;          // source frames taken into the world
+    uint64_t dropped = 0;            // source frames replaced before the worker took them
+    uint64_t refused = 0;            // invalid frames, and sources left out of a frame
+    uint64_t skipped = 0;            // source frames without a transform into ~fixed_frame
+    uint64_t timed_out = 0;          // sources dropped after ~source_timeout of silence
+    uint64_t lost = 0;               // MarkerArray messages lost in a subscriber queue
+    uint64_t computed = 0;           // frames computed
+    std::string last_refusal;        // why the last frame or source was refused
+    std::string last_error;          // the last refusal, skip or time-out, for /diagnostics
+    std::string refused_publishers;  // publishers of another type or MD5 sum, now
+    uint32_t live_sources = 0;       // sources of the last computed frame's world
+    uint32_t static_boxes = 0;       // boxes of the scenery in force
+    double last_ms_total = 0.0;      // latency of the last computed frame
+    double max_ms_total = 0.0;       // largest latency since the last diagnostics report
   };
   /// Stats of the counters as they are now (called with mutex_ held).
   FrameStats makeStats(const std_msgs::Header& inHeader, std::size_t inBoxes) const;

@@ -3,6 +3,7 @@
 
 #include <utility>
 
+#include "checked_callbacks.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
@@ -13,8 +14,20 @@ PairsService::PairsService(ros::NodeHandle& ioNode, const BroadphaseConfig& inEn
   ros::AdvertiseServiceOptions options;
   options.init<ComputePairs::Request, ComputePairs::Response>(
       ioNode.resolveName("compute_pairs"),
+      [](ComputePairs::Request&, ComputePairs::Response&) { return false; });
+  // The request's bytes are checked before roscpp deserializes them (a bounds prefix claiming
+  // 2^27 values would reserve a gigabyte), and nothing thrown leaves the call.
+  static const WireLayout kRequestLayout(
+      ros::message_traits::DataType<ComputePairs::Request>::value(),
+      ros::message_traits::Definition<ComputePairs::Request>::value());
+  options.helper = boost::make_shared<
+      CheckedServiceHelper<ros::ServiceSpec<ComputePairs::Request, ComputePairs::Response>>>(
       [this](ComputePairs::Request& inRequest, ComputePairs::Response& outResponse) {
         return onComputePairs(inRequest, outResponse);
+      },
+      kRequestLayout,
+      [this](const std::string& inReason, ComputePairs::Response& outResponse) {
+        refuse(inReason, outResponse);
       });
   options.callback_queue = &queue_;
   service_ = ioNode.advertiseService(options);
@@ -53,10 +66,14 @@ bool PairsService::onComputePairs(ComputePairs::Request& inRequest,
       refusal = invalid.error().message();
     }
   }
-  ROS_ERROR_THROTTLE(log_period_, "compute_pairs refused: %s", refusal->c_str());
-  outResponse.success = false;
-  outResponse.message = *refusal;
+  refuse(*refusal, outResponse);
   return true;  // the call itself succeeded; the answer says why the boxes were refused
+}
+
+void PairsService::refuse(const std::string& inReason, ComputePairs::Response& outResponse) {
+  ROS_ERROR_THROTTLE(log_period_, "compute_pairs refused: %s", inReason.c_str());
+  outResponse.success = false;
+  outResponse.message = inReason;
 }
 
 }  // namespace sap_broadphase

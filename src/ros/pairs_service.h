@@ -30,6 +30,8 @@ class PairsService {
   /// Checks the request's shape and computes on the service's own engine, which reads and
   /// checks the boxes where they lie.
   bool onComputePairs(ComputePairs::Request& inRequest, ComputePairs::Response& outResponse);
+  /// Logs (throttled) and answers a refusal: success false, the reason in the message.
+  void refuse(const std::string& inReason, ComputePairs::Response& outResponse);
 
   int log_period_;
   ros::CallbackQueue queue_;

@@ -1,19 +1,31 @@
 // SourceIngest: subscriptions, the latest frame of each source, tf2.
 #include "source_ingest.h"
 
+#include <algorithm>
 #include <utility>
+
+#include <ros/network.h>
+#include <ros/xmlrpc_manager.h>
+#include <xmlrpcpp/XmlRpcClient.h>
 
 #include <tf2/exceptions.h>
 #include <topic_tools/shape_shifter.h>
 #include <boost/make_shared.hpp>
 
 #include "adapters.h"
+#include "checked_callbacks.h"
 #include "sap_broadphase/IdNames.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
 
 namespace {
+
+/// Subscriber queue of a MarkerArray source at least: a burst of incremental updates (rviz
+/// tools publish one marker per message) waits here while the callback converts.
+constexpr int kStatefulQueueSize = 1000;
+/// Wall seconds between two looks at roscpp's drop counts.
+constexpr double kLossCheckSeconds = 0.5;
 
 /// The node's output topic that inTopic resolves to, or nullptr.
 const char* ownOutputNamed(const ros::NodeHandle& inNode, const std::string& inTopic) {
@@ -39,16 +51,7 @@ SourceIngest::SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams,
       if (any_waiting_.load(std::memory_order_relaxed)) wake_();
     });
   }
-  subscribers_.push_back(
-      ioNode.subscribe<BoxArray>("static_boxes", 1, [this](const BoxArrayConstPtr& inMsg) {
-        {
-          std::lock_guard<std::mutex> lock(mutex_);
-          pending_scenery_ = inMsg;
-          scenery_wait_logged_ = false;
-          any_waiting_ = true;
-        }
-        wake_();
-      }));
+  subscribeScenery(ioNode);
   for (const SourceSpec& spec : inParams.sources) {
     if (const char* output = ownOutputNamed(ioNode, spec.topic)) {
       // The node would read what it writes (e.g. `markers` as a MarkerArray source).
@@ -61,30 +64,88 @@ SourceIngest::SourceIngest(ros::NodeHandle& ioNode, const NodeParams& inParams,
     subscribe(ioNode, spec, inParams.boxes_queue_size);
   }
   if (!adapters_.empty()) id_names_pub_ = ioNode.advertise<IdNames>("id_names", 1, true);
+  publisher_probe_ = std::make_unique<PublisherProbe>(
+      probed_topics_,
+      [this](const std::string& inTopic, const std::string& inPublisher,
+             const std::string& inReason) {
+        status_.refuse(std_msgs::Header(), 0,
+                       sourceName(SourceKey{inTopic, inPublisher, ""}) + ": " + inReason +
+                           ": its connection is refused");
+      },
+      [this](const std::vector<std::string>& inRefused) {
+        status_.setRefusedPublishers(inRefused);
+      });
 }
 
 void SourceIngest::subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, int inQueueSize) {
   ros::SubscribeOptions options;
   const std::string topic = inSpec.topic;
+  // A message refused at the wire (its publisher's type, a length prefix past its bytes) never
+  // reaches the callbacks below: counted and named here.
+  WireRefusal refuse = [this, topic](const ros::M_string& inConnection,
+                                     const std::string& inReason) {
+    status_.countReceived();
+    const auto caller = inConnection.find("callerid");
+    const SourceKey key{topic, caller == inConnection.end() ? "" : caller->second, ""};
+    status_.refuse(std_msgs::Header(), 0, sourceName(key) + ": " + inReason);
+  };
+  const WireLayout& layout = wireLayout(inSpec.type);
+  if (inSpec.type == InputType::kMarkerArray) {
+    // A MarkerArray only says what changed: a message lost in the queue is an update the
+    // node never sees. Its queue holds a burst; what it still drops is counted.
+    inQueueSize = std::max(inQueueSize, kStatefulQueueSize);
+    stateful_topics_.push_back(ioNode.resolveName(topic));
+  }
   if (inSpec.takesBoxArrayAsIs()) {
-    options.initByFullCallbackType<const ros::MessageEvent<BoxArray const>&>(
-        topic, static_cast<uint32_t>(inQueueSize),
-        [this, topic](const ros::MessageEvent<BoxArray const>& inEvent) {
-          deliver(topic, inEvent);
-        });
+    using Event = const ros::MessageEvent<BoxArray const>&;
+    options.initByFullCallbackType<Event>(topic, static_cast<uint32_t>(inQueueSize), [](Event) {});
+    options.helper = boost::make_shared<CheckedSubscriptionHelper<Event>>(
+        [this, topic](Event inEvent) {
+          runGuarded([&] { deliver(topic, inEvent); },
+                     [&](const std::string& inWhat) { refuseUnhandled(topic, inWhat); });
+        },
+        layout, PublisherCheck(), refuse);
   } else {
-    // Any type (ShapeShifter): the adapter checks the type name and MD5 sum. Every message is
-    // converted here, in order, since a MarkerArray only tells what changed.
+    // Any type (ShapeShifter): the type name and MD5 sum are checked per publisher, from the
+    // connection header of each message. Every message is converted here, in order, since a
+    // MarkerArray only tells what changed.
     adapters_.push_back(std::make_unique<SourceAdapter>(inSpec));
     SourceAdapter* adapter = adapters_.back().get();
-    options.initByFullCallbackType<const ros::MessageEvent<topic_tools::ShapeShifter const>&>(
-        topic, static_cast<uint32_t>(inQueueSize),
-        [this, adapter](const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent) {
-          onAdaptedMessage(*adapter, inEvent);
-        });
+    using Event = const ros::MessageEvent<topic_tools::ShapeShifter const>&;
+    options.initByFullCallbackType<Event>(topic, static_cast<uint32_t>(inQueueSize), [](Event) {});
+    const InputType type = inSpec.type;
+    options.helper = boost::make_shared<CheckedSubscriptionHelper<Event>>(
+        [this, adapter, topic](Event inEvent) {
+          runGuarded([&] { onAdaptedMessage(*adapter, inEvent); },
+                     [&](const std::string& inWhat) { refuseUnhandled(topic, inWhat); });
+        },
+        layout,
+        [type](const ros::M_string& inConnection) {
+          const auto field = [&](const char* inKey) {
+            const auto found = inConnection.find(inKey);
+            return found == inConnection.end() ? std::string() : found->second;
+          };
+          return checkPublishedType(type, field("type"), field("md5sum"));
+        },
+        refuse);
+    // The definition the node decodes, not "*": roscpp would fix the topic's MD5 sum to its
+    // first publisher's, and one publisher of another definition would lock the others out.
+    // Publishers of another definition are refused by roscpp and named by the probe.
+    options.md5sum = inputTypeInfo(type).md5;
+    options.datatype = inputTypeInfo(type).name;
   }
   options.transport_hints = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(ioNode.subscribe(options));
+  const InputType type = inSpec.type;
+  probed_topics_.emplace_back(ioNode.resolveName(topic), [type](const PublishedType& inPublished) {
+    return checkPublishedType(type, inPublished.type, inPublished.md5);
+  });
+}
+
+void SourceIngest::refuseUnhandled(const std::string& inTopic, const std::string& inWhat) {
+  status_.refuse(std_msgs::Header(), 0,
+                 "'" + inTopic + "': a message that could not be handled (" + inWhat +
+                     "): refused, the node goes on");
 }
 
 void SourceIngest::onAdaptedMessage(
@@ -93,27 +154,51 @@ void SourceIngest::onAdaptedMessage(
   if (auto reason =
           ioAdapter.convert(*inEvent.getConstMessage(), inEvent.getPublisherName(), *boxes)) {
     status_.countReceived();
-    const SourceKey key{ioAdapter.spec().topic, inEvent.getPublisherName(), ""};
-    status_.refuse(boxes->header, 0, sourceName(key) + ": " + *reason);
+    const SourceKey key{ioAdapter.spec().topic, inEvent.getPublisherName(), boxes->header.frame_id};
+    status_.refuse(boxes->header, boxes->bounds.size() / 6, sourceName(key) + ": " + *reason);
     return;
   }
-  publishIdNames(boxes->header);
+  {
+    std::lock_guard<std::mutex> lock(id_names_mutex_);
+    id_names_header_ = boxes->header;
+  }
   // The BoxArray built, with the connection header (publisher) of the message received.
   deliver(ioAdapter.spec().topic,
           ros::MessageEvent<BoxArray const>(boxes, inEvent.getConnectionHeaderPtr(),
                                             inEvent.getReceiptTime()));
 }
 
-void SourceIngest::publishIdNames(const std_msgs::Header& inHeader) {
+void SourceIngest::publishIdNames() {
   std::lock_guard<std::mutex> lock(id_names_mutex_);
   std::size_t names = 0;
   for (const auto& adapter : adapters_) names += adapter->nameCount();
   if (names == id_names_published_) return;  // names only grow: none is new
   auto msg = boost::make_shared<IdNames>();
-  msg->header = inHeader;
+  msg->header = id_names_header_;
   for (const auto& adapter : adapters_) adapter->appendIdNames(msg->ids, msg->names);
   id_names_published_ = msg->ids.size();
   id_names_pub_.publish(msg);
+}
+
+void SourceIngest::subscribeScenery(ros::NodeHandle& ioNode) {
+  ros::SubscribeOptions options;
+  using Message = const BoxArrayConstPtr&;
+  options.init<BoxArray>("static_boxes", 1, [](Message) {});
+  const auto keep = [this](Message inMsg) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      pending_scenery_ = inMsg;
+      scenery_wait_logged_ = false;
+      any_waiting_ = true;
+    }
+    wake_();
+  };
+  options.helper = boost::make_shared<CheckedSubscriptionHelper<Message>>(
+      keep, wireLayout(InputType::kBoxArray), PublisherCheck(),
+      [this](const ros::M_string&, const std::string& inReason) {
+        status_.refuse(std_msgs::Header(), 0, std::string(kStaticSourceName) + ": " + inReason);
+      });
+  subscribers_.push_back(ioNode.subscribe(options));
 }
 
 SourceIngest::~SourceIngest() {
@@ -121,6 +206,7 @@ SourceIngest::~SourceIngest() {
 }
 
 void SourceIngest::stop() {
+  publisher_probe_.reset();
   // A subscriber's shutdown waits for its callback in progress; the listener's reset joins its
   // thread, the only one that calls the tf2 change listener.
   for (ros::Subscriber& subscriber : subscribers_) subscriber.shutdown();
@@ -207,6 +293,66 @@ void SourceIngest::take(std::map<SourceKey, Delivery>& outDeliveries, BoxArrayCo
     }
   }
   any_waiting_ = !waiting_.empty() || pending_scenery_;
+}
+
+void SourceIngest::countLostMessages() {
+  const auto now = std::chrono::steady_clock::now();
+  if (stateful_topics_.empty() ||
+      now - loss_checked_ < std::chrono::duration<double>(kLossCheckSeconds))
+    return;
+  loss_checked_ = now;
+  // roscpp counts, per publisher link, the messages its full subscriber queue dropped, and
+  // tells them only through the node's XML-RPC getBusStats: subscriptions are [[topic,
+  // [[connection id, bytes, messages, drops, ...], ...]], ...].
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(ros::XMLRPCManager::instance()->getServerURI(), host, port)) return;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue params, result;
+  params[0] = ros::this_node::getName();
+  using Value = XmlRpc::XmlRpcValue;
+  if (!client.execute("getBusStats", params, result) || result.getType() != Value::TypeArray ||
+      result.size() < 2)
+    return;
+  // The protocol's answer is [code, text, [publications, subscriptions, services]]; roscpp's
+  // server (noetic) writes its statistics over the code and text: [publications,
+  // subscriptions, ...]. Both are read.
+  Value* found = nullptr;
+  if (result[0].getType() == Value::TypeArray)
+    found = &result[1];
+  else if (result.size() >= 3 && result[2].getType() == Value::TypeArray && result[2].size() >= 2)
+    found = &result[2][1];
+  if (!found || found->getType() != Value::TypeArray) return;
+  Value& subscriptions = *found;
+  std::map<std::pair<std::string, int>, int> drops;
+  for (int i = 0; i < subscriptions.size(); ++i) {
+    const std::string topic = subscriptions[i][0];
+    if (std::find(stateful_topics_.begin(), stateful_topics_.end(), topic) ==
+        stateful_topics_.end())
+      continue;
+    XmlRpc::XmlRpcValue& links = subscriptions[i][1];
+    uint64_t lost = 0;
+    for (int k = 0; k < links.size(); ++k) {
+      const std::pair<std::string, int> link{topic, static_cast<int>(links[k][0])};
+      const int count = links[k][3];
+      const auto seen = drops_seen_.find(link);
+      lost += static_cast<uint64_t>(count - (seen == drops_seen_.end() ? 0 : seen->second));
+      drops[link] = count;
+    }
+    if (lost > 0) status_.lose(lost, topic);
+  }
+  drops_seen_ = std::move(drops);  // links gone are forgotten
+}
+
+void SourceIngest::forget(const SourceKey& inKey) {
+  for (const auto& adapter : adapters_)
+    if (adapter->spec().topic == inKey.topic) adapter->dropPublisher(inKey.publisher);
+}
+
+void SourceIngest::restartClock(const ros::Time& inNow) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto* deliveries : {&pending_, &waiting_})
+    for (auto& [key, delivery] : *deliveries) delivery.received = inNow;
 }
 
 bool SourceIngest::convert(const SourceKey& inKey, const BoxArray& inMsg, BoxSet& outBoxes) {

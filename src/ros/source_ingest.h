@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -20,6 +21,7 @@
 
 #include "node_params.h"
 #include "node_status.h"
+#include "publisher_probe.h"
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sources.h"
@@ -72,6 +74,21 @@ class SourceIngest {
   /// a latched message may be older than tf2's cache.
   bool convertScenery(const BoxArray& inMsg, BoxSet& outBoxes);
 
+  /// Publishes the names of every adapter's ids on ~id_names when some are new since the last
+  /// time (worker thread, once per round: a burst of new names costs one message, not one per
+  /// name).
+  void publishIdNames();
+  /// Counts the MarkerArray messages roscpp dropped from a full subscriber queue since the last
+  /// call (roscpp's own count, read from the node's getBusStats) into the status. Looks at
+  /// most every kLossCheckSeconds (worker thread).
+  void countLostMessages();
+  /// The source inKey timed out: its adapter forgets the publisher's state (worker thread).
+  void forget(const SourceKey& inKey);
+
+  /// The ROS clock went back to inNow: frames waiting for the worker or for their transform
+  /// count as received now (their ~transform_timeout starts again).
+  void restartClock(const ros::Time& inNow);
+
   /// The frame every source is moved into, or empty without a ~fixed_frame.
   const std::string& fixedFrame() const { return fixed_frame_; }
 
@@ -79,12 +96,15 @@ class SourceIngest {
   /// Subscribes to a ~sources entry: a BoxArray topic as published (shared in process by a
   /// nodelet, never copied), any other entry through its adapter.
   void subscribe(ros::NodeHandle& ioNode, const SourceSpec& inSpec, int inQueueSize);
+  /// Subscribes to the latched scenery, static_boxes.
+  void subscribeScenery(ros::NodeHandle& ioNode);
+  /// Counts and logs a message of inTopic whose handling threw (inWhat): refused, not fatal.
+  void refuseUnhandled(const std::string& inTopic, const std::string& inWhat);
   /// Callback of a source read through an adapter (another type, or a BoxArray with an
   /// id_offset, group or mask): converts the message, names new ids on ~id_names, delivers.
   void onAdaptedMessage(SourceAdapter& ioAdapter,
                         const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent);
-  /// Publishes the names of every adapter's ids on ~id_names when some are new (any thread).
-  void publishIdNames(const std_msgs::Header& inHeader);
+
   /// Keeps a checked frame for the worker, or aside while its transform is missing.
   void store(const SourceKey& inKey, const Delivery& inDelivery);
   /// Moves the waiting frames that tf2 can now place to pending_, skips those that waited too
@@ -109,6 +129,13 @@ class SourceIngest {
   ros::Publisher id_names_pub_;                           // latched, while adapters name ids
   std::mutex id_names_mutex_;
   std::size_t id_names_published_ = 0;  // names in the last ~id_names (under the mutex above)
+  std_msgs::Header id_names_header_;    // of the last message an adapter converted
+
+  std::vector<std::pair<std::string, PublisherProbe::Check>> probed_topics_;  // resolved
+  std::unique_ptr<PublisherProbe> publisher_probe_;  // after the subscriptions, stopped first
+  std::vector<std::string> stateful_topics_;         // resolved names of the MarkerArray sources
+  std::map<std::pair<std::string, int>, int> drops_seen_;  // by topic and connection id
+  std::chrono::steady_clock::time_point loss_checked_;     // (worker thread)
 
   std::mutex mutex_;                       // guards what the worker takes
   std::map<SourceKey, Delivery> pending_;  // ready for the worker

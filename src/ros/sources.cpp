@@ -181,11 +181,8 @@ bool SourceSet::convertKept(const SourceKey& inKey, Source& ioSource, WorldAssem
   return true;
 }
 
-std::vector<std::string> SourceSet::expire(const ros::Time& inNow, double inTimeout) {
-  std::vector<std::string> names;
-  for (const SourceKey& key : expire(inNow, [inTimeout](const SourceKey&) { return inTimeout; }))
-    names.push_back(sourceName(key));
-  return names;
+void SourceSet::restartClock(const ros::Time& inNow) {
+  for (auto& [key, source] : sources_) source.received = inNow;
 }
 
 std::vector<SourceKey> SourceSet::expire(
@@ -267,7 +264,10 @@ World SourceSet::assemble(const std::vector<uint32_t>& inStaticIds,
   for (const SourceIt& source : by_join) {
     std::string reason = conflict(source, merged, inStaticIds, world_frame, world_frame_owner);
     if (!reason.empty()) {
-      outAssembly.refusals.push_back(std::move(reason));
+      const std::size_t boxes = source->second.unconverted()
+                                    ? source->second.message->bounds.size() / 6
+                                    : source->second.boxes.size();
+      outAssembly.refusals.push_back(RefusedFrame{source->second.header, boxes, std::move(reason)});
       continue;
     }
     if (world_frame.empty()) {

@@ -57,9 +57,11 @@ struct RefusedFrame {
 
 /// What one merge left out, and why (one refusal per source left out).
 struct WorldAssembly {
-  std_msgs::Header header;            ///< newest stamp of the merged sources, their frame id
-  std::size_t sources_merged = 0;     ///< sources in the world
-  std::vector<std::string> refusals;  ///< "id 7 of 'boxes' from /b is also in 'boxes' from /a"
+  std_msgs::Header header;         ///< newest stamp of the merged sources, their frame id
+  std::size_t sources_merged = 0;  ///< sources in the world
+  /// Sources left out, each with its frame's header and box count: "id 7 of 'boxes' from /b is
+  /// also in 'boxes' from /a"
+  std::vector<RefusedFrame> refusals;
   std::vector<RefusedFrame> refused_frames;  ///< kept frames that failed their checks here
   std::size_t frames_accepted = 0;  ///< kept frames that passed their checks here, first time
 };
@@ -93,13 +95,14 @@ class SourceSet {
   /// The engine refused inKey's kept frame: the source falls back on its last accepted frame,
   /// or leaves the world when it has none (as a frame refused at conversion never joins).
   void refuse(const SourceKey& inKey);
-  /// Drops the sources whose latest frame is older than inTimeout seconds at inNow (0 = never)
-  /// and returns their names.
-  std::vector<std::string> expire(const ros::Time& inNow, double inTimeout);
-  /// As above with each source's own time-out, inTimeoutOf(key) seconds (0 = never); returns
-  /// the keys of the sources dropped.
+  /// Drops the sources whose latest frame is older than their own time-out, inTimeoutOf(key)
+  /// seconds (0 = never), at inNow; returns the keys of the sources dropped.
   std::vector<SourceKey> expire(const ros::Time& inNow,
                                 const std::function<double(const SourceKey&)>& inTimeoutOf);
+  /// The ROS clock went back to inNow (sim time restarted, a bag looped): every source counts
+  /// as received now, so that each times out a full time-out after its last frame of the new
+  /// clock (a receipt time in the clock's future would never time out).
+  void restartClock(const ros::Time& inNow);
   /// Number of sources held.
   std::size_t size() const { return sources_.size(); }
 

@@ -81,3 +81,8 @@ add_rostest(test/ros/example_robots.test DEPENDENCIES ${PROJECT_NAME}_node)
 # roslaunch's own check of every launch file: arguments, included files, packages of nodes.
 find_package(roslaunch REQUIRED)
 roslaunch_add_file_check(launch)
+
+# Messages built byte by byte with lying length prefixes (a MarkerArray, a CUBE_LIST, a
+# BoxArray on a topic and as the scenery, a vision_msgs detection's point cloud) and
+# compute_pairs requests with lying prefixes or bytes left over: refused, counted, node alive.
+add_rostest(test/ros/hostile.test DEPENDENCIES ${PROJECT_NAME}_node)

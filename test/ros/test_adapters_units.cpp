@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <string>
@@ -256,6 +257,7 @@ TEST(WireDecoders, Detection3DInAnotherFrameIsRefused) {
                           detection3DArray(header("cam"), randomOrientedBoxes(2, 1), "lidar"), out);
   ASSERT_TRUE(reason);
   EXPECT_NE(reason->find("detection 0 is in frame 'lidar'"), std::string::npos) << *reason;
+  EXPECT_EQ(out.header.frame_id, "cam") << "the refusal names the array's frame";
 }
 
 TEST(WireDecoders, JskLabelsNameBoxesStably) {
@@ -288,12 +290,72 @@ TEST(WireDecoders, TruncatedAndOverlongMessagesAreRefused) {
   const auto truncated = decodeWireBoxes(InputType::kBoundingBox3DArray, bytes.data(),
                                          static_cast<uint32_t>(bytes.size() - 8), decoded);
   ASSERT_TRUE(truncated);
-  EXPECT_NE(truncated->find("ends early"), std::string::npos) << *truncated;
+  EXPECT_NE(truncated->find("boxes: claims 3 elements"), std::string::npos) << *truncated;
   bytes.push_back(0);
   const auto overlong = decodeWireBoxes(InputType::kBoundingBox3DArray, bytes.data(),
                                         static_cast<uint32_t>(bytes.size()), decoded);
   ASSERT_TRUE(overlong);
   EXPECT_NE(overlong->find("1 bytes left"), std::string::npos) << *overlong;
+}
+
+/// Bytes of a BoxArray in frame inFrame whose bounds prefix claims inClaimed values, followed by
+/// inFollowing of them.
+std::vector<uint8_t> boxArrayClaiming(uint32_t inClaimed, uint32_t inFollowing) {
+  BoxArray message;
+  message.header = header("map");
+  message.bounds.assign(inFollowing, 1.0);
+  WireWriter wire;
+  wire.put(message);
+  const std::size_t prefix_at = wire.bytes.size() - 8 * inFollowing - 4 - 4 - 4;
+  std::memcpy(wire.bytes.data() + prefix_at, &inClaimed, sizeof inClaimed);
+  return wire.bytes;
+}
+
+TEST(WireLayouts, EveryPrefixCheckedAgainstTheBytesLeft) {
+  const WireLayout& layout = wireLayout(InputType::kBoxArray);
+  EXPECT_FALSE(layout.check(boxArrayClaiming(6, 6).data(), boxArrayClaiming(6, 6).size()));
+  const std::vector<uint8_t> lying = boxArrayClaiming(1u << 27, 6);
+  const auto refusal = layout.check(lying.data(), lying.size());
+  ASSERT_TRUE(refusal);
+  EXPECT_EQ(*refusal,
+            "sap_broadphase/BoxArray: bounds: claims 134217728 elements of at least 8 bytes, 56 "
+            "bytes left");
+  std::vector<uint8_t> trailing = boxArrayClaiming(6, 6);
+  trailing.push_back(0);
+  EXPECT_EQ(*layout.check(trailing.data(), trailing.size()),
+            "sap_broadphase/BoxArray: 1 bytes left after the last field: not the layout its MD5 "
+            "sum promises");
+  // A string longer than the bytes: the frame id of the header.
+  std::vector<uint8_t> long_frame = boxArrayClaiming(6, 6);
+  const uint32_t claimed = 1000;
+  std::memcpy(long_frame.data() + 12, &claimed, sizeof claimed);
+  EXPECT_NE(layout.check(long_frame.data(), long_frame.size())
+                ->find("header.frame_id: a string of 1000 bytes"),
+            std::string::npos);
+  // Any cut of a valid message is refused, never read past its end.
+  const std::vector<uint8_t> whole = boxArrayClaiming(12, 12);
+  for (std::size_t size = 0; size < whole.size(); ++size)
+    EXPECT_TRUE(layout.check(whole.data(), size)) << size;
+}
+
+TEST(WireLayouts, NestedArraysOfEveryTypeAreBounded) {
+  // 10^9 markers in 4 bytes; a point cloud of 2^32 - 1 bytes inside a detection.
+  const uint32_t billion = 1000000000;
+  std::vector<uint8_t> markers(4);
+  std::memcpy(markers.data(), &billion, 4);
+  EXPECT_EQ(*wireLayout(InputType::kMarkerArray).check(markers.data(), markers.size()),
+            "visualization_msgs/MarkerArray: markers: claims 1000000000 elements of at least "
+            "154 bytes, 0 bytes left");
+  for (InputType type : {InputType::kBoundingBox3DArray, InputType::kDetection3DArray,
+                         InputType::kJskBoundingBoxArray}) {
+    std::vector<uint8_t> bytes = boundingBox3DArray(header("map"), {});
+    std::memcpy(bytes.data() + bytes.size() - 4, &billion, 4);
+    const auto refusal = wireLayout(type).check(bytes.data(), bytes.size());
+    ASSERT_TRUE(refusal);
+    EXPECT_NE(refusal->find("claims 1000000000 elements"), std::string::npos) << *refusal;
+    DecodedBoxes decoded;
+    EXPECT_TRUE(decodeWireBoxes(type, bytes.data(), static_cast<uint32_t>(bytes.size()), decoded));
+  }
 }
 
 TEST(ShapeShifterCheck, TheTypeNameAndMd5MustMatch) {
@@ -347,7 +409,7 @@ TEST(ShapeShifterCheck, MarkerArrayAndBoxArrayAreInstantiated) {
   const auto unreadable =
       adapter.convert(shapeShifter(info.name, info.md5, truncated), "/robot", out);
   ASSERT_TRUE(unreadable);
-  EXPECT_NE(unreadable->find("visualization_msgs/MarkerArray that cannot be read"),
+  EXPECT_NE(unreadable->find("visualization_msgs/MarkerArray: markers: claims 1 elements"),
             std::string::npos)
       << *unreadable;
 
@@ -474,9 +536,46 @@ TEST(MarkerAdapter, ARefusedMessageLeavesTheSetAsItWas) {
   const auto negative = adapter.convertMarkers(msg, "/r", out);
   ASSERT_TRUE(negative);
   EXPECT_NE(negative->find("box 'b/1': negative size (1, -1, 4)"), std::string::npos) << *negative;
+  EXPECT_EQ(out.header.frame_id, "map") << "the refusal names the marker's frame";
   msg.markers.clear();
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r", out));
   EXPECT_EQ(out.ids, (std::vector<uint32_t>{0}));  // a/1 still there
+}
+
+TEST(MarkerAdapter, DepartedPublishersAreForgotten) {
+  // Publishers coming and going: each leaves its marker set until its source times out.
+  SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
+  BoxArray out;
+  visualization_msgs::MarkerArray msg;
+  msg.markers = {cube("a", 1, 0.0, "map")};
+  for (int k = 0; k < 50; ++k)
+    ASSERT_FALSE(adapter.convertMarkers(msg, "/robot_" + std::to_string(k), out));
+  EXPECT_EQ(adapter.publisherCount(), 50u);
+  for (int k = 0; k < 50; ++k) adapter.dropPublisher("/robot_" + std::to_string(k));
+  EXPECT_EQ(adapter.publisherCount(), 0u);
+  // Back after its time-out, a publisher starts from an empty set: its old cube is gone.
+  msg.markers.clear();
+  ASSERT_FALSE(adapter.convertMarkers(msg, "/robot_0", out));
+  EXPECT_TRUE(out.ids.empty());
+}
+
+TEST(MarkerAdapter, NamesPastTheCapAreRefusedSayingSo) {
+  SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
+  BoxArray out;
+  visualization_msgs::MarkerArray msg;
+  msg.markers = {cube("a", 0, 0.0, "map")};
+  msg.markers[0].type = visualization_msgs::Marker::CUBE_LIST;
+  msg.markers[0].points.resize(kMaxNamesPerSource);  // one name per point: the cap, exactly
+  ASSERT_FALSE(adapter.convertMarkers(msg, "/r", out));
+  EXPECT_EQ(adapter.nameCount(), kMaxNamesPerSource);
+  msg.markers = {cube("b", 1, 0.0, "map")};
+  const auto refusal = adapter.convertMarkers(msg, "/r2", out);
+  ASSERT_TRUE(refusal);
+  EXPECT_NE(refusal->find("box 'b/1': no id left: the source has named 262144 boxes (at most "
+                          "262144"),
+            std::string::npos)
+      << *refusal;
+  EXPECT_EQ(adapter.nameCount(), kMaxNamesPerSource);
 }
 
 TEST(Validation, NaNNegativeSizeAndBadQuaternionsNameTheBox) {

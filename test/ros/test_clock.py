@@ -4,7 +4,7 @@
 With ~rate 10 Hz the node computes its world once per 0.1 s of ROS time: while the clock stands
 still it computes nothing, however long the wall clock runs, and each step of the clock by one
 period computes exactly one frame. A source silent for ~source_timeout of ROS time drops out (`extra`, a second source,
-keeps frames coming meanwhile).
+keeps frames coming meanwhile), also after the clock jumped back.
 
 Every wait is for a condition, bounded by WAIT so that a broken node fails instead of hanging.
 The one wall-clock pause (HOLD) only gives a wrong node time to show itself: the node under
@@ -126,6 +126,39 @@ class ClockTest(unittest.TestCase):
             self.assertTrue(dropped(), "the silent source did not time out in ROS time: the "
                             "last frame had %d sources, %d timed out, stamp %s"
                             % (last.sources, last.sources_timed_out, last.header.stamp))
+
+        self.clock_jumping_back_restarts_the_time_outs(msg, extra)
+
+    def clock_jumping_back_restarts_the_time_outs(self, boxes, extra):
+        """The clock jumps back 60 s (a bag played again, a simulation restarted): a source
+        silent from then on times out ~source_timeout of the new clock later, as it would have
+        on the old one; received on the old clock, it would lie in the new one's future and
+        stay in the world until the clock came back past it."""
+        def step(publish_boxes, accept):
+            with self.condition:
+                mark = len(self.stats)
+            for _ in range(int(WAIT / 0.2)):
+                stamp = rospy.Time(0, 0) + rospy.Duration(0, self.now_ns)
+                extra.header.stamp = stamp
+                self.extra.publish(extra)
+                if publish_boxes:
+                    boxes.header.stamp = stamp
+                    self.boxes.publish(boxes)
+                self.now_ns += PERIOD_NS
+                self.publish_clock()
+                with self.condition:
+                    if self.condition.wait_for(lambda: any(map(accept, self.stats[mark:])), 0.2):
+                        return True
+            return False
+
+        self.assertTrue(step(True, lambda s: s.sources == 2), "`boxes` never joined again")
+        with self.condition:
+            timed_out = max(s.sources_timed_out for s in self.stats)
+        self.now_ns -= 60 * 10**9
+        self.publish_clock()
+        self.assertTrue(
+            step(False, lambda s: s.sources_timed_out > timed_out and s.sources == 1),
+            "the source silent since the clock jumped back never timed out")
 
 if __name__ == "__main__":
     rostest.rosrun(PACKAGE, "clock", ClockTest)

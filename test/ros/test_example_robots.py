@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""The example system (launch/example_robots.launch, rviz and client off) runs as a user starts
-it: each robot, robot_a publishing a MarkerArray and robot_b a BoxArray in its own moving tf
+"""The example system (launch/example_robots.launch, rviz and client off, rviz's topics
+subscribed) runs as a user starts it: each robot, robot_a publishing a MarkerArray and robot_b a BoxArray in its own moving tf
 frame, meets the map's pillar on its path and the pair shows in `pairs`; id_names names
-robot_a's markers; the Python client example (examples/ros/pairs_client.py) answers with the
+robot_a's markers; `markers` keeps drawing colliding boxes while the robots meet the map's
+scenery; the Python client example (examples/ros/pairs_client.py) answers with the
 pairs of its own boxes and prints frames of the node. Also: every parameter of
 config/default.yaml is an argument of both launch files.
 
@@ -20,6 +21,7 @@ import rospy
 import rostest
 import yaml
 from sap_broadphase.msg import IdNames, PairArray
+from visualization_msgs.msg import MarkerArray
 
 PACKAGE = "sap_broadphase"
 WAIT = 120.0  # seconds; a bound on waiting (robot_b reaches its pillar after half a turn)
@@ -37,12 +39,23 @@ class ExampleRobotsTest(unittest.TestCase):
         cls.names = {}
         rospy.Subscriber("pairs", PairArray, cls.on_pairs, queue_size=100)
         rospy.Subscriber("id_names", IdNames, cls.on_names, queue_size=10)
+        # As rviz does: with `markers` subscribed the node draws every frame, robots meeting
+        # the map's scenery included.
+        cls.colliding_drawn = 0
+        rospy.Subscriber("markers", MarkerArray, cls.on_markers, queue_size=10)
 
     @classmethod
     def on_pairs(cls, msg):
         with cls.lock:
             ids = msg.pairs
             cls.pairs_seen.update((ids[k], ids[k + 1]) for k in range(0, len(ids), 2))
+            cls.lock.notify_all()
+
+    @classmethod
+    def on_markers(cls, msg):
+        with cls.lock:
+            if any(m.ns == "colliding" and m.points for m in msg.markers):
+                cls.colliding_drawn += 1
             cls.lock.notify_all()
 
     @classmethod
@@ -73,6 +86,14 @@ class ExampleRobotsTest(unittest.TestCase):
         self.assertTrue(self.wait_for(self.robot_meets_map(ROBOT_B_IDS)),
                         "no pair of robot_b (BoxArray + id_offset 2000) with the map; pairs "
                         "seen: %s" % sorted(self.pairs_seen)[:20])
+
+    def test_markers_drawn_while_robots_meet_the_map(self):
+        self.assertTrue(self.wait_for(self.robot_meets_map(ROBOT_A_IDS)))
+        with self.lock:
+            drawn = self.colliding_drawn
+        # The node lives on, and draws colliding boxes again after the meeting.
+        self.assertTrue(self.wait_for(lambda: self.colliding_drawn > drawn),
+                        "no markers with colliding boxes after robot_a met the map")
 
     def test_id_names_name_robot_a_markers(self):
         expected = {1000: "robot_a/boxes: body/0", 1001: "robot_a/boxes: load/0[0]",

@@ -1,4 +1,5 @@
 // Unit tests of the marker builder (no ROS master needed).
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -84,6 +85,27 @@ TEST(Markers, CapCountsWhatWasLeftOutAndLinksOnlyDrawnBoxes) {
     EXPECT_EQ(links->points.size() % 2, 0u);
     EXPECT_LE(links->points.size(), 2u * options.max_boxes);
   }
+}
+
+/// Pairs of the moving boxes inBoxes with scenery boxes, whose ids the moving set does not hold:
+/// as the engine reports a moving box overlapping a static_boxes box.
+void expectSceneryPairsDrawMovingSideOnly(const BoxSet& inBoxes) {
+  const uint32_t scenery_id = 4000000;  // no moving box has it
+  PairList pairs = {makeIdPair(inBoxes.ids[1], scenery_id),
+                    makeIdPair(scenery_id + 1, inBoxes.ids[3])};
+  std::sort(pairs.begin(), pairs.end());
+  MarkerOptions options;
+  options.show_pair_links = true;
+  visualization_msgs::MarkerArray markers;
+  const MarkerCounts counts = buildMarkers(inBoxes, pairs, std_msgs::Header(), options, markers);
+  EXPECT_EQ(counts.drawn, 2u);
+  EXPECT_EQ(findNamespace(markers, kCollidingNamespace)->points.size(), 48u);
+  EXPECT_EQ(findNamespace(markers, kPairLinkNamespace), nullptr);
+}
+
+TEST(Markers, PairsWithSceneryBoxesDrawTheMovingBoxWhateverItsIds) {
+  expectSceneryPairsDrawMovingSideOnly(test::touchingGrid(2, 0));    // ids 0..n-1: no table
+  expectSceneryPairsDrawMovingSideOnly(test::touchingGrid(2, 100));  // ids through the table
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/FrameStats.h"
@@ -497,6 +498,40 @@ TEST(PairEventsTopic, SetDifferenceOfConsecutiveFrames) {
 }
 
 // ---- ~rate: frames at a fixed rate from what the sources hold ----
+
+TEST(MarkersWithScenery, SubscribedWhileMovingBoxesOverlapTheScenery) {
+  // rviz (any subscriber to `markers`) while the engine pairs moving boxes with scenery boxes,
+  // whose ids the world of moving boxes does not hold.
+  Probe& probe = staticProbe();
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::vector<visualization_msgs::MarkerArray> markers;
+  ros::NodeHandle node("static");
+  ros::Subscriber markers_sub = node.subscribe<visualization_msgs::MarkerArray>(
+      "markers", 100, [&](const visualization_msgs::MarkerArray::ConstPtr& inMsg) {
+        std::lock_guard<std::mutex> lock(mutex);
+        markers.push_back(*inMsg);
+        arrived.notify_all();
+      });
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kWait);
+  while (markers_sub.getNumPublishers() == 0 && ros::WallTime::now() < end)
+    ros::WallDuration(0.05).sleep();
+  ASSERT_GT(markers_sub.getNumPublishers(), 0u);
+  const BoxSet scenery = randomBoxes(1500, 1.0, false, 311);  // as the tests above left it
+  const BoxSet moving = withIdOffset(randomBoxes(100, 1.0, false, 332), kMovingIds);
+  expectWithScenery(scenery, moving);
+  // The node lives on: the next frame is answered, and its markers drew colliding boxes.
+  const ros::Time stamp = publishBoxes(probe, "boxes", moving, "world");
+  ASSERT_TRUE(probe.waitStamped(stamp));
+  std::unique_lock<std::mutex> lock(mutex);
+  const bool drawn = arrived.wait_for(lock, std::chrono::duration<double>(kWait), [&] {
+    for (const auto& array : markers)
+      for (const auto& marker : array.markers)
+        if (marker.ns == "colliding" && !marker.points.empty()) return true;
+    return false;
+  });
+  EXPECT_TRUE(drawn) << "no markers with colliding boxes";
+}
 
 TEST(FixedRate, OneDeliveryComputedAgainAtEachTick) {
   static Probe probe("rated");

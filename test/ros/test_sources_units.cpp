@@ -59,16 +59,22 @@ TEST(SourceSet, SharedIdLeavesTheNewerSourceOutNamingBoth) {
   WorldAssembly assembly;
   const BoxSet& merged = *sources.assemble({}, "", world, assembly).boxes;
   ASSERT_EQ(assembly.refusals.size(), 1u);
-  EXPECT_EQ(assembly.refusals[0].rfind("id 7 of 'boxes' from /b is also in 'boxes' from /a", 0), 0u)
-      << assembly.refusals[0];
+  EXPECT_EQ(
+      assembly.refusals[0].reason.rfind("id 7 of 'boxes' from /b is also in 'boxes' from /a", 0),
+      0u)
+      << assembly.refusals[0].reason;
+  // The refusal carries the left-out frame's own header and size, for the log and stats.
+  EXPECT_EQ(assembly.refusals[0].header.frame_id, "world");
+  EXPECT_EQ(assembly.refusals[0].header.stamp, header("world", 1).stamp);
+  EXPECT_EQ(assembly.refusals[0].boxes, 1u);
   EXPECT_EQ(assembly.sources_merged, 2u);
   EXPECT_EQ(bruteForcePairs(merged), PairList({{7, 8}}));
   // The scenery's ids are refused likewise.
   sources.assemble({3, 8, 9}, "", world, assembly);
   ASSERT_EQ(assembly.refusals.size(), 2u);
-  EXPECT_NE(assembly.refusals[1].find("id 8 of 'extra' from /c is also in 'static_boxes'"),
+  EXPECT_NE(assembly.refusals[1].reason.find("id 8 of 'extra' from /c is also in 'static_boxes'"),
             std::string::npos)
-      << assembly.refusals[1];
+      << assembly.refusals[1].reason;
 }
 
 TEST(SourceSet, OtherFrameRefusedNamingBothFrames) {
@@ -80,8 +86,8 @@ TEST(SourceSet, OtherFrameRefusedNamingBothFrames) {
   WorldAssembly assembly;
   const BoxSet& merged = *sources.assemble({}, "", world, assembly).boxes;
   ASSERT_EQ(assembly.refusals.size(), 1u);
-  EXPECT_NE(assembly.refusals[0].find("'robot_b'"), std::string::npos);
-  EXPECT_NE(assembly.refusals[0].find("'robot_a'"), std::string::npos);
+  EXPECT_NE(assembly.refusals[0].reason.find("'robot_b'"), std::string::npos);
+  EXPECT_NE(assembly.refusals[0].reason.find("'robot_a'"), std::string::npos);
   EXPECT_EQ(merged.size(), 1u);
   // With scenery in another frame, that frame is the world's.
   sources.assemble({}, "map", world, assembly);
@@ -186,10 +192,10 @@ TEST(SourceSet, KeptMessageIdsMeetTheSceneryIds) {
   WorldAssembly assembly;
   sources.assemble({1, 5}, "", world, assembly, false);
   ASSERT_EQ(assembly.refusals.size(), 1u);
-  EXPECT_EQ(
-      assembly.refusals[0].rfind("id 1 of 'boxes' from /a in 'world' is also in 'static_boxes'", 0),
-      0u)
-      << assembly.refusals[0];
+  EXPECT_EQ(assembly.refusals[0].reason.rfind(
+                "id 1 of 'boxes' from /a in 'world' is also in 'static_boxes'", 0),
+            0u)
+      << assembly.refusals[0].reason;
 }
 
 TEST(SourceSet, SilentSourcesExpire) {
@@ -197,10 +203,25 @@ TEST(SourceSet, SilentSourcesExpire) {
   BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.0, 1.0);
   sources.store({"boxes", "/a", ""}, a, header("w", 1), ros::Time(10, 0));
   sources.store({"boxes", "/b", ""}, b, header("w", 1), ros::Time(11, 0));
-  EXPECT_TRUE(sources.expire(ros::Time(11, 500000000), 0.0).empty()) << "0 = never";
-  EXPECT_EQ(sources.expire(ros::Time(11, 500000000), 1.0),
-            std::vector<std::string>({"'boxes' from /a"}));
+  const auto never = [](const SourceKey&) { return 0.0; };
+  const auto one_second = [](const SourceKey&) { return 1.0; };
+  EXPECT_TRUE(sources.expire(ros::Time(11, 500000000), never).empty()) << "0 = never";
+  const std::vector<SourceKey> expired = sources.expire(ros::Time(11, 500000000), one_second);
+  ASSERT_EQ(expired.size(), 1u);
+  EXPECT_EQ(sourceName(expired[0]), "'boxes' from /a");
   EXPECT_EQ(sources.size(), 1u);
+}
+
+TEST(SourceSet, ClockJumpingBackRestartsTheTimeOuts) {
+  // A bag played again: the clock goes from 100 s back to 5 s. Received at 100 s, a source
+  // would lie in the new clock's future and never time out.
+  SourceSet sources;
+  BoxSet a = oneBox(1, 0.0, 1.0);
+  sources.store({"boxes", "/a", ""}, a, header("w", 1), ros::Time(100, 0));
+  const auto one_second = [](const SourceKey&) { return 1.0; };
+  sources.restartClock(ros::Time(5, 0));
+  EXPECT_TRUE(sources.expire(ros::Time(5, 500000000), one_second).empty());
+  EXPECT_EQ(sources.expire(ros::Time(6, 100000000), one_second).size(), 1u);
 }
 
 TEST(TransformBoxes, ContainsEveryMovedCornerAndIsTight) {

@@ -42,6 +42,7 @@ if(TARGET ${PROJECT_NAME}_ros)
     test/stress/test_fuzz_replay_ros.cpp
     test/stress/fuzz_replay.cpp
     fuzz/box_array_checks.cpp
+    fuzz/wire_checks.cpp
     fuzz/fuzz_checks.cpp
     test/stress/stress_sequences.cpp
     test/core/test_main.cpp
@@ -51,5 +52,6 @@ if(TARGET ${PROJECT_NAME}_ros)
     ${catkin_LIBRARIES})
   add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp)
   target_compile_definitions(test_fuzz_replay_ros PRIVATE
-    SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
+    SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz"
+    SAP_ADAPTERS_MSGS_DIR="${CMAKE_CURRENT_SOURCE_DIR}/src/ros/adapters_msgs")
 endif()
