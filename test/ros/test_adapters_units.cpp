@@ -19,6 +19,7 @@
 
 #include "adapters.h"
 #include "adapters_sources.h"
+#include "node_params.h"
 
 namespace sap_broadphase {
 namespace {
@@ -643,6 +644,25 @@ TEST(SourceSpecs, TopicsAndDictsAreRead) {
             "markers (visualization_msgs/MarkerArray, id_offset 1000, timeout 0.5 s)");
   EXPECT_EQ(describeSourceSpec(specs[2]),
             "jsk (jsk_recognition_msgs/BoundingBoxArray, group 0x2, mask 0xFFFFFFFF)");
+}
+
+// roscpp hands `rosrun sap_broadphase node _sources:="[...]"` over as this string.
+TEST(SourceSpecs, TheCommandLinesYamlStringIsRead) {
+  XmlRpc::XmlRpcValue value;
+  ASSERT_EQ(parseYamlParameter("[boxes, {topic: obstacles, type: visualization_msgs/MarkerArray, "
+                               "id_offset: 1000, mask: '0xFFFFFFFD', timeout: 0.5}]",
+                               value),
+            "");
+  std::vector<SourceSpec> specs;
+  ASSERT_EQ(parseSourceSpecs(value, specs), "");
+  ASSERT_EQ(specs.size(), 2u);
+  EXPECT_EQ(describeSourceSpec(specs[0]), "boxes");
+  EXPECT_EQ(describeSourceSpec(specs[1]),
+            "obstacles (visualization_msgs/MarkerArray, id_offset 1000, mask 0xFFFFFFFD, "
+            "timeout 0.5 s)");
+  EXPECT_EQ(
+      parseYamlParameter("[boxes, {topic: a", value).rfind("'[boxes, {topic: a' is not YAML (", 0),
+      0u);
 }
 
 TEST(SourceSpecs, ProblemsNameTheEntryAndKey) {
