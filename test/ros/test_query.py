@@ -10,6 +10,7 @@ import unittest
 import rosgraph
 import rospy
 import rostest
+from rosgraph_msgs.msg import Log
 from sap_broadphase.msg import BoxArray, FrameStats
 from sap_broadphase.srv import QueryBoxes
 
@@ -42,6 +43,17 @@ class QueryBoxesTest(unittest.TestCase):
         cls.boxes = rospy.Publisher("boxes", BoxArray, queue_size=10)
         rospy.wait_for_service("query_boxes", WAIT)
         cls.query = rospy.ServiceProxy("query_boxes", QueryBoxes)
+        # Early, so that the cmdline node's log reaches the test once it drops a source.
+        cls.drop_outs = []
+        cls.log_condition = threading.Condition()
+        cls.log_subscriber = rospy.Subscriber("/rosout", Log, cls.on_log)
+
+    @classmethod
+    def on_log(cls, msg):
+        if msg.name == "/cmdline/sap_broadphase" and "dropped out" in msg.msg:
+            with cls.log_condition:
+                cls.drop_outs.append(msg)
+                cls.log_condition.notify_all()
 
     def wait_for_hits(self, request, expected, service=None, feed=None):
         """Asks until the answer is `expected` (the world fills as frames arrive); feed(), when
@@ -191,6 +203,31 @@ class QueryBoxesTest(unittest.TestCase):
             rospy.sleep(0.1)
         self.fail("/cmdline/sap_broadphase subscribes to %s, not %s" % (sorted(subscribed),
                                                                       sorted(wanted)))
+
+
+    def test_8_one_frame_drops_out_at_info_a_stream_at_warn(self):
+        # The cmdline node has the default ~source_timeout (1 s): a frame published once (as
+        # by `rostopic pub -1`) drops out as expected (INFO), a stream that stops is a WARN.
+        logs, condition = self.drop_outs, self.log_condition
+        once = rospy.Publisher("/cmdline/boxes", BoxArray, queue_size=10)
+        try:
+            while once.get_num_connections() == 0:
+                rospy.sleep(0.05)
+            once.publish(box_array("world", [0, 0, 0, 1, 1, 1], [1]))
+            with condition:
+                self.assertTrue(condition.wait_for(lambda: logs, WAIT), "no drop-out logged")
+            self.assertEqual(logs[0].level, Log.INFO, logs[0].msg)
+            self.assertIn("published one frame", logs[0].msg)
+            for _ in range(3):
+                once.publish(box_array("world", [0, 0, 0, 1, 1, 1], [1]))
+                rospy.sleep(0.1)
+            with condition:
+                self.assertTrue(condition.wait_for(lambda: len(logs) > 1, WAIT),
+                                "no drop-out of the stream logged")
+            self.assertEqual(logs[1].level, Log.WARN, logs[1].msg)
+            self.assertIn("silent for more than ~source_timeout", logs[1].msg)
+        finally:
+            once.unregister()
 
 
 if __name__ == "__main__":
