@@ -14,11 +14,14 @@ add_library(${PROJECT_NAME}_ros
   src/ros/node_status.cpp
   src/ros/pairs_service.cpp
   src/ros/publisher_probe.cpp
+  src/ros/query_service.cpp
   src/ros/source_ingest.cpp
   src/ros/sources.cpp
   src/ros/wire_layout.cpp
 )
-target_link_libraries(${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
+# yaml-cpp: list and dict parameters given as YAML strings on the command line
+find_package(yaml-cpp REQUIRED)
+target_link_libraries(${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES} yaml-cpp)
 # node_reconfigure.cpp and node_params.cpp include the header generated from cfg/BroadphaseNode.cfg.
 add_dependencies(${PROJECT_NAME}_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 

@@ -10,6 +10,7 @@
 
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/ComputePairs.h"
+#include "sap_broadphase/QueryBoxes.h"
 #include "wire_layout.h"
 
 namespace sap_broadphase::fuzz {
@@ -75,6 +76,11 @@ std::string checkAccepted(int inType, const uint8_t* inData, std::size_t inSize)
     std::string problem = deserializeAccepted(inData, inSize, request);
     return problem.empty() ? boxArrayWithin(request.boxes, inSize) : problem;
   }
+  if (inType == 6) {
+    QueryBoxes::Request request;
+    std::string problem = deserializeAccepted(inData, inSize, request);
+    return problem.empty() ? boxArrayWithin(request.boxes, inSize) : problem;
+  }
   return "";  // vision_msgs and jsk: the node's decoders read what the layout accepted
 }
 
@@ -91,6 +97,7 @@ std::string checkWireInput(const uint8_t* inData, std::size_t inSize) {
       WireLayout("jsk_recognition_msgs/BoundingBoxArray",
                  adapterDefinition("jsk_recognition_msgs__BoundingBoxArray.msg")),
       layoutOf<ComputePairs::Request>(),
+      layoutOf<QueryBoxes::Request>(),
   };
   if (inSize == 0) return "";
   const int type = inData[0] % static_cast<int>(kLayouts.size());

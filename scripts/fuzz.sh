@@ -47,10 +47,11 @@ INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/src/ros -I$ROOT/fuzz -I$ROOT/test/
 FLAGS="$FLAGS -DSAP_ADAPTERS_MSGS_DIR=\"$ROOT/src/ros/adapters_msgs\""
 mkdir -p "$OUT/obj" "$OUT/gen/sap_broadphase" "$OUT/crashes"
 
-# ROS message headers straight from the .msg files (Debian's gencpp).
-for msg in BoxArray PairArray; do
-  if [ ! -f "$OUT/gen/sap_broadphase/$msg.h" ] || [ "$ROOT/msg/$msg.msg" -nt "$OUT/gen/sap_broadphase/$msg.h" ]; then
-    PYENV_VERSION=system /usr/bin/python3 /usr/lib/gencpp/gen_cpp.py "$ROOT/msg/$msg.msg" \
+# ROS message and service headers straight from the .msg and .srv files (Debian's gencpp).
+for spec in msg/BoxArray.msg msg/PairArray.msg srv/ComputePairs.srv srv/QueryBoxes.srv; do
+  header="$OUT/gen/sap_broadphase/$(basename "${spec%.*}").h"
+  if [ ! -f "$header" ] || [ "$ROOT/$spec" -nt "$header" ]; then
+    PYENV_VERSION=system /usr/bin/python3 /usr/lib/gencpp/gen_cpp.py "$ROOT/$spec" \
       -Isap_broadphase:"$ROOT/msg" -Istd_msgs:/usr/share/std_msgs/msg -p sap_broadphase \
       -o "$OUT/gen/sap_broadphase" -e /usr/share/gencpp >/dev/null
   fi

@@ -139,11 +139,12 @@ std::optional<std::string> decodeJskBoundingBoxArray(ros::serialization::IStream
 void appendMarkerBoxes(const visualization_msgs::Marker& inMarker, std::vector<PosedBox>& ioBoxes) {
   const std::string name = inMarker.ns + "/" + std::to_string(inMarker.id);
   if (inMarker.type == visualization_msgs::Marker::CUBE) {
-    ioBoxes.push_back(PosedBox{name, inMarker.pose, geometry_msgs::Point(), inMarker.scale});
+    ioBoxes.push_back(
+        PosedBox{name, inMarker.pose, geometry_msgs::Point(), inMarker.scale, inMarker.id});
   } else if (inMarker.type == visualization_msgs::Marker::CUBE_LIST) {
     for (std::size_t k = 0; k < inMarker.points.size(); ++k) {
       ioBoxes.push_back(PosedBox{name + "[" + std::to_string(k) + "]", inMarker.pose,
-                                 inMarker.points[k], inMarker.scale});
+                                 inMarker.points[k], inMarker.scale, std::nullopt});
     }
   }
 }
@@ -269,11 +270,31 @@ std::optional<std::string> checkPosedBox(const PosedBox& inBox) {
 std::optional<uint32_t> IdTable::idOf(const std::string& inName) {
   auto found = ids_.find(inName);
   if (found != ids_.end()) return found->second;
-  const uint64_t id = uint64_t{offset_} + names_.size();
-  if (id > std::numeric_limits<uint32_t>::max() || names_.size() >= kMaxNamesPerSource)
+  const uint64_t id = uint64_t{offset_} + entries_.size();
+  if (id > std::numeric_limits<uint32_t>::max() || entries_.size() >= kMaxNamesPerSource)
     return std::nullopt;
   ids_.emplace(inName, static_cast<uint32_t>(id));
-  names_.push_back(inName);
+  entries_.emplace_back(static_cast<uint32_t>(id), inName);
+  return static_cast<uint32_t>(id);
+}
+
+std::optional<uint32_t> IdTable::ownIdOf(const std::string& inName, int32_t inOwnId,
+                                         std::string& outReason) {
+  auto found = ids_.find(inName);
+  if (found != ids_.end()) return found->second;  // a name's id never changes
+  const int64_t id = int64_t{offset_} + inOwnId;
+  if (inOwnId < 0 || id > int64_t{std::numeric_limits<uint32_t>::max()}) {
+    outReason = "id " + std::to_string(inOwnId) + " plus id_offset " + std::to_string(offset_) +
+                " is no id from 0 to 2^32 - 1 (ids: marker takes ids >= 0)";
+    return std::nullopt;
+  }
+  if (entries_.size() >= kMaxNamesPerSource) {
+    outReason = "no id left: the source has named " + std::to_string(entries_.size()) +
+                " boxes (at most " + std::to_string(kMaxNamesPerSource) + ")";
+    return std::nullopt;
+  }
+  ids_.emplace(inName, static_cast<uint32_t>(id));
+  entries_.emplace_back(static_cast<uint32_t>(id), inName);
   return static_cast<uint32_t>(id);
 }
 
@@ -387,10 +408,16 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
   outBoxes.ids.reserve(inBoxes.size());
   outBoxes.bounds.reserve(6 * inBoxes.size());
   for (const PosedBox& box : inBoxes) {
-    const std::optional<uint32_t> id = ids_.idOf(box.name);
-    if (!id) {
+    std::optional<uint32_t> id;
+    if (spec_.marker_ids) {
+      std::string reason =
+          "a CUBE_LIST's points have no id of their own (ids: marker takes "
+          "CUBE markers only)";
+      if (box.own_id) id = ids_.ownIdOf(box.name, *box.own_id, reason);
+      if (!id) return "box '" + box.name + "': " + reason;
+    } else if (!(id = ids_.idOf(box.name))) {
       return "box '" + box.name + "': no id left: the source has named " +
-             std::to_string(ids_.names().size()) + " boxes (at most " +
+             std::to_string(ids_.entries().size()) + " boxes (at most " +
              std::to_string(kMaxNamesPerSource) + ", and id_offset " +
              std::to_string(spec_.id_offset) + " plus the names must stay below 2^32)";
     }
@@ -454,16 +481,15 @@ std::optional<std::string> SourceAdapter::applyOverrides(BoxArray& ioBoxes) cons
 void SourceAdapter::appendIdNames(std::vector<uint32_t>& ioIds,
                                   std::vector<std::string>& ioNames) const {
   std::lock_guard<std::mutex> lock(mutex_);
-  const std::vector<std::string>& names = ids_.names();
-  for (std::size_t k = 0; k < names.size(); ++k) {
-    ioIds.push_back(static_cast<uint32_t>(ids_.offset() + k));
-    ioNames.push_back(spec_.topic + ": " + names[k]);
+  for (const auto& [id, name] : ids_.entries()) {
+    ioIds.push_back(id);
+    ioNames.push_back(spec_.topic + ": " + name);
   }
 }
 
 std::size_t SourceAdapter::nameCount() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return ids_.names().size();
+  return ids_.entries().size();
 }
 
 void SourceAdapter::dropPublisher(const std::string& inPublisher) {

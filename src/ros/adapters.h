@@ -55,10 +55,11 @@ std::optional<std::string> checkPublishedType(InputType inExpected, const std::s
 /// A box as the messages give it: a box of `size` centred on `centre`, in the frame that `pose`
 /// places in the message's frame.
 struct PosedBox {
-  std::string name;             ///< what the box is called in its source: "obstacles/7", ...
-  geometry_msgs::Pose pose;     ///< of the box's frame in the message's frame
-  geometry_msgs::Point centre;  ///< in the box's frame: a CUBE_LIST point, else the origin
-  geometry_msgs::Vector3 size;  ///< full extent along the box's frame axes
+  std::string name;               ///< what the box is called in its source: "obstacles/7", ...
+  geometry_msgs::Pose pose;       ///< of the box's frame in the message's frame
+  geometry_msgs::Point centre;    ///< in the box's frame: a CUBE_LIST point, else the origin
+  geometry_msgs::Vector3 size;    ///< full extent along the box's frame axes
+  std::optional<int32_t> own_id;  ///< a CUBE marker's id (a CUBE_LIST's points have none)
 };
 
 /// The boxes of one message of a vision_msgs or jsk type, with the message's header.
@@ -84,21 +85,26 @@ std::optional<std::string> checkPosedBox(const PosedBox& inBox);
 constexpr std::size_t kMaxNamesPerSource = std::size_t{1} << 18;
 
 /// Stable ids for the names of a source: the k-th name seen gets id_offset + k, for the life of
-/// the node, whatever order later messages list them in.
+/// the node, whatever order later messages list them in; or, for a box with an id of its own
+/// (a marker's, with `ids: marker`), id_offset + that id.
 class IdTable {
  public:
   explicit IdTable(uint32_t inOffset) : offset_(inOffset) {}
   /// The id of inName (registered when new), or nothing when the offset plus the number of
   /// names would pass 2^32 - 1 or the table holds kMaxNamesPerSource names.
   std::optional<uint32_t> idOf(const std::string& inName);
-  /// The names in id order: names()[k] has id offset() + k.
-  const std::vector<std::string>& names() const { return names_; }
+  /// offset() + inOwnId for the box inName, its name registered when new; nothing, with
+  /// outReason, when inOwnId is negative, the sum passes 2^32 - 1 or the table is full.
+  std::optional<uint32_t> ownIdOf(const std::string& inName, int32_t inOwnId,
+                                  std::string& outReason);
+  /// Every (id, name) registered, in the order first seen.
+  const std::vector<std::pair<uint32_t, std::string>>& entries() const { return entries_; }
   uint32_t offset() const { return offset_; }
 
  private:
   uint32_t offset_;
   std::map<std::string, uint32_t> ids_;
-  std::vector<std::string> names_;
+  std::vector<std::pair<uint32_t, std::string>> entries_;
 };
 
 /// Converts the messages of one ~sources entry into BoxArrays. Thread-safe: one mutex per

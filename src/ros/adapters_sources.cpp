@@ -13,7 +13,7 @@ namespace {
 
 using XmlRpc::XmlRpcValue;
 
-const char* const kKeys[] = {"topic", "type", "id_offset", "group", "mask", "timeout"};
+const char* const kKeys[] = {"topic", "type", "id_offset", "group", "mask", "timeout", "ids"};
 
 /// A number of the parameter server as a double: YAML gives 7 as an int, 0.5 as a double and
 /// 4294967295 (past int32) as a double.
@@ -67,14 +67,14 @@ std::string readEntry(const XmlRpcValue& inEntry, const std::string& inWhere, So
   }
   if (inEntry.getType() != XmlRpcValue::TypeStruct) {
     return inWhere + " must be a topic name or a dict {topic: ..., type: ...} (keys topic, type, " +
-           "id_offset, group, mask, timeout)";
+           "id_offset, group, mask, timeout, ids)";
   }
   for (auto it = entry.begin(); it != entry.end(); ++it) {
     bool known = false;
     for (const char* key : kKeys) known = known || it->first == key;
     if (!known) {
       return inWhere + " has an unknown key '" + it->first +
-             "' (keys: topic, type, id_offset, group, mask, timeout)";
+             "' (keys: topic, type, id_offset, group, mask, timeout, ids)";
     }
   }
   if (!entry.hasMember("topic") || entry["topic"].getType() != XmlRpcValue::TypeString)
@@ -106,6 +106,15 @@ std::string readEntry(const XmlRpcValue& inEntry, const std::string& inWhere, So
     if (!readNumber(entry["timeout"], seconds) || !(seconds >= 0.0) || !std::isfinite(seconds))
       return inWhere + ".timeout must be a number of seconds >= 0 (0 = never)";
     outSpec.timeout = seconds;
+  }
+  if (entry.hasMember("ids")) {
+    const bool text = entry["ids"].getType() == XmlRpcValue::TypeString;
+    const std::string ids = text ? static_cast<std::string>(entry["ids"]) : "";
+    if (ids != "marker" && ids != "first_seen")
+      return inWhere + ".ids must be 'first_seen' (the default) or 'marker'";
+    if (ids == "marker" && outSpec.type != InputType::kMarkerArray)
+      return inWhere + ".ids 'marker' needs type visualization_msgs/MarkerArray";
+    outSpec.marker_ids = ids == "marker";
   }
   return "";
 }
@@ -146,6 +155,7 @@ std::string describeSourceSpec(const SourceSpec& inSpec) {
   if (inSpec.id_offset != 0) text += ", id_offset " + std::to_string(inSpec.id_offset);
   if (inSpec.group) text += ", group " + hexText(*inSpec.group);
   if (inSpec.mask) text += ", mask " + hexText(*inSpec.mask);
+  if (inSpec.marker_ids) text += ", ids marker";
   if (inSpec.timeout) {
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%g", *inSpec.timeout);

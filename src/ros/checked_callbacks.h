@@ -9,9 +9,11 @@
 #include <string>
 #include <utility>
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <ros/service_callback_helper.h>
 #include <ros/subscription_callback_helper.h>
+#include <boost/make_shared.hpp>
 
 #include "wire_layout.h"
 
@@ -103,6 +105,27 @@ class CheckedServiceHelper final : public ros::ServiceCallbackHelper {
   const WireLayout& layout_;
   Refusal refusal_;
 };
+
+/// Advertises service inName of Spec on ioNode, answered on ioQueue (the service's own thread):
+/// each request's bytes are checked against its layout first, and a refused or unreadable
+/// request is answered through inRefusal (CheckedServiceHelper).
+template <typename Spec>
+ros::ServiceServer advertiseCheckedService(ros::NodeHandle& ioNode, const std::string& inName,
+                                           ros::CallbackQueue& ioQueue,
+                                           typename CheckedServiceHelper<Spec>::Callback inCallback,
+                                           typename CheckedServiceHelper<Spec>::Refusal inRefusal) {
+  using Request = typename Spec::RequestType;
+  using Response = typename Spec::ResponseType;
+  static const WireLayout kRequestLayout(ros::message_traits::DataType<Request>::value(),
+                                         ros::message_traits::Definition<Request>::value());
+  ros::AdvertiseServiceOptions options;
+  options.init<Request, Response>(ioNode.resolveName(inName),
+                                  [](Request&, Response&) { return false; });
+  options.helper = boost::make_shared<CheckedServiceHelper<Spec>>(
+      std::move(inCallback), kRequestLayout, std::move(inRefusal));
+  options.callback_queue = &ioQueue;
+  return ioNode.advertiseService(options);
+}
 
 /// Runs inBody; an exception it throws (std::bad_alloc included) goes to inReport instead of
 /// ending the process. For every callback of the transport, tf and the worker's loop.

@@ -61,6 +61,11 @@ void FrameWorker::reconfigure(const NodeParams& inSettings) {
   wake_.notify_one();
 }
 
+QueryHitList FrameWorker::query(const BoxSet& inQueries) const {
+  std::shared_lock<std::shared_mutex> lock(engine_mutex_);
+  return engine_.query(inQueries);
+}
+
 bool FrameWorker::waitUntil(const ros::Time& inDeadline, const ros::Duration& inPeriod) {
   // With a fixed ~rate, deliveries wait for the tick; only settings and stopping do not.
   const bool fixed_rate = params_.rate > 0.0;
@@ -139,6 +144,7 @@ void FrameWorker::recoverFrom(const std::string& inWhat) {
   // engine's temporal state half updated: the next frame starts on a new engine.
   status_.refuse(std_msgs::Header(), 0,
                  "a frame could not be computed (" + inWhat + "): refused, new engine");
+  std::lock_guard<std::shared_mutex> lock(engine_mutex_);
   engine_ = Broadphase(params_.engine);
   if (static_boxes_.size() > 0) engine_.setStaticBoxes(static_boxes_);
 }
@@ -149,6 +155,7 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
     // The engine takes its configuration once, at construction; the new one starts without
     // temporal state (partition bounds, kept candidates, the last frame) and must be told
     // the scenery again.
+    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
     engine_ = Broadphase(inSettings.engine);
     if (static_boxes_.size() > 0) engine_.setStaticBoxes(static_boxes_);
     status_.setEngineConfig(inSettings.engine);
@@ -173,7 +180,10 @@ bool FrameWorker::takeScenery() {
   static_frame_ =
       ingest_.fixedFrame().empty() ? scenery_msg->header.frame_id : ingest_.fixedFrame();
   if (scenery.size() == 0) static_frame_.clear();  // no scenery: no frame to agree with
-  engine_.setStaticBoxes(scenery);
+  {
+    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+    engine_.setStaticBoxes(scenery);
+  }
   status_.setStaticBoxes(scenery.size());
   ROS_INFO("sap_broadphase: static_boxes: %zu boxes indexed (frame '%s')", scenery.size(),
            scenery_msg->header.frame_id.c_str());
@@ -210,12 +220,27 @@ void FrameWorker::expireSources() {
       if (spec.topic == inKey.topic && spec.timeout) return *spec.timeout;
     return params_.source_timeout;
   };
-  for (const SourceKey& key : sources_.expire(ros::Time::now(), timeout_of)) {
+  const std::vector<SourceSet::Expired> expired = sources_.expire(ros::Time::now(), timeout_of);
+  if (!expired.empty() && sources_.size() == 0) {
+    // No frame follows until a source comes back: the last one must not stay in the world.
+    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+    engine_.update(BoxSet());
+  }
+  for (const auto& [key, frames] : expired) {
     ingest_.forget(key);
     const bool own = timeout_of(key) != params_.source_timeout;
-    status_.timeOut(sourceName(key) + " silent for more than " +
-                    (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +
-                    std::to_string(timeout_of(key)) + " s): dropped out");
+    const std::string timeout =
+        (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +
+        std::to_string(timeout_of(key)) + " s)";
+    if (frames == 1) {
+      // One frame, then silence (rostopic pub -1, a one-shot tool): as published, not a
+      // stream that broke off.
+      status_.timeOut(sourceName(key) + " published one frame, older now than " + timeout +
+                          ": dropped out (~source_timeout 0 keeps such a source)",
+                      false);
+    } else {
+      status_.timeOut(sourceName(key) + " silent for more than " + timeout + ": dropped out", true);
+    }
   }
 }
 
@@ -239,7 +264,11 @@ void FrameWorker::computeFrame() {
   frame.boxes = world.size();
   frame.sources = assembly.sources_merged;
   frame.ms_conversion = millisecondsSince(start);
-  const PairList* pairs = world.boxes ? &engine_.update(*world.boxes) : nullptr;
+  const PairList* pairs = nullptr;
+  if (world.boxes) {
+    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+    pairs = &engine_.update(*world.boxes);
+  }
   if (!pairs && !(pairs = updateFromMessage(world))) return;
   frame.ms_message = outputs_.publishPairs(*pairs, assembly.header);
   frame.ms_total = millisecondsSince(start);
@@ -255,7 +284,9 @@ void FrameWorker::computeFrame() {
 const PairList* FrameWorker::updateFromMessage(const World& inWorld) {
   const BoxArray& message = *inWorld.message;
   try {
+    std::unique_lock<std::shared_mutex> lock(engine_mutex_);
     const PairList& pairs = engine_.update(boxArrayRecords(message));
+    lock.unlock();
     if (sources_.accept(inWorld.source)) status_.countProcessed();
     return &pairs;
   } catch (const InvalidBoxes& refusal) {

@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <shared_mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -39,6 +40,10 @@ class FrameWorker {
   void wake();
   /// Reconfigured settings, taken into force before the next frame (any thread).
   void reconfigure(const NodeParams& inSettings);
+  /// What overlaps inQueries (checked, in the world's frame) in the world: the last frame
+  /// computed plus the scenery (Broadphase::query). Any thread; waits at most for the engine
+  /// work in progress (a frame, a new scenery or a new engine).
+  QueryHitList query(const BoxSet& inQueries) const;
 
  private:
   /// Waits for work, takes it in, computes; until the destructor says stop.
@@ -52,7 +57,8 @@ class FrameWorker {
   bool takeDeliveries();
   /// Replaces the engine's scenery once tf2 can place it. True when the world changed.
   bool takeScenery();
-  /// Drops silent sources, counts and logs each once.
+  /// Drops silent sources, counts and logs each once; when the last one goes, the world is the
+  /// scenery alone (for queries).
   void expireSources();
   /// The ROS clock went back to inNow: receipt times and time-outs start again from it.
   void restartClock(const ros::Time& inNow);
@@ -77,6 +83,9 @@ class FrameWorker {
   ros::Time last_now_;  // ROS time of the last round (worker thread): a later one before it is a
                         // jump back in time
 
+  // Queries read engine_ from the service thread (shared); the worker changes it (frames, the
+  // scenery, a new engine) exclusively, and reads it alone without the lock.
+  mutable std::shared_mutex engine_mutex_;
   Broadphase engine_;
   SourceSet sources_;
   std::map<SourceKey, Delivery> deliveries_;

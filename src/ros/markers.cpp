@@ -27,6 +27,7 @@ geometry_msgs::Point makePoint(double inX, double inY, double inZ) {
   return point;
 }
 
+/// A marker of inNamespace (a LINE_LIST unless the caller changes its type).
 visualization_msgs::Marker makeLineList(const std_msgs::Header& inHeader, const char* inNamespace,
                                         const std_msgs::ColorRGBA& inColor) {
   visualization_msgs::Marker marker;
@@ -54,6 +55,33 @@ void appendWireframe(const BoxSet& inBoxes, std::size_t i,
       ioPoints.push_back(makePoint(x[a], y[1], z[b]));
       ioPoints.push_back(makePoint(x[a], y[b], z[0]));  // edge along z
       ioPoints.push_back(makePoint(x[a], y[b], z[1]));
+    }
+  }
+}
+
+/// Appends the 6 faces of box i, 2 triangles each (36 points), to ioPoints.
+void appendSolid(const BoxSet& inBoxes, std::size_t i,
+                 std::vector<geometry_msgs::Point>& ioPoints) {
+  const double lo[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
+  const double hi[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (const double level : {lo[axis], hi[axis]}) {
+      // The face's corners (u, v) = (lo, lo), (hi, lo), (hi, hi), (lo, hi) at `level`.
+      const auto corner = [&](bool inUHigh, bool inVHigh) {
+        double c[3];
+        c[axis] = level;
+        c[u] = inUHigh ? hi[u] : lo[u];
+        c[v] = inVHigh ? hi[v] : lo[v];
+        return makePoint(c[0], c[1], c[2]);
+      };
+      for (const auto& [uh, vh] : {std::pair{false, false},
+                                   {true, false},
+                                   {true, true},
+                                   {false, false},
+                                   {true, true},
+                                   {false, true}})
+        ioPoints.push_back(corner(uh, vh));
     }
   }
 }
@@ -101,7 +129,8 @@ double meanEdge(const BoxSet& inBoxes, const std::vector<std::size_t>& inDrawn) 
 MarkerOptions::MarkerOptions()
     : colliding_color(makeColor(1.0f, 0.0f, 0.0f, 1.0f)),
       non_colliding_color(makeColor(0.2f, 0.8f, 0.3f, 0.5f)),
-      pair_link_color(makeColor(1.0f, 0.9f, 0.1f, 1.0f)) {}
+      pair_link_color(makeColor(1.0f, 0.9f, 0.1f, 1.0f)),
+      colliding_fill_color(makeColor(1.0f, 0.1f, 0.1f, 0.35f)) {}
 
 MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
                           const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
@@ -155,6 +184,18 @@ MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
   colliding_marker.points.reserve(24 * drawn_colliding.size());
   for (std::size_t i : drawn_colliding) appendWireframe(inBoxes, i, colliding_marker.points);
   outMarkers.markers.push_back(std::move(colliding_marker));
+
+  if (!drawn_colliding.empty()) {
+    // Filled as well as outlined: among many outlines, the colliding boxes stand out at a
+    // glance (rviz draws TRIANGLE_LIST faces translucent with the colour's alpha).
+    visualization_msgs::Marker fill_marker =
+        makeLineList(inHeader, kCollidingFillNamespace, inOptions.colliding_fill_color);
+    fill_marker.type = visualization_msgs::Marker::TRIANGLE_LIST;
+    fill_marker.scale.x = fill_marker.scale.y = fill_marker.scale.z = 1.0;
+    fill_marker.points.reserve(36 * drawn_colliding.size());
+    for (std::size_t i : drawn_colliding) appendSolid(inBoxes, i, fill_marker.points);
+    outMarkers.markers.push_back(std::move(fill_marker));
+  }
 
   if (!drawn_other.empty()) {
     visualization_msgs::Marker other_marker =

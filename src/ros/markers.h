@@ -20,8 +20,9 @@ struct MarkerOptions {
   bool show_pair_links = false;         ///< a line between the centres of each drawn pair
   double line_width = 0.0;              ///< metres; 0 = 10 % of the mean edge of the drawn boxes
   std_msgs::ColorRGBA colliding_color;  ///< default red
-  std_msgs::ColorRGBA non_colliding_color;  ///< default translucent green
-  std_msgs::ColorRGBA pair_link_color;      ///< default yellow
+  std_msgs::ColorRGBA non_colliding_color;   ///< default translucent green
+  std_msgs::ColorRGBA pair_link_color;       ///< default yellow
+  std_msgs::ColorRGBA colliding_fill_color;  ///< faces of colliding boxes; default translucent red
   MarkerOptions();
 };
 
@@ -31,14 +32,16 @@ struct MarkerCounts {
   uint32_t colliding_omitted = 0;
 };
 
-/// Namespaces of the markers, one LINE_LIST each.
+/// Namespaces of the markers, one LINE_LIST each (the fill: a TRIANGLE_LIST).
 constexpr const char* kCollidingNamespace = "colliding";
+constexpr const char* kCollidingFillNamespace = "colliding_fill";
 constexpr const char* kNonCollidingNamespace = "non_colliding";
 constexpr const char* kPairLinkNamespace = "pair_links";
 
 /// Fills outMarkers (replaced): a DELETEALL, then the colliding boxes of inPairs as one
-/// LINE_LIST (24 points a box, always present, maybe empty), then, if enabled and not empty,
-/// the non-colliding boxes and the pair links. Header (frame and stamp) from inHeader. A pair
+/// LINE_LIST (24 points a box, always present, maybe empty), their faces as a TRIANGLE_LIST
+/// (36 points a box, when any), then, if enabled and not empty, the non-colliding boxes and the
+/// pair links. Header (frame and stamp) from inHeader. A pair
 /// may name a box inBoxes does not hold (the scenery of static_boxes): its box in inBoxes is
 /// drawn as colliding, the other is not drawn and has no link.
 MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,

@@ -9,7 +9,8 @@ BroadphaseNode::BroadphaseNode(ros::NodeHandle& ioNode, const ros::NodeHandle& i
       outputs_(ioNode, inParams.pairs_queue_size, inParams.publish_markers, inParams.markers),
       ingest_(ioNode, inParams, status_, [this] { wakeWorker(); }),
       worker_(inParams, ingest_, outputs_, status_),
-      service_(ioNode, inParams.engine, inParams.refusal_log_period) {
+      service_(ioNode, inParams.engine, inParams.refusal_log_period),
+      query_service_(ioNode, ingest_, worker_, inParams.refusal_log_period) {
   ROS_INFO("sap_broadphase: %s", describeNodeParams(inParams).c_str());
   worker_ready_ = &worker_;
   wakeWorker();  // for what arrived before the worker was there

@@ -1,8 +1,8 @@
 // BroadphaseNode: the broad phase as a ROS node, the thin owner of its parts: the sources'
 // ingest (subscriptions, latest frames, tf2), the worker with its engine, the outputs (pairs,
-// events, markers), the status (stats, /diagnostics), the compute_pairs service and
-// dynamic_reconfigure. The executable (node_main.cpp) and the nodelet (nodelets.cpp) both
-// build this class; only where the parameters come from differs.
+// events, markers), the status (stats, /diagnostics), the compute_pairs and query_boxes services
+// and dynamic_reconfigure. The executable (node_main.cpp) and the nodelet (nodelets.cpp) both build
+// this class; only where the parameters come from differs.
 #pragma once
 
 #include <atomic>
@@ -16,6 +16,7 @@
 #include "node_reconfigure.h"
 #include "node_status.h"
 #include "pairs_service.h"
+#include "query_service.h"
 #include "source_ingest.h"
 
 namespace sap_broadphase {
@@ -46,6 +47,7 @@ class BroadphaseNode {
   SourceIngest ingest_;
   FrameWorker worker_;
   PairsService service_;
+  QueryService query_service_;  // after worker_: stopped before it
   std::unique_ptr<NodeReconfigure> reconfigure_;
 };
 

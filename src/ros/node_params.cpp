@@ -9,10 +9,12 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
+#include <thread>
 #include <type_traits>
 
 #include <dynamic_reconfigure/Config.h>
 #include <xmlrpcpp/XmlRpcValue.h>
+#include <yaml-cpp/yaml.h>
 
 #include "adapters_sources.h"
 #include "sap_broadphase/BroadphaseNodeConfig.h"
@@ -119,10 +121,68 @@ std::string readNonNegative(const ros::NodeHandle& inPrivate, const std::string&
   return "";
 }
 
+/// Threads a processor of this machine at most at run time: past a few, an OpenMP team only
+/// waits at the sweep's barriers (the paper's passes sync once per pass) for cores it cannot
+/// have, and a typo (999) would start hundreds of threads.
+constexpr unsigned kMaxThreadsPerProcessor = 4;
+
+/// The refusal of a threads setting far above the machine's processors, or nothing.
+std::optional<std::string> threadsProblem(int inThreads) {
+  const unsigned processors = std::max(1u, std::thread::hardware_concurrency());
+  if (inThreads <= 0 || static_cast<unsigned>(inThreads) <= kMaxThreadsPerProcessor * processors)
+    return std::nullopt;
+  return "threads " + std::to_string(inThreads) + " is more than " +
+         std::to_string(kMaxThreadsPerProcessor) + " a processor of this machine's " +
+         std::to_string(processors) + " (at most " +
+         std::to_string(kMaxThreadsPerProcessor * processors) + "; 0 uses every core)";
+}
+
+/// A YAML scalar as rospy's YAML loader types it: an unquoted integer, number or boolean is
+/// one, everything else (quoted included) a string.
+XmlRpc::XmlRpcValue yamlScalarToXmlRpc(const YAML::Node& inScalar) {
+  const std::string& text = inScalar.Scalar();
+  if (inScalar.Tag() != "!") {  // "!" marks a quoted scalar
+    int integer = 0;
+    double number = 0.0;
+    bool boolean = false;
+    if (YAML::convert<int>::decode(inScalar, integer)) return XmlRpc::XmlRpcValue(integer);
+    if (YAML::convert<double>::decode(inScalar, number)) return XmlRpc::XmlRpcValue(number);
+    if (YAML::convert<bool>::decode(inScalar, boolean)) return XmlRpc::XmlRpcValue(boolean);
+  }
+  return XmlRpc::XmlRpcValue(text);
+}
+
+XmlRpc::XmlRpcValue yamlToXmlRpc(const YAML::Node& inNode) {
+  XmlRpc::XmlRpcValue value;
+  switch (inNode.Type()) {
+    case YAML::NodeType::Sequence:
+      value.setSize(static_cast<int>(inNode.size()));
+      for (std::size_t i = 0; i < inNode.size(); ++i)
+        value[static_cast<int>(i)] = yamlToXmlRpc(inNode[i]);
+      return value;
+    case YAML::NodeType::Map:
+      value.begin();  // an empty struct stays a struct
+      for (const auto& entry : inNode)
+        value[entry.first.as<std::string>()] = yamlToXmlRpc(entry.second);
+      return value;
+    case YAML::NodeType::Scalar:
+      return yamlScalarToXmlRpc(inNode);
+    default:
+      return value;  // null: invalid, refused by the reader as a missing value
+  }
+}
+
 /// Reads ~sources: topics and {topic, type, ...} entries whose publishers make up the world.
 std::string readSources(const ros::NodeHandle& inPrivate, std::vector<SourceSpec>& ioSources) {
   XmlRpc::XmlRpcValue value;
   if (!inPrivate.getParam("sources", value)) return "";
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    // roscpp hands a `_sources:=[...]` of the command line over as a string (rospy would have
+    // read it as YAML): read as YAML, as the parameter server reads a launch file's rosparam.
+    const std::string text = static_cast<std::string&>(value);
+    std::string error = parseYamlParameter(text, value);
+    if (!error.empty()) return "~sources: " + error;
+  }
   return parseSourceSpecs(value, ioSources);
 }
 
@@ -138,6 +198,15 @@ std::string readMarkers(const ros::NodeHandle& inPrivate, NodeParams& ioParams) 
 }
 
 }  // namespace
+
+std::string parseYamlParameter(const std::string& inText, XmlRpc::XmlRpcValue& outValue) {
+  try {
+    outValue = yamlToXmlRpc(YAML::Load(inText));
+    return "";
+  } catch (const YAML::Exception& exception) {
+    return "'" + inText + "' is not YAML (" + exception.what() + ")";
+  }
+}
 
 std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams) {
   std::string error;
@@ -213,6 +282,7 @@ std::string fromReconfigureConfig(const BroadphaseNodeConfig& inConfig, NodePara
     if (const auto problem = field.set(engine, *value)) return *problem;
   }
   if (const auto problem = configProblem(engine)) return *problem;
+  if (const auto problem = threadsProblem(engine.threads)) return *problem;
   if (inConfig.max_marker_boxes < 0) return "max_marker_boxes must not be negative";
   if (!(inConfig.marker_line_width >= 0.0) || !std::isfinite(inConfig.marker_line_width))
     return "marker_line_width must be a finite number >= 0";

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <ros/node_handle.h>
+#include <xmlrpcpp/XmlRpcValue.h>
 
 #include "markers.h"
 #include "sap_broadphase/core/config.h"
@@ -32,6 +33,11 @@ struct NodeParams {
   std::string fixed_frame;         ///< ~fixed_frame: tf2 target frame; empty = no transforms
   double transform_timeout = 0.1;  ///< ~transform_timeout: seconds to wait for a transform
 };
+
+/// Reads inText as YAML into outValue, typed as the parameter server types a launch file's
+/// rosparam (unquoted integers, numbers and booleans as such, the rest strings). Returns the
+/// problem ("'...' is not YAML (...)") or an empty string.
+std::string parseYamlParameter(const std::string& inText, XmlRpc::XmlRpcValue& outValue);
 
 /// Reads the private parameters of inPrivate over the defaults of NodeParams: the engine's
 /// fields by walking the core's table (configFields(): one parameter per field, same name),

@@ -119,13 +119,16 @@ void NodeStatus::setRefusedPublishers(const std::vector<std::string>& inNames) {
   counters_.refused_publishers = names;
 }
 
-void NodeStatus::timeOut(const std::string& inMessage) {
+void NodeStatus::timeOut(const std::string& inMessage, bool inUnexpected) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.timed_out;
-    counters_.last_error = inMessage;
+    if (inUnexpected) counters_.last_error = inMessage;
   }
-  ROS_WARN("sap_broadphase: %s", inMessage.c_str());
+  if (inUnexpected)
+    ROS_WARN("sap_broadphase: %s", inMessage.c_str());
+  else
+    ROS_INFO("sap_broadphase: %s", inMessage.c_str());
 }
 
 void NodeStatus::restartClock() {

@@ -54,8 +54,9 @@ class NodeStatus {
   /// The publishers refused now for their type or MD5 sum, "topic: /publisher", named in
   /// /diagnostics (any thread).
   void setRefusedPublishers(const std::vector<std::string>& inNames);
-  /// Counts and logs a source gone silent (worker thread).
-  void timeOut(const std::string& inMessage);
+  /// Counts and logs a source gone silent (worker thread): a WARN and the last error when
+  /// inUnexpected (a stream broke off), else an INFO (a source that published once).
+  void timeOut(const std::string& inMessage, bool inUnexpected);
   /// Counts a computed frame and publishes its stats with the engine's report.
   void frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine);
   /// The ROS clock went back: the diagnostics' period and rate start again from now (worker

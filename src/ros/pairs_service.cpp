@@ -11,26 +11,17 @@ namespace sap_broadphase {
 PairsService::PairsService(ros::NodeHandle& ioNode, const BroadphaseConfig& inEngine,
                            int inLogPeriod)
     : log_period_(inLogPeriod), engine_(inEngine) {
-  ros::AdvertiseServiceOptions options;
-  options.init<ComputePairs::Request, ComputePairs::Response>(
-      ioNode.resolveName("compute_pairs"),
-      [](ComputePairs::Request&, ComputePairs::Response&) { return false; });
   // The request's bytes are checked before roscpp deserializes them (a bounds prefix claiming
   // 2^27 values would reserve a gigabyte), and nothing thrown leaves the call.
-  static const WireLayout kRequestLayout(
-      ros::message_traits::DataType<ComputePairs::Request>::value(),
-      ros::message_traits::Definition<ComputePairs::Request>::value());
-  options.helper = boost::make_shared<
-      CheckedServiceHelper<ros::ServiceSpec<ComputePairs::Request, ComputePairs::Response>>>(
-      [this](ComputePairs::Request& inRequest, ComputePairs::Response& outResponse) {
-        return onComputePairs(inRequest, outResponse);
-      },
-      kRequestLayout,
-      [this](const std::string& inReason, ComputePairs::Response& outResponse) {
-        refuse(inReason, outResponse);
-      });
-  options.callback_queue = &queue_;
-  service_ = ioNode.advertiseService(options);
+  service_ =
+      advertiseCheckedService<ros::ServiceSpec<ComputePairs::Request, ComputePairs::Response>>(
+          ioNode, "compute_pairs", queue_,
+          [this](ComputePairs::Request& inRequest, ComputePairs::Response& outResponse) {
+            return onComputePairs(inRequest, outResponse);
+          },
+          [this](const std::string& inReason, ComputePairs::Response& outResponse) {
+            refuse(inReason, outResponse);
+          });
   spinner_.emplace(1, &queue_);
   spinner_->start();
 }
@@ -71,7 +62,8 @@ bool PairsService::onComputePairs(ComputePairs::Request& inRequest,
 }
 
 void PairsService::refuse(const std::string& inReason, ComputePairs::Response& outResponse) {
-  ROS_ERROR_THROTTLE(log_period_, "compute_pairs refused: %s", inReason.c_str());
+  // The caller has the reason in the answer: the log only keeps a trace of it.
+  ROS_INFO_THROTTLE(log_period_, "sap_broadphase: compute_pairs refused: %s", inReason.c_str());
   outResponse.success = false;
   outResponse.message = inReason;
 }

@@ -188,6 +188,12 @@ void SourceIngest::subscribeScenery(ros::NodeHandle& ioNode) {
   using Message = const BoxArrayConstPtr&;
   options.init<BoxArray>("static_boxes", 1, [](Message) {});
   const auto keep = [this](Message inMsg) {
+    if (auto reason =
+            inMsg->bounds.empty() ? std::nullopt : unplaceableFrame(inMsg->header.frame_id)) {
+      status_.refuse(inMsg->header, inMsg->bounds.size() / 6,
+                     std::string(kStaticSourceName) + ": " + *reason);
+      return;
+    }
     {
       std::lock_guard<std::mutex> lock(mutex_);
       pending_scenery_ = inMsg;
@@ -222,7 +228,9 @@ void SourceIngest::deliver(const std::string& inTopic,
   status_.countReceived();
   const BoxArrayConstPtr& msg = inEvent.getConstMessage();
   const SourceKey key{inTopic, inEvent.getPublisherName(), msg->header.frame_id};
-  if (auto reason = checkBoxArrayShape(*msg)) {
+  std::optional<std::string> reason = checkBoxArrayShape(*msg);
+  if (!reason) reason = unplaceableFrame(msg->header.frame_id);
+  if (reason) {
     status_.refuse(msg->header, msg->bounds.size() / 6, sourceName(key) + ": " + *reason);
     return;
   }
@@ -248,6 +256,22 @@ void SourceIngest::store(const SourceKey& inKey, const Delivery& inDelivery) {
     }
   }
   if (ready) wake_();
+}
+
+std::optional<std::string> SourceIngest::unplaceableFrame(const std::string& inFrame) const {
+  // tf2 would only print its own complaint on stderr, and the frame would wait for nothing.
+  if (!tf_buffer_ || !inFrame.empty()) return std::nullopt;
+  return "an empty header.frame_id: cannot be placed in ~fixed_frame '" + fixed_frame_ + "'";
+}
+
+std::optional<std::string> SourceIngest::placeInFixedFrame(const std_msgs::Header& inHeader,
+                                                           BoxSet& ioBoxes) {
+  if (!tf_buffer_) return std::nullopt;
+  if (auto reason = unplaceableFrame(inHeader.frame_id)) return reason;
+  std::string error;
+  if (!moveIntoFixedFrame(inHeader.frame_id, inHeader.stamp, ioBoxes, error))
+    return "no transform into '" + fixed_frame_ + "': " + error;
+  return std::nullopt;
 }
 
 bool SourceIngest::transformable(const std::string& inFrame, const ros::Time& inStamp) const {

@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,11 @@ class SourceIngest {
   /// count as received now (their ~transform_timeout starts again).
   void restartClock(const ros::Time& inNow);
 
+  /// Moves checked boxes (a query's) from inHeader's frame into ~fixed_frame with the transform
+  /// at its stamp (0: the latest), as a source frame's; nothing to do without a ~fixed_frame.
+  /// The reason when they cannot be placed (an empty frame_id, no transform). Any thread.
+  std::optional<std::string> placeInFixedFrame(const std_msgs::Header& inHeader, BoxSet& ioBoxes);
+
   /// The frame every source is moved into, or empty without a ~fixed_frame.
   const std::string& fixedFrame() const { return fixed_frame_; }
 
@@ -110,6 +116,8 @@ class SourceIngest {
   /// Moves the waiting frames that tf2 can now place to pending_, skips those that waited too
   /// long (called with mutex_ held).
   void releaseWaiting(const ros::Time& inNow);
+  /// With a ~fixed_frame, the reason a frame named inFrame cannot be placed at all (empty).
+  std::optional<std::string> unplaceableFrame(const std::string& inFrame) const;
   /// True when tf2 can move frame inFrame into the fixed frame at inStamp now (no waiting).
   bool transformable(const std::string& inFrame, const ros::Time& inStamp) const;
   /// Moves ioBoxes from inFrame into the fixed frame at inStamp (time 0: latest). False, with

@@ -26,6 +26,8 @@ struct SourceSpec {
   std::optional<uint32_t> mask;   ///< groups every box collides with (else the message's)
   std::optional<double> timeout;  ///< seconds of silence before the source drops out (else
                                   ///< ~source_timeout); 0 = never
+  bool marker_ids = false;  ///< `ids: marker`: a MarkerArray CUBE's id is id_offset + marker.id
+                            ///< (else names are numbered as first seen)
   /// True when the node can take the topic's BoxArray messages as they are (no copy): a
   /// BoxArray source with no id_offset, group or mask.
   bool takesBoxArrayAsIs() const {

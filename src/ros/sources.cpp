@@ -115,6 +115,7 @@ void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::H
   auto [it, joined] = sources_.try_emplace(inKey);
   Source& source = it->second;
   if (joined) source.joined = next_join_++;
+  ++source.frames;
   std::swap(source.boxes, ioBoxes);
   source.header = inHeader;
   source.received = inReceived;
@@ -133,6 +134,7 @@ void SourceSet::storeMessage(const SourceKey& inKey, const BoxArrayConstPtr& inM
   auto [it, joined] = sources_.try_emplace(inKey);
   Source& source = it->second;
   if (joined) source.joined = next_join_++;
+  ++source.frames;
   source.message = inMessage;
   source.header = inMessage->header;
   source.received = inReceived;
@@ -185,13 +187,13 @@ void SourceSet::restartClock(const ros::Time& inNow) {
   for (auto& [key, source] : sources_) source.received = inNow;
 }
 
-std::vector<SourceKey> SourceSet::expire(
+std::vector<SourceSet::Expired> SourceSet::expire(
     const ros::Time& inNow, const std::function<double(const SourceKey&)>& inTimeoutOf) {
-  std::vector<SourceKey> expired;
+  std::vector<Expired> expired;
   for (auto it = sources_.begin(); it != sources_.end();) {
     const double timeout = inTimeoutOf(it->first);
     if (timeout > 0.0 && (inNow - it->second.received).toSec() > timeout) {
-      expired.push_back(it->first);
+      expired.push_back({it->first, it->second.frames});
       it = sources_.erase(it);
     } else {
       ++it;

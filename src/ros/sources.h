@@ -95,10 +95,15 @@ class SourceSet {
   /// The engine refused inKey's kept frame: the source falls back on its last accepted frame,
   /// or leaves the world when it has none (as a frame refused at conversion never joins).
   void refuse(const SourceKey& inKey);
+  /// A source dropped by expire(): its key and how many frames it delivered in its life.
+  struct Expired {
+    SourceKey key;
+    uint64_t frames;
+  };
   /// Drops the sources whose latest frame is older than their own time-out, inTimeoutOf(key)
-  /// seconds (0 = never), at inNow; returns the keys of the sources dropped.
-  std::vector<SourceKey> expire(const ros::Time& inNow,
-                                const std::function<double(const SourceKey&)>& inTimeoutOf);
+  /// seconds (0 = never), at inNow; returns the sources dropped.
+  std::vector<Expired> expire(const ros::Time& inNow,
+                              const std::function<double(const SourceKey&)>& inTimeoutOf);
   /// The ROS clock went back to inNow (sim time restarted, a bag looped): every source counts
   /// as received now, so that each times out a full time-out after its last frame of the new
   /// clock (a receipt time in the clock's future would never time out).
@@ -123,6 +128,7 @@ class SourceSet {
     std_msgs::Header header;
     ros::Time received;
     uint64_t joined = 0;  // order in which sources appeared: the older one keeps a shared id
+    uint64_t frames = 0;  // frames delivered since it appeared
     std::vector<uint32_t> sorted_ids;  // ids of the frame, sorted; built only when compared
     GiveBackWatch watch;
     BoxArrayConstPtr message;             // a frame kept as published; boxes hold it once converted

@@ -86,3 +86,8 @@ roslaunch_add_file_check(launch)
 # BoxArray on a topic and as the scenery, a vision_msgs detection's point cloud) and
 # compute_pairs requests with lying prefixes or bytes left over: refused, counted, node alive.
 add_rostest(test/ros/hostile.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# query_boxes of the node and of BroadphaseNodelet: hits against the scenery and a source's
+# frame, query boxes moved into ~fixed_frame, ids, filters, refusals naming the box, queries
+# while frames flow.
+add_rostest(test/ros/query.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)

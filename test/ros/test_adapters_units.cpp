@@ -19,6 +19,7 @@
 
 #include "adapters.h"
 #include "adapters_sources.h"
+#include "node_params.h"
 
 namespace sap_broadphase {
 namespace {
@@ -471,6 +472,50 @@ TEST(MarkerAdapter, CubeListPointsAreCubesUnderThePose) {
   EXPECT_EQ(names, (std::vector<std::string>{"m: list/1[0]", "m: list/1[1]"}));
 }
 
+TEST(MarkerAdapter, IdsMarkerGivesTheMarkersOwnIdPlusTheOffset) {
+  XmlRpc::XmlRpcValue list;
+  ASSERT_EQ(parseYamlParameter("[{topic: m, type: visualization_msgs/MarkerArray, id_offset: 1000, "
+                               "ids: marker}]",
+                               list),
+            "");
+  std::vector<SourceSpec> specs;
+  ASSERT_EQ(parseSourceSpecs(list, specs), "");
+  ASSERT_TRUE(specs[0].marker_ids);
+  EXPECT_EQ(describeSourceSpec(specs[0]),
+            "m (visualization_msgs/MarkerArray, id_offset 1000, ids marker)");
+  SourceAdapter adapter(specs[0]);
+  BoxArray out;
+  visualization_msgs::MarkerArray msg;
+  msg.markers = {cube("a", 7, 0.0, "map"), cube("a", 3, 5.0, "map")};
+  ASSERT_FALSE(adapter.convertMarkers(msg, "/r1", out));
+  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1003, 1007}));  // the set in (ns, id) order
+  std::vector<uint32_t> ids;
+  std::vector<std::string> names;
+  adapter.appendIdNames(ids, names);
+  EXPECT_EQ(ids, (std::vector<uint32_t>{1003, 1007}));
+  EXPECT_EQ(names, (std::vector<std::string>{"m: a/3", "m: a/7"}));
+
+  // What has no representation is refused, naming the box and why; the set stays as it was.
+  msg.markers = {cube("a", -1, 0.0, "map")};
+  const auto negative = adapter.convertMarkers(msg, "/r1", out);
+  ASSERT_TRUE(negative);
+  EXPECT_NE(negative->find("box 'a/-1': id -1 plus id_offset 1000 is no id"), std::string::npos)
+      << *negative;
+  visualization_msgs::Marker points = cube("b", 1, 0.0, "map");
+  points.type = visualization_msgs::Marker::CUBE_LIST;
+  points.points.resize(1);
+  msg.markers = {points};
+  const auto listed = SourceAdapter(specs[0]).convertMarkers(msg, "/r1", out);
+  ASSERT_TRUE(listed);
+  EXPECT_NE(listed->find("CUBE_LIST's points have no id of their own"), std::string::npos)
+      << *listed;
+
+  XmlRpc::XmlRpcValue boxes;
+  ASSERT_EQ(parseYamlParameter("[{topic: b, ids: marker}]", boxes), "");
+  EXPECT_EQ(parseSourceSpecs(boxes, specs),
+            "~sources[0].ids 'marker' needs type visualization_msgs/MarkerArray");
+}
+
 TEST(MarkerAdapter, DeleteAndDeleteAllChangeThePublishersSet) {
   SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 1000, {}, {}, {}});
   BoxArray out;
@@ -580,7 +625,7 @@ TEST(MarkerAdapter, NamesPastTheCapAreRefusedSayingSo) {
 
 TEST(Validation, NaNNegativeSizeAndBadQuaternionsNameTheBox) {
   PosedBox box{"obstacles/7", pose(0, 0, 0, tf2::Quaternion(0, 0, 0, 1)), geometry_msgs::Point(),
-               vector(1, 1, 1)};
+               vector(1, 1, 1), std::nullopt};
   EXPECT_FALSE(checkPosedBox(box));
   PosedBox zero = box;
   zero.pose.orientation.w = 0.0;  // an unset orientation: the identity, as in rviz
@@ -645,6 +690,25 @@ TEST(SourceSpecs, TopicsAndDictsAreRead) {
             "jsk (jsk_recognition_msgs/BoundingBoxArray, group 0x2, mask 0xFFFFFFFF)");
 }
 
+// roscpp hands `rosrun sap_broadphase node _sources:="[...]"` over as this string.
+TEST(SourceSpecs, TheCommandLinesYamlStringIsRead) {
+  XmlRpc::XmlRpcValue value;
+  ASSERT_EQ(parseYamlParameter("[boxes, {topic: obstacles, type: visualization_msgs/MarkerArray, "
+                               "id_offset: 1000, mask: '0xFFFFFFFD', timeout: 0.5}]",
+                               value),
+            "");
+  std::vector<SourceSpec> specs;
+  ASSERT_EQ(parseSourceSpecs(value, specs), "");
+  ASSERT_EQ(specs.size(), 2u);
+  EXPECT_EQ(describeSourceSpec(specs[0]), "boxes");
+  EXPECT_EQ(describeSourceSpec(specs[1]),
+            "obstacles (visualization_msgs/MarkerArray, id_offset 1000, mask 0xFFFFFFFD, "
+            "timeout 0.5 s)");
+  EXPECT_EQ(
+      parseYamlParameter("[boxes, {topic: a", value).rfind("'[boxes, {topic: a' is not YAML (", 0),
+      0u);
+}
+
 TEST(SourceSpecs, ProblemsNameTheEntryAndKey) {
   std::vector<SourceSpec> specs;
   XmlRpc::XmlRpcValue empty;
@@ -662,7 +726,7 @@ TEST(SourceSpecs, ProblemsNameTheEntryAndKey) {
   unknown_key[0]["offset"] = 3;
   EXPECT_EQ(parseSourceSpecs(unknown_key, specs),
             "~sources[0] has an unknown key 'offset' (keys: topic, type, id_offset, group, mask, "
-            "timeout)");
+            "timeout, ids)");
   XmlRpc::XmlRpcValue negative;
   negative[0] = entry("a");
   negative[0]["id_offset"] = -1;

@@ -87,6 +87,17 @@ class ExampleRobotsTest(unittest.TestCase):
                         "no pair of robot_b (BoxArray + id_offset 2000) with the map; pairs "
                         "seen: %s" % sorted(self.pairs_seen)[:20])
 
+    def test_a_robots_own_parts_never_pair(self):
+        # Both robots have met the map: each has turned through every angle at which its
+        # load cubes' boxes touch each other (every 45 degrees), frames seen all along.
+        self.assertTrue(self.wait_for(self.robot_meets_map(ROBOT_A_IDS)))
+        self.assertTrue(self.wait_for(self.robot_meets_map(ROBOT_B_IDS)))
+        with self.lock:
+            own = [(a, b) for a, b in self.pairs_seen
+                   if any(a in ids and b in ids for ids in (ROBOT_A_IDS, ROBOT_B_IDS))]
+        self.assertEqual(own, [], "pairs of a robot's own parts (their groups and masks in "
+                                  "config/example_robots.yaml forbid them)")
+
     def test_markers_drawn_while_robots_meet_the_map(self):
         self.assertTrue(self.wait_for(self.robot_meets_map(ROBOT_A_IDS)))
         with self.lock:
@@ -113,6 +124,16 @@ class ExampleRobotsTest(unittest.TestCase):
         self.assertEqual(len(re.findall(r"^pairs at ", client.stdout, re.MULTILINE)), 2,
                          client.stdout)
 
+    def test_ros_args_lists_every_argument_as_optional(self):
+        for launch in ("sap_broadphase.launch", "sap_broadphase_nodelet.launch", "demo.launch",
+                       "demo_nodelet.launch", "example_robots.launch"):
+            listing = subprocess.run(["roslaunch", PACKAGE, launch, "--ros-args"],
+                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     universal_newlines=True, check=False)
+            self.assertEqual(listing.returncode, 0, listing.stdout)
+            self.assertNotIn("Required Arguments", listing.stdout, launch)
+            self.assertIn("Optional Arguments", listing.stdout, launch)
+
     def test_every_parameter_is_a_launch_argument(self):
         root = rospkg.RosPack().get_path(PACKAGE)
         with open(os.path.join(root, "config", "default.yaml")) as defaults:
@@ -121,7 +142,8 @@ class ExampleRobotsTest(unittest.TestCase):
                        "launch/include/sap_broadphase_params.launch.xml"):
             with open(os.path.join(root, launch)) as text:
                 content = text.read()
-            arguments = set(re.findall(r'<arg name="([a-z_]+)" default=""', content))
+            arguments = set(re.findall(r'<arg name="([a-z_]+)" default="\(yaml\)"', content))
+            arguments |= set(re.findall(r'<arg name="(params_file)" default="\(none\)"', content))
             self.assertEqual(parameters - arguments, set(),
                              "%s lacks arguments for these parameters" % launch)
             self.assertIn("params_file", arguments, launch)

@@ -28,9 +28,24 @@ TEST(Markers, DeleteAllFirstThenCollidingWireframes) {
   visualization_msgs::MarkerArray markers;
   const MarkerCounts counts =
       buildMarkers(boxes, bruteForcePairs(boxes), header, MarkerOptions(), markers);
-  ASSERT_EQ(markers.markers.size(), 2u);
+  ASSERT_EQ(markers.markers.size(), 3u);
   EXPECT_EQ(markers.markers[0].action, Marker::DELETEALL);
   const Marker& colliding = markers.markers[1];
+  const Marker& fill = markers.markers[2];
+  EXPECT_EQ(fill.type, Marker::TRIANGLE_LIST);
+  EXPECT_EQ(fill.ns, kCollidingFillNamespace);
+  ASSERT_EQ(fill.points.size(), 36u * 8u);
+  EXPECT_LT(fill.color.a, 1.0f) << "translucent: the outlines show through";
+  // Every corner of a face lies on the first cube's surface, and each triangle has area 1/2.
+  for (std::size_t k = 0; k < 36; k += 3) {
+    const auto& a = fill.points[k];
+    const auto& b = fill.points[k + 1];
+    const auto& c = fill.points[k + 2];
+    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+    const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+    const double cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    EXPECT_DOUBLE_EQ(0.5 * std::sqrt(cx * cx + cy * cy + cz * cz), 0.5) << "triangle " << k / 3;
+  }
   EXPECT_EQ(colliding.type, Marker::LINE_LIST);
   EXPECT_EQ(colliding.ns, kCollidingNamespace);
   EXPECT_EQ(colliding.header.frame_id, "world");

@@ -11,6 +11,7 @@ from fixed seeds (zlib.crc32 of a name, the same in every run, unlike Python's h
 string). Each case runs once per namespace as a test of its own (no subTest: rosunit's report
 drops a failed subTest's message).
 """
+import os
 import random
 import threading
 import time
@@ -190,7 +191,8 @@ class ReconfigureTest(unittest.TestCase):
         before = endpoint.client.update_configuration({"threads": 2, "skin": "off"})
         for change in ({"skin": "-1"}, {"skin": "banana"}, {"skin": "nan"},
                        {"primary_axis": "y", "secondary_axis": "y"},
-                       {"method": "quantum"}, {"threads": 2, "skin": "-0.5"}):
+                       {"method": "quantum"}, {"threads": 2, "skin": "-0.5"},
+                       {"threads": 999}, {"threads": 4 * os.cpu_count() + 1}):
             config = endpoint.client.update_configuration(change)
             for name in change:
                 self.assertEqual(config[name], before[name],

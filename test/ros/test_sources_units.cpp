@@ -203,13 +203,21 @@ TEST(SourceSet, SilentSourcesExpire) {
   BoxSet a = oneBox(1, 0.0, 1.0), b = oneBox(2, 0.0, 1.0);
   sources.store({"boxes", "/a", ""}, a, header("w", 1), ros::Time(10, 0));
   sources.store({"boxes", "/b", ""}, b, header("w", 1), ros::Time(11, 0));
+  BoxSet a_again = oneBox(1, 0.0, 1.0);
+  sources.store({"boxes", "/a", ""}, a_again, header("w", 1), ros::Time(10, 1));
   const auto never = [](const SourceKey&) { return 0.0; };
   const auto one_second = [](const SourceKey&) { return 1.0; };
   EXPECT_TRUE(sources.expire(ros::Time(11, 500000000), never).empty()) << "0 = never";
-  const std::vector<SourceKey> expired = sources.expire(ros::Time(11, 500000000), one_second);
+  const std::vector<SourceSet::Expired> expired =
+      sources.expire(ros::Time(11, 500000000), one_second);
   ASSERT_EQ(expired.size(), 1u);
-  EXPECT_EQ(sourceName(expired[0]), "'boxes' from /a");
+  EXPECT_EQ(sourceName(expired[0].key), "'boxes' from /a");
+  EXPECT_EQ(expired[0].frames, 2u);  // a stream, not a single frame
   EXPECT_EQ(sources.size(), 1u);
+  const std::vector<SourceSet::Expired> single =
+      sources.expire(ros::Time(12, 500000000), one_second);
+  ASSERT_EQ(single.size(), 1u);
+  EXPECT_EQ(single[0].frames, 1u);
 }
 
 TEST(SourceSet, ClockJumpingBackRestartsTheTimeOuts) {
