@@ -208,10 +208,11 @@ TEST(ConfigSources, YamlDefaultsMatchTheTable) {
 
 // ---- The launch files ----
 
-// The doc of every `<arg name="..." default="" doc="..."/>` of a launch file.
+// The doc of every `<arg name="..." default="(yaml)" doc="..."/>` of a launch file ("(yaml)":
+// the YAML's value stays; a non-empty default, so that roslaunch's ros-args lists it optional).
 std::map<std::string, std::string> launchArguments(const std::string& inLaunch) {
   std::map<std::string, std::string> arguments;
-  const std::regex argument(R"re(<arg name="([a-z_0-9]+)" default="" doc="([^"]*)"/>)re");
+  const std::regex argument(R"re(<arg name="([a-z_0-9]+)" default="\(yaml\)" doc="([^"]*)"/>)re");
   for (auto it = std::sregex_iterator(inLaunch.begin(), inLaunch.end(), argument);
        it != std::sregex_iterator(); ++it)
     arguments[(*it)[1]] = (*it)[2];
@@ -232,8 +233,8 @@ TEST(ConfigSources, LaunchArgumentsMatchTheTable) {
   }
   for (const ConfigField& field : configFields()) {
     const std::string name = field.name;
-    EXPECT_NE(include.find("<param if=\"$(eval " + name + " != '')\" name=\"" + name +
-                           "\" value=\"$(arg " + name + ")\"/>"),
+    EXPECT_NE(include.find("<param if=\"$(eval " + name + " not in ('', '(yaml)'))\" name=\"" +
+                           name + "\" value=\"$(arg " + name + ")\"/>"),
               std::string::npos)
         << name << " is never set from its argument";
   }
