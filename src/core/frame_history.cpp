@@ -218,8 +218,8 @@ FramePass compareAndCopyBlocks(const Frame& inFrame, int inThreads, BoxSet& ioLa
             std::copy(block.ids, block.ids + count, ioLast.ids.begin() + begin);
             ++unit.other_ids;
           }
-          const BlockChanges bounds = compareBounds(block.bounds, boundArrays(ioLast, begin),
-                                                    count, outUnchanged.data() + begin);
+          const BlockChanges bounds = compareBounds(block.bounds, boundArrays(ioLast, begin), count,
+                                                    outUnchanged.data() + begin);
           const std::size_t filters =
               inFrame.markFilterChanges(ioLast, begin, end, outUnchanged.data());
           if (bounds.changed_boxes > 0 || filters > 0) {
