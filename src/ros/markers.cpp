@@ -251,8 +251,10 @@ MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
   }
 
   if (inOptions.show_names && inNames && !inNames->empty()) {
-    // Text as small as the boxes it names, scaled with the lines: 4 line widths tall.
-    appendNames(inBoxes, drawn_colliding, *inNames, inHeader, inOptions.name_color, 4.0 * width,
+    // Text scaled with the boxes it names, as the lines are: 6 line widths (0.6 of the mean
+    // edge by default), about the smallest rviz's font stays legible at a view of the whole
+    // scene.
+    appendNames(inBoxes, drawn_colliding, *inNames, inHeader, inOptions.name_color, 6.0 * width,
                 outMarkers);
   }
   return counts;
