@@ -75,10 +75,12 @@ bool FrameOutputs::wantsMarkers() const {
 }
 
 MarkerCounts FrameOutputs::publishMarkers(const BoxSet& inWorld, const PairList& inPairs,
-                                          const std_msgs::Header& inHeader) {
+                                          const std_msgs::Header& inHeader,
+                                          const BoxNames& inNames) {
   if (!wantsMarkers()) return MarkerCounts{};
   auto markers = boost::make_shared<visualization_msgs::MarkerArray>();
-  const MarkerCounts counts = buildMarkers(inWorld, inPairs, inHeader, markers_, *markers);
+  const MarkerCounts counts =
+      buildMarkers(inWorld, inPairs, inHeader, markers_, *markers, &inNames);
   markers_pub_.publish(markers);
   return counts;
 }

@@ -25,9 +25,10 @@ class FrameOutputs {
   void publishEvents(const PairList& inPairs, const std_msgs::Header& inHeader);
   /// True when markers are on and somebody subscribes to them (a frame then needs its boxes).
   bool wantsMarkers() const;
-  /// Publishes the markers of the world and its pairs, while someone listens.
+  /// Publishes the markers of the world and its pairs, with the names of inNames, while someone
+  /// listens.
   MarkerCounts publishMarkers(const BoxSet& inWorld, const PairList& inPairs,
-                              const std_msgs::Header& inHeader);
+                              const std_msgs::Header& inHeader, const BoxNames& inNames);
   /// Takes marker settings changed at run time: `markers` advertised or shut down.
   void setMarkers(bool inPublishMarkers, const MarkerOptions& inMarkers);
 

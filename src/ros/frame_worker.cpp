@@ -117,9 +117,12 @@ void FrameWorker::run() {
           const bool scenery_changed = takeScenery();
           const bool sources_changed = takeDeliveries();
           expireSources();
+          // Before the frame: its boxes were named when their messages were converted, so
+          // id_names reaches listeners before the pairs that use the names, and the frame's
+          // markers label its new boxes.
+          ingest_.publishIdNames();
           if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
             computeFrame();
-          ingest_.publishIdNames();
           ingest_.countLostMessages();
           status_.updateDiagnostics();
         },
@@ -274,7 +277,8 @@ void FrameWorker::computeFrame() {
   frame.ms_total = millisecondsSince(start);
   outputs_.publishEvents(*pairs, assembly.header);
   if (world.boxes) {  // markers are drawn from boxes; a world that is one message has none
-    const MarkerCounts markers = outputs_.publishMarkers(*world.boxes, *pairs, assembly.header);
+    const MarkerCounts markers =
+        outputs_.publishMarkers(*world.boxes, *pairs, assembly.header, ingest_.idNames());
     frame.marker_boxes = markers.drawn;
     frame.marker_boxes_omitted = markers.colliding_omitted;
   }

@@ -1,6 +1,7 @@
 // rviz wireframes of a frame's boxes.
 #include "markers.h"
 
+#include <cmath>
 #include <unordered_map>
 #include <vector>
 
@@ -124,17 +125,44 @@ double meanEdge(const BoxSet& inBoxes, const std::vector<std::size_t>& inDrawn) 
   return inDrawn.empty() ? 0.0 : sum / (3.0 * static_cast<double>(inDrawn.size()));
 }
 
+/// Appends to ioMarkers a text above each box of inDrawn that inNames names, inHeight metres
+/// tall (rviz's scale.z: the height of a capital letter), facing the viewer.
+void appendNames(const BoxSet& inBoxes, const std::vector<std::size_t>& inDrawn,
+                 const BoxNames& inNames, const std_msgs::Header& inHeader,
+                 const std_msgs::ColorRGBA& inColor, double inHeight,
+                 visualization_msgs::MarkerArray& ioMarkers) {
+  int32_t next_id = 0;
+  for (std::size_t i : inDrawn) {
+    const auto name = inNames.find(inBoxes.ids[i]);
+    if (name == inNames.end()) continue;
+    geometry_msgs::Point position = boxCenter(inBoxes, i);
+    // Centred half a line above the top face, clear of the box's outline.
+    position.z = inBoxes.hi[2][i] + 0.75 * inHeight;
+    // An unbounded box (infinite extent) has no place to put a label at.
+    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
+      continue;
+    visualization_msgs::Marker text = makeLineList(inHeader, kNamesNamespace, inColor);
+    text.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+    text.id = next_id++;
+    text.pose.position = position;
+    text.scale.z = inHeight;
+    text.text = name->second;
+    ioMarkers.markers.push_back(std::move(text));
+  }
+}
+
 }  // namespace
 
 MarkerOptions::MarkerOptions()
     : colliding_color(makeColor(1.0f, 0.0f, 0.0f, 1.0f)),
       non_colliding_color(makeColor(0.2f, 0.8f, 0.3f, 0.5f)),
       pair_link_color(makeColor(1.0f, 0.9f, 0.1f, 1.0f)),
-      colliding_fill_color(makeColor(1.0f, 0.1f, 0.1f, 0.35f)) {}
+      colliding_fill_color(makeColor(1.0f, 0.1f, 0.1f, 0.35f)),
+      name_color(makeColor(1.0f, 1.0f, 1.0f, 1.0f)) {}
 
 MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
                           const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
-                          visualization_msgs::MarkerArray& outMarkers) {
+                          visualization_msgs::MarkerArray& outMarkers, const BoxNames* inNames) {
   outMarkers.markers.clear();
   visualization_msgs::Marker clear_all;
   clear_all.header = inHeader;
@@ -220,6 +248,14 @@ MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
       ++links;
     }
     if (!link_marker.points.empty()) outMarkers.markers.push_back(std::move(link_marker));
+  }
+
+  if (inOptions.show_names && inNames && !inNames->empty()) {
+    // Text scaled with the boxes it names, as the lines are: 6 line widths (0.6 of the mean
+    // edge by default), about the smallest rviz's font stays legible at a view of the whole
+    // scene.
+    appendNames(inBoxes, drawn_colliding, *inNames, inHeader, inOptions.name_color, 6.0 * width,
+                outMarkers);
   }
   return counts;
 }

@@ -3,6 +3,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <unordered_map>
 
 #include <std_msgs/ColorRGBA.h>
 #include <std_msgs/Header.h>
@@ -15,14 +17,16 @@ namespace sap_broadphase {
 
 /// What the marker array shows. Colours are RGBA in [0, 1].
 struct MarkerOptions {
-  std::size_t max_boxes = 5000;         ///< boxes drawn at most (colliding first, then the others)
-  bool show_non_colliding = false;      ///< also draw boxes without any pair
-  bool show_pair_links = false;         ///< a line between the centres of each drawn pair
-  double line_width = 0.0;              ///< metres; 0 = 10 % of the mean edge of the drawn boxes
-  std_msgs::ColorRGBA colliding_color;  ///< default red
+  std::size_t max_boxes = 5000;     ///< boxes drawn at most (colliding first, then the others)
+  bool show_non_colliding = false;  ///< also draw boxes without any pair
+  bool show_pair_links = false;     ///< a line between the centres of each drawn pair
+  bool show_names = true;           ///< the name of each drawn colliding box that has one, above it
+  double line_width = 0.0;          ///< metres; 0 = 10 % of the mean edge of the drawn boxes
+  std_msgs::ColorRGBA colliding_color;       ///< default red
   std_msgs::ColorRGBA non_colliding_color;   ///< default translucent green
   std_msgs::ColorRGBA pair_link_color;       ///< default yellow
   std_msgs::ColorRGBA colliding_fill_color;  ///< faces of colliding boxes; default translucent red
+  std_msgs::ColorRGBA name_color;            ///< names of colliding boxes; default white
   MarkerOptions();
 };
 
@@ -37,15 +41,22 @@ constexpr const char* kCollidingNamespace = "colliding";
 constexpr const char* kCollidingFillNamespace = "colliding_fill";
 constexpr const char* kNonCollidingNamespace = "non_colliding";
 constexpr const char* kPairLinkNamespace = "pair_links";
+/// One TEXT_VIEW_FACING marker per named colliding box (ids 0, 1, ... in drawing order).
+constexpr const char* kNamesNamespace = "names";
+
+/// Box id -> the name users know it by (as on ~id_names); boxes without a name are absent.
+using BoxNames = std::unordered_map<uint32_t, std::string>;
 
 /// Fills outMarkers (replaced): a DELETEALL, then the colliding boxes of inPairs as one
 /// LINE_LIST (24 points a box, always present, maybe empty), their faces as a TRIANGLE_LIST
 /// (36 points a box, when any), then, if enabled and not empty, the non-colliding boxes and the
-/// pair links. Header (frame and stamp) from inHeader. A pair
+/// pair links, and, if enabled, the name of each drawn colliding box inNames holds (when given)
+/// as a text above the box. Header (frame and stamp) from inHeader. A pair
 /// may name a box inBoxes does not hold (the scenery of static_boxes): its box in inBoxes is
 /// drawn as colliding, the other is not drawn and has no link.
 MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
                           const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
-                          visualization_msgs::MarkerArray& outMarkers);
+                          visualization_msgs::MarkerArray& outMarkers,
+                          const BoxNames* inNames = nullptr);
 
 }  // namespace sap_broadphase

@@ -194,6 +194,7 @@ std::string readMarkers(const ros::NodeHandle& inPrivate, NodeParams& ioParams) 
   if (!error.empty()) return error;
   inPrivate.param("show_non_colliding", markers.show_non_colliding, markers.show_non_colliding);
   inPrivate.param("show_pair_links", markers.show_pair_links, markers.show_pair_links);
+  inPrivate.param("show_names", markers.show_names, markers.show_names);
   return readNonNegative(inPrivate, "marker_line_width", markers.line_width);
 }
 
@@ -237,7 +238,8 @@ std::string describeNodeParams(const NodeParams& inParams) {
   if (inParams.publish_markers)
     text << "at most " << inParams.markers.max_boxes << " boxes"
          << (inParams.markers.show_non_colliding ? " (non-colliding too)" : "")
-         << (inParams.markers.show_pair_links ? " (pair links)" : "");
+         << (inParams.markers.show_pair_links ? " (pair links)" : "")
+         << (inParams.markers.show_names ? " (names)" : "");
   else
     text << "off";
   text << ", sources [";
@@ -269,6 +271,7 @@ void toReconfigureConfig(const NodeParams& inParams, BroadphaseNodeConfig& outCo
       static_cast<int>(std::min<std::size_t>(markers.max_boxes, std::numeric_limits<int>::max()));
   outConfig.show_non_colliding = markers.show_non_colliding;
   outConfig.show_pair_links = markers.show_pair_links;
+  outConfig.show_names = markers.show_names;
   outConfig.marker_line_width = markers.line_width;
 }
 
@@ -292,6 +295,7 @@ std::string fromReconfigureConfig(const BroadphaseNodeConfig& inConfig, NodePara
   ioParams.markers.max_boxes = static_cast<std::size_t>(inConfig.max_marker_boxes);
   ioParams.markers.show_non_colliding = inConfig.show_non_colliding;
   ioParams.markers.show_pair_links = inConfig.show_pair_links;
+  ioParams.markers.show_names = inConfig.show_names;
   ioParams.markers.line_width = inConfig.marker_line_width;
   return "";
 }
@@ -301,6 +305,7 @@ bool sameMarkerSettings(const NodeParams& inA, const NodeParams& inB) {
          inA.markers.max_boxes == inB.markers.max_boxes &&
          inA.markers.show_non_colliding == inB.markers.show_non_colliding &&
          inA.markers.show_pair_links == inB.markers.show_pair_links &&
+         inA.markers.show_names == inB.markers.show_names &&
          inA.markers.line_width == inB.markers.line_width;
 }
 

@@ -180,6 +180,9 @@ void SourceIngest::publishIdNames() {
   msg->header = id_names_header_;
   for (const auto& adapter : adapters_) adapter->appendIdNames(msg->ids, msg->names);
   id_names_published_ = msg->ids.size();
+  // Names only grow and an id's name never changes: only the new ones are added.
+  for (std::size_t k = 0; k < msg->ids.size(); ++k)
+    id_names_.try_emplace(msg->ids[k], msg->names[k]);
   id_names_pub_.publish(msg);
 }
 

@@ -20,6 +20,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "markers.h"
 #include "node_params.h"
 #include "node_status.h"
 #include "publisher_probe.h"
@@ -79,6 +80,9 @@ class SourceIngest {
   /// time (worker thread, once per round: a burst of new names costs one message, not one per
   /// name).
   void publishIdNames();
+  /// The names of the last ~id_names by id, to label the markers (worker thread; updated by
+  /// publishIdNames only when names are added, never copied per frame).
+  const BoxNames& idNames() const { return id_names_; }
   /// Counts the MarkerArray messages roscpp dropped from a full subscriber queue since the last
   /// call (roscpp's own count, read from the node's getBusStats) into the status. Looks at
   /// most every kLossCheckSeconds (worker thread).
@@ -138,6 +142,7 @@ class SourceIngest {
   std::mutex id_names_mutex_;
   std::size_t id_names_published_ = 0;  // names in the last ~id_names (under the mutex above)
   std_msgs::Header id_names_header_;    // of the last message an adapter converted
+  BoxNames id_names_;                   // the names of the last ~id_names (worker thread)
 
   std::vector<std::pair<std::string, PublisherProbe::Check>> probed_topics_;  // resolved
   std::unique_ptr<PublisherProbe> publisher_probe_;  // after the subscriptions, stopped first

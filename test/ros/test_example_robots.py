@@ -3,7 +3,7 @@
 subscribed) runs as a user starts it: each robot, robot_a publishing a MarkerArray and robot_b a BoxArray in its own moving tf
 frame, meets the map's pillar on its path and the pair shows in `pairs`; id_names names
 robot_a's markers; `markers` keeps drawing colliding boxes while the robots meet the map's
-scenery; the Python client example (examples/ros/pairs_client.py) answers with the
+scenery and writes robot_a's names above its colliding boxes; the Python client example (examples/ros/pairs_client.py) answers with the
 pairs of its own boxes and prints frames of the node. Also: every parameter of
 config/default.yaml is an argument of both launch files.
 
@@ -42,6 +42,7 @@ class ExampleRobotsTest(unittest.TestCase):
         # As rviz does: with `markers` subscribed the node draws every frame, robots meeting
         # the map's scenery included.
         cls.colliding_drawn = 0
+        cls.names_drawn = set()  # texts of the `names` markers
         rospy.Subscriber("markers", MarkerArray, cls.on_markers, queue_size=10)
 
     @classmethod
@@ -56,6 +57,7 @@ class ExampleRobotsTest(unittest.TestCase):
         with cls.lock:
             if any(m.ns == "colliding" and m.points for m in msg.markers):
                 cls.colliding_drawn += 1
+            cls.names_drawn.update(m.text for m in msg.markers if m.ns == "names")
             cls.lock.notify_all()
 
     @classmethod
@@ -112,6 +114,17 @@ class ExampleRobotsTest(unittest.TestCase):
         self.wait_for(lambda: len(self.names) >= len(expected))
         with self.lock:
             self.assertEqual(self.names, expected)
+
+    def test_markers_name_robot_a_colliding_boxes(self):
+        # robot_a's boxes are named (MarkerArray source) and collide with the map on its way;
+        # robot_b's and the map's have no name on id_names, so they get no text.
+        self.assertTrue(self.wait_for(lambda: any(text.startswith("robot_a/boxes: ")
+                                                  for text in self.names_drawn)),
+                        "no name of robot_a's boxes drawn; texts seen: %s"
+                        % sorted(self.names_drawn))
+        with self.lock:
+            self.assertTrue(all(text.startswith("robot_a/boxes: ") for text in self.names_drawn),
+                            sorted(self.names_drawn))
 
     def test_the_client_example_answers(self):
         environment = dict(os.environ, PYENV_VERSION="system")

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -121,6 +123,70 @@ void expectSceneryPairsDrawMovingSideOnly(const BoxSet& inBoxes) {
 TEST(Markers, PairsWithSceneryBoxesDrawTheMovingBoxWhateverItsIds) {
   expectSceneryPairsDrawMovingSideOnly(test::touchingGrid(2, 0));    // ids 0..n-1: no table
   expectSceneryPairsDrawMovingSideOnly(test::touchingGrid(2, 100));  // ids through the table
+}
+
+std::vector<const Marker*> namesOf(const visualization_msgs::MarkerArray& inMarkers) {
+  std::vector<const Marker*> names;
+  for (const Marker& marker : inMarkers.markers)
+    if (marker.ns == kNamesNamespace) names.push_back(&marker);
+  return names;
+}
+
+TEST(Markers, NamesAboveNamedCollidingBoxesOnly) {
+  BoxSet boxes = test::touchingGrid(2, 100);  // 8 colliding unit cubes, ids 100..107
+  const double lo[3] = {50, 50, 50}, hi[3] = {51, 51, 51};
+  boxes.add(300, lo, hi);  // alone: drawn as non-colliding, never named
+  const BoxNames names = {{100, "robot_a/boxes: body/0"},
+                          {103, "robot_a/boxes: load/0[2]"},
+                          {300, "robot_a/boxes: lonely/0"}};
+  MarkerOptions options;
+  options.show_non_colliding = true;
+  std_msgs::Header header;
+  header.frame_id = "map";
+  visualization_msgs::MarkerArray markers;
+  buildMarkers(boxes, bruteForcePairs(boxes), header, options, markers, &names);
+  const std::vector<const Marker*> texts = namesOf(markers);
+  ASSERT_EQ(texts.size(), 2u) << "boxes 100 and 103; 101.. have no name, 300 collides with none";
+  std::set<int32_t> marker_ids;
+  for (const Marker* text : texts) {
+    EXPECT_EQ(text->type, Marker::TEXT_VIEW_FACING);
+    EXPECT_EQ(text->action, Marker::ADD);
+    EXPECT_EQ(text->header.frame_id, "map");
+    marker_ids.insert(text->id);
+  }
+  EXPECT_EQ(marker_ids.size(), 2u) << "one marker (id) per name";
+  const std::size_t index = std::find(boxes.ids.begin(), boxes.ids.end(), 103u) - boxes.ids.begin();
+  const Marker* load = texts[0]->text == names.at(103) ? texts[0] : texts[1];
+  ASSERT_EQ(load->text, names.at(103));
+  EXPECT_DOUBLE_EQ(load->pose.position.x, 0.5 * (boxes.lo[0][index] + boxes.hi[0][index]));
+  EXPECT_DOUBLE_EQ(load->pose.position.y, 0.5 * (boxes.lo[1][index] + boxes.hi[1][index]));
+  EXPECT_GT(load->pose.position.z, boxes.hi[2][index]) << "above the box";
+  EXPECT_GT(load->scale.z, 0.0);
+  EXPECT_LT(load->scale.z, 1.0) << "smaller than the unit cube it names";
+  EXPECT_LT(load->pose.position.z - 0.5 * load->scale.z, boxes.hi[2][index] + load->scale.z)
+      << "just above the box, not floating away";
+
+  options.show_names = false;
+  buildMarkers(boxes, bruteForcePairs(boxes), header, options, markers, &names);
+  EXPECT_TRUE(namesOf(markers).empty()) << "switched off";
+  options.show_names = true;
+  buildMarkers(boxes, bruteForcePairs(boxes), header, options, markers);
+  EXPECT_TRUE(namesOf(markers).empty()) << "no names given";
+}
+
+TEST(Markers, NamesAreBoundedByTheDrawnBoxes) {
+  const BoxSet boxes = test::randomBoxes(400, 1.5, true, 8);
+  const PairList pairs = bruteForcePairs(boxes);
+  BoxNames names;
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    names[boxes.ids[i]] = "box " + std::to_string(boxes.ids[i]);
+  MarkerOptions options;
+  options.max_boxes = 10;
+  visualization_msgs::MarkerArray markers;
+  const MarkerCounts counts =
+      buildMarkers(boxes, pairs, std_msgs::Header(), options, markers, &names);
+  ASSERT_GT(counts.colliding_omitted, 0u) << "the cap must bite for this test to mean anything";
+  EXPECT_EQ(namesOf(markers).size(), 10u) << "a name for each drawn box, none for the others";
 }
 
 }  // namespace
