@@ -98,7 +98,8 @@ QueryHitList answerQueries(const BoxSet& inQueries, const FrameQuery& inFrame,
     inScenery.queryAll(inQueries, everyIndex(inQueries.size()), inThreads, hits,
                        StaticIndex::PairOrder::kQueryFirst);
   }
-  sortPairsCanonical(hits);  // by (a, b): here (query id, world id)
+  PairSortScratch scratch;
+  sortPairsByAThenB(hits, scratch);  // (query id, world id): either may be the larger
   QueryHitList answer(hits.size());
   std::transform(hits.begin(), hits.end(), answer.begin(), [](const IdPair& inHit) {
     return QueryHit{inHit.a, inHit.b};

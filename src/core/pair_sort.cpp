@@ -182,7 +182,7 @@ void radixSort(PairList& ioPairs, PairSortScratch& ioScratch) {
 
 }  // namespace
 
-void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch) {
+void sortPairsByAThenB(PairList& ioPairs, PairSortScratch& ioScratch) {
   const std::size_t count = ioPairs.size();
   if (count < 2) return;
   const uint32_t largest_a = largestA(ioPairs);
@@ -192,6 +192,11 @@ void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch) {
   } else {
     radixSort(ioPairs, ioScratch);
   }
+  SAP_ASSERT(std::is_sorted(ioPairs.begin(), ioPairs.end()), "sorted pairs out of (a, b) order");
+}
+
+void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch) {
+  sortPairsByAThenB(ioPairs, ioScratch);
   SAP_ASSERT(inCanonicalOrder(ioPairs), "sorted pairs out of canonical (a, b) order");
 }
 

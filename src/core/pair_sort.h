@@ -57,9 +57,11 @@ struct PairSortScratch {
   std::vector<uint32_t> offsets;
 };
 
-/// Sorts pairs by (a, b): the canonical order used wherever pairs leave the process.
-/// Dense ids (largest a below a few times the pair count): a counting sort on a, then each
-/// a's short list sorted by b. Sparse ids: an LSD radix sort on the 64-bit key a<<32|b.
+/// Sorts pairs by (a, b), whatever the order within a pair (box queries' (query id, world id)
+/// hits). Dense ids (largest a below a few times the pair count): a counting sort on a, then
+/// each a's short list sorted by b. Sparse ids: an LSD radix sort on the 64-bit key a<<32|b.
+void sortPairsByAThenB(PairList& ioPairs, PairSortScratch& ioScratch);
+/// The same for pairs with a < b: the canonical order used wherever pairs leave the process.
 void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch);
 /// Convenience overload with temporary buffers.
 void sortPairsCanonical(PairList& ioPairs);
