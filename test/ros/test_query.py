@@ -209,7 +209,10 @@ class QueryBoxesTest(unittest.TestCase):
         # The cmdline node has the default ~source_timeout (1 s): a frame published once (as
         # by `rostopic pub -1`) drops out as expected (INFO), a stream that stops is a WARN.
         logs, condition = self.drop_outs, self.log_condition
-        once = rospy.Publisher("/cmdline/boxes", BoxArray, queue_size=10)
+        # Latched: the node's publisher check connects to a publisher before its subscription
+        # does, so a connection alone does not mean the subscription will see the frame; a
+        # latched frame reaches every connection that comes, once.
+        once = rospy.Publisher("/cmdline/boxes", BoxArray, queue_size=10, latch=True)
         try:
             while once.get_num_connections() == 0:
                 rospy.sleep(0.05)
