@@ -33,8 +33,7 @@ using QueryHitList = std::vector<QueryHit>;
 
 /// The stateful broad phase: keeps partition bounds B and the sweep axes across frames, owns
 /// every buffer (no allocation per frame once sizes are stable). Not thread-safe: one frame at
-/// a time per instance; between frames, query() may run on other threads (see there). The
-/// input is trusted: validate() it at the edge first.
+/// a time per instance; between frames, query() may run on other threads (see there).
 class Broadphase {
  public:
   explicit Broadphase(const BroadphaseConfig& inConfig = BroadphaseConfig());
@@ -42,22 +41,21 @@ class Broadphase {
   Broadphase(Broadphase&&) noexcept;
   Broadphase& operator=(Broadphase&&) noexcept;
 
-  /// Computes every overlapping pair of inBoxes (closed intervals, filters honoured), as ids
-  /// with a < b in canonical (a, b) order. The reference stays valid until the next update().
-  const PairList& update(const BoxSet& inBoxes);
-  /// The same for boxes laid out as records (a BoxArray message's bounds), which the engine
-  /// checks itself as it reads them: the engine keeps a copy of every frame anyway (to know
-  /// what moved), and here that copy is made from inBoxes directly, checked on the way, so the
-  /// caller's memory is read once and no intermediate BoxSet is built. Throws InvalidBoxes
-  /// naming the lowest bad box as validate() does (NaN, min > max, a repeated id, too many
-  /// boxes); the engine is then as after reset(). inBoxes is read only during the call.
-  const PairList& update(const InterleavedBoxes& inBoxes);
-  /// Declares scenery: boxes that stay put until replaced (validate() them first). They are
+  /// Computes every overlapping pair of the frame's boxes (closed intervals, filters
+  /// honoured), as ids with a < b in canonical (a, b) order. The reference stays valid until
+  /// the next update(). The frame is read once, as the engine copies it (it keeps a copy of
+  /// every frame anyway, to know what moved), and checked on the way: a NaN bound, min > max,
+  /// a repeated id (across spans too), an id that does not fit 32 bits or too many boxes throw
+  /// InvalidBoxes naming the lowest bad box as validate() does; the engine is then as after
+  /// reset(). The frame's memory is read only during the call.
+  const PairList& update(const BoxFrame& inFrame);
+  /// Declares scenery: boxes that stay put until replaced, checked as update() checks a frame
+  /// (a bad box throws InvalidBoxes and the scenery is unchanged). They are
   /// indexed once, here; every later update() reports the pairs among its boxes and between
   /// its boxes and the scenery, never scenery x scenery pairs (as the static bodies of Box2D,
   /// Jolt and Bullet). Ids of update()'s boxes must differ from the scenery's ids. Replaces
   /// any earlier scenery.
-  void setStaticBoxes(const BoxSet& inStaticBoxes);
+  void setStaticBoxes(const BoxFrame& inStaticBoxes);
   /// Forgets the scenery.
   void clearStaticBoxes();
   /// What overlaps each of inQueries in the world: the boxes of the last update() that
@@ -80,10 +78,7 @@ class Broadphase {
   /// frame, the index is built (once per frame, by the query that needs it) and answers the
   /// rest of the frame's queries in about a microsecond a query box. The scenery is always
   /// answered from its own index.
-  QueryHitList query(const BoxSet& inQueries) const;
-  /// The same for query boxes laid out as records (ids null: numbered 0..count-1, as query
-  /// indexes).
-  QueryHitList query(const InterleavedBoxes& inQueries) const;
+  QueryHitList query(const BoxFrame& inQueries) const;
   /// Number of declared static boxes.
   std::size_t staticBoxCount() const;
   /// Statistics of the last update().
