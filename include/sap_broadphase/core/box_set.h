@@ -139,7 +139,9 @@ struct ValidationError {
   int coordinate = 0;       ///< kNaN, kMinAboveMax: 0..5 = min_x, min_y, min_z, max_x, ...
   std::size_t earlier = 0;  ///< kDuplicateId: index in the frame of the earlier box, same id
   std::size_t span = 0;     ///< the span that holds box `index`
-  std::size_t earlier_span = 0;  ///< kDuplicateId: the span that holds box `earlier`
+  std::size_t earlier_span = 0;  ///< kDuplicateId: the span that holds box `earlier`, or kScenery
+  /// earlier_span of an id that a declared scenery box has (Broadphase::setStaticBoxes).
+  static constexpr std::size_t kScenery = static_cast<std::size_t>(-1);
   /// "box 7 (id 42): min_y (3) > max_y (2)"
   std::string message() const;
 };
