@@ -91,6 +91,21 @@ void addRandomFilters(BoxColumns& ioBoxes, uint64_t inSeed) {
   addRandomFiltersTo(ioBoxes, inSeed);
 }
 
+std::vector<BoxSpan> cutIntoSpans(const BoxSet& inBoxes, std::size_t inSpanBoxes) {
+  std::vector<BoxSpan> spans;
+  const BoxSpan whole = inBoxes.span();
+  for (std::size_t first = 0; first < inBoxes.size(); first += inSpanBoxes) {
+    BoxSpan span = whole;
+    span.count = std::min(inSpanBoxes, inBoxes.size() - first);
+    span.bounds += kBoundsPerBox * first;
+    span.ids += first;
+    if (span.groups) span.groups += first;
+    if (span.masks) span.masks += first;
+    spans.push_back(span);
+  }
+  return spans;
+}
+
 BoxSet recordsOf(const BoxColumns& inBoxes) {
   BoxSet records;
   records.reserve(inBoxes.size());

@@ -36,6 +36,9 @@ void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed);
 BoxColumns shuffledSubset(const BoxColumns& inBoxes, double inKeep, bool inSparseIds,
                           uint64_t inSeed);
 void addRandomFilters(BoxColumns& ioBoxes, uint64_t inSeed);
+/// inBoxes cut into spans of inSpanBoxes boxes (the last one shorter), over inBoxes' memory:
+/// the frame as several sources would give it.
+std::vector<BoxSpan> cutIntoSpans(const BoxSet& inBoxes, std::size_t inSpanBoxes);
 /// inBoxes as records (the inverse of columnsOf()).
 BoxSet recordsOf(const BoxColumns& inBoxes);
 
