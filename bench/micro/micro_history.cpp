@@ -39,8 +39,8 @@ RecordFrame recordsOf(const BoxSet& inBoxes) {
   RecordFrame records;
   records.ids = inBoxes.ids;
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    for (int axis = 0; axis < 3; ++axis) records.bounds.push_back(inBoxes.lo[axis][i]);
-    for (int axis = 0; axis < 3; ++axis) records.bounds.push_back(inBoxes.hi[axis][i]);
+    for (int axis = 0; axis < 3; ++axis) records.bounds.push_back(inBoxes.lo(axis, i));
+    for (int axis = 0; axis < 3; ++axis) records.bounds.push_back(inBoxes.hi(axis, i));
   }
   return records;
 }
