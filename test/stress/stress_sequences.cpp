@@ -203,13 +203,7 @@ BoxSet reversedOrder(const BoxSet& inBoxes) {
 }
 
 KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes) {
-  BoxColumns swept;  // the boxes the engine sweeps: group and mask 0 are dropped first
-  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;
-    const double low[3] = {inBoxes.lo(0, i), inBoxes.lo(1, i), inBoxes.lo(2, i)};
-    const double high[3] = {inBoxes.hi(0, i), inBoxes.hi(1, i), inBoxes.hi(2, i)};
-    swept.add(inBoxes.ids[i], low, high);
-  }
+  const BoxColumns swept = columnsOf(inBoxes);
   FrameSpread spread(swept);
   return keyOriginOf(spread, 1);
 }

@@ -86,9 +86,10 @@ class SkipWorld {
 /// The same boxes (ids, bounds, filters) in reverse order.
 BoxSet reversedOrder(const BoxSet& inBoxes);
 
-/// The key space a fresh engine puts a frame's keys in: keyOriginOf() the boxes it sweeps
-/// (group and mask not 0), as SweepAndPrune places its KeyOrigin on a first frame. The
-/// keys-only mode (exact_final_test = false) may add a pair only where these keys overlap.
+/// The key space a fresh engine puts a frame's keys in: keyOriginOf() every box of the frame
+/// (those that pair with nothing are swept too), as SweepAndPrune places its KeyOrigin on a
+/// first frame. The keys-only mode (exact_final_test = false) may add a pair only where these
+/// keys overlap.
 KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes);
 /// True when boxes a and b of inBoxes overlap in inOrigin's keys on all three axes.
 bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b);
