@@ -71,7 +71,8 @@ TEST(WorkUnits, OneUnitOrOneThreadOpensNoRegion) {
 }
 
 TEST(WorkUnits, TheSpreadIsTheSameOnAnyThreadCount) {
-  const BoxSet boxes = test_support::randomBoxes(5 * kUnitBoxes + 123, 1000.0, 3.0, 11);
+  const BoxColumns boxes =
+      columnsOf(test_support::randomBoxes(5 * kUnitBoxes + 123, 1000.0, 3.0, 11));
   for (int axis = 0; axis < 3; ++axis) {
     const AxisSpread one = measureAxisSpread(boxes, axis, 1);
     for (int threads = 2; threads <= 4; ++threads) {
