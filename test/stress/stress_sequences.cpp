@@ -216,21 +216,9 @@ bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a
   return true;
 }
 
-BoxSet concatenated(const BoxSet& inFirst, const BoxSet& inSecond) {
-  BoxSet both;
-  both.reserve(inFirst.size() + inSecond.size());
-  for (const BoxSet* part : {&inFirst, &inSecond}) {
-    for (std::size_t i = 0; i < part->size(); ++i) {
-      const double low[3] = {part->lo(0, i), part->lo(1, i), part->lo(2, i)};
-      const double high[3] = {part->hi(0, i), part->hi(1, i), part->hi(2, i)};
-      both.add(part->ids[i], low, high, part->group(i), part->mask(i));
-    }
-  }
-  return both;
-}
-
 PairList declaredSceneryOracle(const BoxSet& inScenery, const BoxSet& inMoving) {
-  PairList pairs = bruteForcePairs(concatenated(inScenery, inMoving));
+  const BoxSpan both[2] = {inScenery.span(), inMoving.span()};  // one frame, read where it lies
+  PairList pairs = bruteForcePairs(BoxFrame(both, 2));
   std::vector<uint32_t> scenery_ids = inScenery.ids;
   std::sort(scenery_ids.begin(), scenery_ids.end());
   const auto is_scenery = [&](uint32_t inId) {

@@ -100,8 +100,6 @@ constexpr uint32_t kFirstSceneryId = 1u << 24;
 /// inCount boxes on the lattice of a SkipWorld of inCount boxes, ids from kFirstSceneryId, default
 /// filters (scenery boxes overlap one another: those pairs must never be reported).
 BoxSet sceneryBoxes(std::size_t inCount, uint64_t inSeed);
-/// inFirst's boxes followed by inSecond's (filters kept, defaults where a set has none).
-BoxSet concatenated(const BoxSet& inFirst, const BoxSet& inSecond);
 /// What update(inMoving) must give after setStaticBoxes(inScenery): the oracle's pairs of both
 /// sets together minus the scenery x scenery pairs.
 PairList declaredSceneryOracle(const BoxSet& inScenery, const BoxSet& inMoving);
