@@ -120,6 +120,15 @@ std::optional<ValidationError> findIdOverflow(const BoxFrame& inFrame) {
   return std::nullopt;
 }
 
+// The filters of a box about to be added (before its id): earlier boxes get the defaults.
+template <typename Boxes>
+void addFilters(Boxes& ioBoxes, uint32_t inGroup, uint32_t inMask) {
+  ioBoxes.groups.resize(ioBoxes.size(), kDefaultGroup);
+  ioBoxes.masks.resize(ioBoxes.size(), kDefaultMask);
+  ioBoxes.groups.push_back(inGroup);
+  ioBoxes.masks.push_back(inMask);
+}
+
 ValidationError shapeError(std::string inReason) {
   return ValidationError{0, 0, std::move(inReason)};
 }
@@ -158,10 +167,7 @@ void BoxSet::add(uint32_t inId, const double inMin[3], const double inMax[3]) {
 
 void BoxSet::add(uint32_t inId, const double inMin[3], const double inMax[3], uint32_t inGroup,
                  uint32_t inMask) {
-  groups.resize(size(), kDefaultGroup);  // earlier boxes get the defaults
-  masks.resize(size(), kDefaultMask);
-  groups.push_back(inGroup);
-  masks.push_back(inMask);
+  addFilters(*this, inGroup, inMask);
   ids.push_back(inId);
   bounds.insert(bounds.end(), inMin, inMin + 3);
   bounds.insert(bounds.end(), inMax, inMax + 3);
@@ -237,10 +243,7 @@ void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3]
 
 void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3], uint32_t inGroup,
                      uint32_t inMask) {
-  groups.resize(size(), kDefaultGroup);  // earlier boxes get the defaults
-  masks.resize(size(), kDefaultMask);
-  groups.push_back(inGroup);
-  masks.push_back(inMask);
+  addFilters(*this, inGroup, inMask);
   ids.push_back(inId);
   for (int axis = 0; axis < 3; ++axis) {
     lo[axis].push_back(inMin[axis]);
