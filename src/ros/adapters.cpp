@@ -432,8 +432,8 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
         lo = std::nextafter(lo, -kInfinity);
         hi = std::nextafter(hi, kInfinity);
       }
-      one_box_.lo[axis][0] = lo;
-      one_box_.hi[axis][0] = hi;
+      one_box_.lo(axis, 0) = lo;
+      one_box_.hi(axis, 0) = hi;
     }
     geometry_msgs::Transform pose;
     pose.translation.x = box.pose.position.x;
@@ -445,8 +445,8 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
     // The one rule of the node for a moved box: the axis-aligned box of its 8 corners, rounded
     // outwards (the tf2 sources use it too).
     transformBoxes(pose, one_box_);
-    for (int axis = 0; axis < 3; ++axis) outBoxes.bounds.push_back(one_box_.lo[axis][0]);
-    for (int axis = 0; axis < 3; ++axis) outBoxes.bounds.push_back(one_box_.hi[axis][0]);
+    for (int axis = 0; axis < 3; ++axis) outBoxes.bounds.push_back(one_box_.lo(axis, 0));
+    for (int axis = 0; axis < 3; ++axis) outBoxes.bounds.push_back(one_box_.hi(axis, 0));
   }
   applyFilters(outBoxes);
   return std::nullopt;

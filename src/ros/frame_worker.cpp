@@ -267,12 +267,8 @@ void FrameWorker::computeFrame() {
   frame.boxes = world.size();
   frame.sources = assembly.sources_merged;
   frame.ms_conversion = millisecondsSince(start);
-  const PairList* pairs = nullptr;
-  if (world.boxes) {
-    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
-    pairs = &engine_.update(*world.boxes);
-  }
-  if (!pairs && !(pairs = updateFromMessage(world))) return;
+  const PairList* pairs = updateEngine(world);
+  if (!pairs) return;
   frame.ms_message = outputs_.publishPairs(*pairs, assembly.header);
   frame.ms_total = millisecondsSince(start);
   outputs_.publishEvents(*pairs, assembly.header);
@@ -285,20 +281,21 @@ void FrameWorker::computeFrame() {
   status_.frameComputed(frame, engine_.stats());
 }
 
-const PairList* FrameWorker::updateFromMessage(const World& inWorld) {
-  const BoxArray& message = *inWorld.message;
+const PairList* FrameWorker::updateEngine(const World& inWorld) {
   try {
     std::unique_lock<std::shared_mutex> lock(engine_mutex_);
-    const PairList& pairs = engine_.update(boxArrayRecords(message));
+    const PairList& pairs = engine_.update(
+        inWorld.boxes ? BoxFrame(*inWorld.boxes) : BoxFrame(boxArrayRecords(*inWorld.message)));
     lock.unlock();
-    if (sources_.accept(inWorld.source)) status_.countProcessed();
+    if (inWorld.message && sources_.accept(inWorld.source)) status_.countProcessed();
     return &pairs;
   } catch (const InvalidBoxes& refusal) {
     // As a frame refused at conversion: counted and named, nothing published, and the source
-    // keeps its last good frame.
-    status_.refuse(message.header, inWorld.size(),
+    // keeps its last good frame. A merged world was checked source by source as it was built.
+    const std_msgs::Header header = inWorld.message ? inWorld.message->header : std_msgs::Header();
+    status_.refuse(header, inWorld.size(),
                    sourceName(inWorld.source) + ": " + refusal.error().message());
-    sources_.refuse(inWorld.source);
+    if (inWorld.message) sources_.refuse(inWorld.source);
     return nullptr;
   }
 }

@@ -66,9 +66,9 @@ class FrameWorker {
   void recoverFrom(const std::string& inWhat);
   /// Merges the sources, computes and publishes one frame.
   void computeFrame();
-  /// The engine on a world that is one source's frame as published, which the engine checks
-  /// as it reads it: the pairs, or null when the frame was refused.
-  const PairList* updateFromMessage(const World& inWorld);
+  /// The engine on the world, which it checks as it reads it: the pairs, or null when the
+  /// frame was refused (a source's frame as published falls back on its last good one).
+  const PairList* updateEngine(const World& inWorld);
 
   NodeParams params_;  // the settings in force (worker thread only)
   SourceIngest& ingest_;

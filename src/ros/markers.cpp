@@ -45,9 +45,9 @@ visualization_msgs::Marker makeLineList(const std_msgs::Header& inHeader, const 
 /// Appends the 12 edges (24 points) of box i to ioPoints.
 void appendWireframe(const BoxSet& inBoxes, std::size_t i,
                      std::vector<geometry_msgs::Point>& ioPoints) {
-  const double x[2] = {inBoxes.lo[0][i], inBoxes.hi[0][i]};
-  const double y[2] = {inBoxes.lo[1][i], inBoxes.hi[1][i]};
-  const double z[2] = {inBoxes.lo[2][i], inBoxes.hi[2][i]};
+  const double x[2] = {inBoxes.lo(0, i), inBoxes.hi(0, i)};
+  const double y[2] = {inBoxes.lo(1, i), inBoxes.hi(1, i)};
+  const double z[2] = {inBoxes.lo(2, i), inBoxes.hi(2, i)};
   for (int a = 0; a < 2; ++a) {
     for (int b = 0; b < 2; ++b) {
       ioPoints.push_back(makePoint(x[0], y[a], z[b]));  // edge along x
@@ -63,8 +63,8 @@ void appendWireframe(const BoxSet& inBoxes, std::size_t i,
 /// Appends the 6 faces of box i, 2 triangles each (36 points), to ioPoints.
 void appendSolid(const BoxSet& inBoxes, std::size_t i,
                  std::vector<geometry_msgs::Point>& ioPoints) {
-  const double lo[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
-  const double hi[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+  const double lo[3] = {inBoxes.lo(0, i), inBoxes.lo(1, i), inBoxes.lo(2, i)};
+  const double hi[3] = {inBoxes.hi(0, i), inBoxes.hi(1, i), inBoxes.hi(2, i)};
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     for (const double level : {lo[axis], hi[axis]}) {
@@ -88,9 +88,9 @@ void appendSolid(const BoxSet& inBoxes, std::size_t i,
 }
 
 geometry_msgs::Point boxCenter(const BoxSet& inBoxes, std::size_t i) {
-  return makePoint(0.5 * (inBoxes.lo[0][i] + inBoxes.hi[0][i]),
-                   0.5 * (inBoxes.lo[1][i] + inBoxes.hi[1][i]),
-                   0.5 * (inBoxes.lo[2][i] + inBoxes.hi[2][i]));
+  return makePoint(0.5 * (inBoxes.lo(0, i) + inBoxes.hi(0, i)),
+                   0.5 * (inBoxes.lo(1, i) + inBoxes.hi(1, i)),
+                   0.5 * (inBoxes.lo(2, i) + inBoxes.hi(2, i)));
 }
 
 /// Maps box ids to indices; ids 0..n-1 in order (the common case) need no table.
@@ -120,7 +120,7 @@ class IdIndex {
 double meanEdge(const BoxSet& inBoxes, const std::vector<std::size_t>& inDrawn) {
   double sum = 0.0;
   for (std::size_t i : inDrawn) {
-    for (int axis = 0; axis < 3; ++axis) sum += inBoxes.hi[axis][i] - inBoxes.lo[axis][i];
+    for (int axis = 0; axis < 3; ++axis) sum += inBoxes.hi(axis, i) - inBoxes.lo(axis, i);
   }
   return inDrawn.empty() ? 0.0 : sum / (3.0 * static_cast<double>(inDrawn.size()));
 }
@@ -137,7 +137,7 @@ void appendNames(const BoxSet& inBoxes, const std::vector<std::size_t>& inDrawn,
     if (name == inNames.end()) continue;
     geometry_msgs::Point position = boxCenter(inBoxes, i);
     // Centred half a line above the top face, clear of the box's outline.
-    position.z = inBoxes.hi[2][i] + 0.75 * inHeight;
+    position.z = inBoxes.hi(2, i) + 0.75 * inHeight;
     // An unbounded box (infinite extent) has no place to put a label at.
     if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
       continue;

@@ -63,8 +63,8 @@ void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes
   const double translation[3] = {inTransform.translation.x, inTransform.translation.y,
                                  inTransform.translation.z};
   for (std::size_t i = 0; i < ioBoxes.size(); ++i) {
-    const double lo[3] = {ioBoxes.lo[0][i], ioBoxes.lo[1][i], ioBoxes.lo[2][i]};
-    const double hi[3] = {ioBoxes.hi[0][i], ioBoxes.hi[1][i], ioBoxes.hi[2][i]};
+    const double lo[3] = {ioBoxes.lo(0, i), ioBoxes.lo(1, i), ioBoxes.lo(2, i)};
+    const double hi[3] = {ioBoxes.hi(0, i), ioBoxes.hi(1, i), ioBoxes.hi(2, i)};
     for (int out = 0; out < 3; ++out) {
       // The extremes over the 8 corners of row `out` of R x + t separate per input axis: each
       // term takes the smaller (larger) of R[out][in] * lo and R[out][in] * hi.
@@ -83,8 +83,8 @@ void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes
       const double slack = 2.0 * DBL_EPSILON * magnitude;
       low = std::isnan(low) ? -kInfinity : std::nextafter(low - slack, -kInfinity);
       high = std::isnan(high) ? kInfinity : std::nextafter(high + slack, kInfinity);
-      ioBoxes.lo[out][i] = low;
-      ioBoxes.hi[out][i] = high;
+      ioBoxes.lo(out, i) = low;
+      ioBoxes.hi(out, i) = high;
     }
   }
 }
@@ -94,18 +94,12 @@ void appendBoxes(const BoxSet& inAdd, BoxSet& ioWorld) {
   appendFilter(inAdd.groups, inAdd.size(), world_count, kDefaultGroup, ioWorld.groups);
   appendFilter(inAdd.masks, inAdd.size(), world_count, kDefaultMask, ioWorld.masks);
   ioWorld.ids.insert(ioWorld.ids.end(), inAdd.ids.begin(), inAdd.ids.end());
-  for (int axis = 0; axis < 3; ++axis) {
-    ioWorld.lo[axis].insert(ioWorld.lo[axis].end(), inAdd.lo[axis].begin(), inAdd.lo[axis].end());
-    ioWorld.hi[axis].insert(ioWorld.hi[axis].end(), inAdd.hi[axis].begin(), inAdd.hi[axis].end());
-  }
+  ioWorld.bounds.insert(ioWorld.bounds.end(), inAdd.bounds.begin(), inAdd.bounds.end());
 }
 
 void shrinkBoxSet(BoxSet& ioBoxes) {
   ioBoxes.ids.shrink_to_fit();
-  for (int axis = 0; axis < 3; ++axis) {
-    ioBoxes.lo[axis].shrink_to_fit();
-    ioBoxes.hi[axis].shrink_to_fit();
-  }
+  ioBoxes.bounds.shrink_to_fit();
   ioBoxes.groups.shrink_to_fit();
   ioBoxes.masks.shrink_to_fit();
 }

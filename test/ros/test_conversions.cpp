@@ -23,8 +23,8 @@ TEST(Conversions, EmptyIdsNumberTheBoxes) {
   ASSERT_EQ(boxes.size(), 2u);
   EXPECT_EQ(boxes.ids[0], 0u);
   EXPECT_EQ(boxes.ids[1], 1u);
-  EXPECT_EQ(boxes.lo[2][1], 1.0);
-  EXPECT_EQ(boxes.hi[0][0], 1.0);
+  EXPECT_EQ(boxes.lo(2, 1), 1.0);
+  EXPECT_EQ(boxes.hi(0, 0), 1.0);
   EXPECT_FALSE(boxes.hasFilters());
 }
 
@@ -37,10 +37,7 @@ TEST(Conversions, RoundTripKeepsEverything) {
   EXPECT_EQ(back.ids, original.ids);
   EXPECT_EQ(back.groups, original.groups);
   EXPECT_EQ(back.masks, original.masks);
-  for (int axis = 0; axis < 3; ++axis) {
-    EXPECT_EQ(back.lo[axis], original.lo[axis]);
-    EXPECT_EQ(back.hi[axis], original.hi[axis]);
-  }
+  EXPECT_EQ(back.bounds, original.bounds);
 }
 
 TEST(Conversions, MissingMasksOrGroupsGetDefaults) {

@@ -158,12 +158,12 @@ TEST(Markers, NamesAboveNamedCollidingBoxesOnly) {
   const std::size_t index = std::find(boxes.ids.begin(), boxes.ids.end(), 103u) - boxes.ids.begin();
   const Marker* load = texts[0]->text == names.at(103) ? texts[0] : texts[1];
   ASSERT_EQ(load->text, names.at(103));
-  EXPECT_DOUBLE_EQ(load->pose.position.x, 0.5 * (boxes.lo[0][index] + boxes.hi[0][index]));
-  EXPECT_DOUBLE_EQ(load->pose.position.y, 0.5 * (boxes.lo[1][index] + boxes.hi[1][index]));
-  EXPECT_GT(load->pose.position.z, boxes.hi[2][index]) << "above the box";
+  EXPECT_DOUBLE_EQ(load->pose.position.x, 0.5 * (boxes.lo(0, index) + boxes.hi(0, index)));
+  EXPECT_DOUBLE_EQ(load->pose.position.y, 0.5 * (boxes.lo(1, index) + boxes.hi(1, index)));
+  EXPECT_GT(load->pose.position.z, boxes.hi(2, index)) << "above the box";
   EXPECT_GT(load->scale.z, 0.0);
   EXPECT_LT(load->scale.z, 1.0) << "smaller than the unit cube it names";
-  EXPECT_LT(load->pose.position.z - 0.5 * load->scale.z, boxes.hi[2][index] + load->scale.z)
+  EXPECT_LT(load->pose.position.z - 0.5 * load->scale.z, boxes.hi(2, index) + load->scale.z)
       << "just above the box, not floating away";
 
   options.show_names = false;

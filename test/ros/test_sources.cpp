@@ -335,7 +335,7 @@ TEST(Frames, StaticTranslationIntoTheFixedFrame) {
   const BoxSet boxes = randomBoxes(500, 0.8, true, 201);
   const ros::Time stamp = ros::Time::now();
   const BoxSet moved = inMap(boxes, "robot_a", stamp);
-  EXPECT_NEAR(moved.lo[0][0], boxes.lo[0][0] + 10.0, 1e-12);
+  EXPECT_NEAR(moved.lo(0, 0), boxes.lo(0, 0) + 10.0, 1e-12);
   const auto pairs = tfProbe().waitStampedAlone(
       stamp, [&] { publishBoxes(tfProbe(), "boxes", boxes, "robot_a", stamp); });
   ASSERT_TRUE(pairs);
@@ -382,7 +382,7 @@ TEST(Frames, MovingTransformInterpolatedAtTheStamp) {
   };
   republish();
   const BoxSet moved = inMap(boxes, "robot_b", middle);
-  EXPECT_NEAR(moved.lo[0][0], boxes.lo[0][0] + 2.0, 1e-12) << "halfway between x = 0 and x = 4";
+  EXPECT_NEAR(moved.lo(0, 0), boxes.lo(0, 0) + 2.0, 1e-12) << "halfway between x = 0 and x = 4";
   const auto pairs = tfProbe().waitStampedAlone(middle, republish);
   ASSERT_TRUE(pairs);
   EXPECT_EQ(toPairs(*pairs), bruteForcePairs(moved));
@@ -491,8 +491,8 @@ TEST(PairEventsTopic, SetDifferenceOfConsecutiveFrames) {
     }
     previous = current;
     for (std::size_t i = 0; i < moving.size(); ++i) {  // everything drifts along +x
-      moving.lo[0][i] += 0.05 * (i % 7);
-      moving.hi[0][i] += 0.05 * (i % 7);
+      moving.lo(0, i) += 0.05 * (i % 7);
+      moving.hi(0, i) += 0.05 * (i % 7);
     }
   }
 }

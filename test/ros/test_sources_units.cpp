@@ -251,20 +251,20 @@ TEST(TransformBoxes, ContainsEveryMovedCornerAndIsTight) {
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (int corner = 0; corner < 8; ++corner) {
-      const tf2::Vector3 point(corner & 1 ? boxes.hi[0][i] : boxes.lo[0][i],
-                               corner & 2 ? boxes.hi[1][i] : boxes.lo[1][i],
-                               corner & 4 ? boxes.hi[2][i] : boxes.lo[2][i]);
+      const tf2::Vector3 point(corner & 1 ? boxes.hi(0, i) : boxes.lo(0, i),
+                               corner & 2 ? boxes.hi(1, i) : boxes.lo(1, i),
+                               corner & 4 ? boxes.hi(2, i) : boxes.lo(2, i));
       const tf2::Vector3 out = matrix * point + shift;
       for (int axis = 0; axis < 3; ++axis) {
-        EXPECT_LE(moved.lo[axis][i], out[axis]) << "box " << i << " axis " << axis;
-        EXPECT_GE(moved.hi[axis][i], out[axis]) << "box " << i << " axis " << axis;
+        EXPECT_LE(moved.lo(axis, i), out[axis]) << "box " << i << " axis " << axis;
+        EXPECT_GE(moved.hi(axis, i), out[axis]) << "box " << i << " axis " << axis;
         lo[axis] = std::min(lo[axis], out[axis]);
         hi[axis] = std::max(hi[axis], out[axis]);
       }
     }
     for (int axis = 0; axis < 3; ++axis) {  // outward rounding only: a few ulps at 100
-      EXPECT_NEAR(moved.lo[axis][i], lo[axis], 1e-12);
-      EXPECT_NEAR(moved.hi[axis][i], hi[axis], 1e-12);
+      EXPECT_NEAR(moved.lo(axis, i), lo[axis], 1e-12);
+      EXPECT_NEAR(moved.hi(axis, i), hi[axis], 1e-12);
     }
   }
 }
@@ -287,8 +287,8 @@ TEST(TransformBoxes, TouchingBoxesStillTouchAndInfinityStaysInfinite) {
   EXPECT_FALSE(validate(moved));
   const PairList before = bruteForcePairs(boxes), after = bruteForcePairs(moved);
   EXPECT_TRUE(std::includes(after.begin(), after.end(), before.begin(), before.end()));
-  EXPECT_EQ(moved.lo[0].back(), -inf);
-  EXPECT_EQ(moved.hi[1].back(), inf) << "x mixes into y under a yaw";
+  EXPECT_EQ(moved.lo(0, moved.size() - 1), -inf);
+  EXPECT_EQ(moved.hi(1, moved.size() - 1), inf) << "x mixes into y under a yaw";
 }
 
 }  // namespace
