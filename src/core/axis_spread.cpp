@@ -7,7 +7,7 @@
 
 namespace sap_broadphase {
 
-AxisSpread measureAxisSpread(const BoxSet& inBoxes, int inAxis, int inThreads,
+AxisSpread measureAxisSpread(const BoxColumns& inBoxes, int inAxis, int inThreads,
                              const std::vector<uint32_t>* inIndexes) {
   const double* low = inBoxes.lo[inAxis].data();
   const double* high = inBoxes.hi[inAxis].data();

@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "sap_broadphase/core/box_set.h"
+#include "core/box_columns.h"
 
 namespace sap_broadphase {
 
@@ -29,7 +29,7 @@ struct AxisSpread {
 };
 
 /// The spread of the boxes of inBoxes on axis inAxis, of those at inIndexes only when given.
-AxisSpread measureAxisSpread(const BoxSet& inBoxes, int inAxis, int inThreads,
+AxisSpread measureAxisSpread(const BoxColumns& inBoxes, int inAxis, int inThreads,
                              const std::vector<uint32_t>* inIndexes = nullptr);
 
 /// The spread of one box set on each axis, each axis measured once, when first asked for: a
@@ -38,7 +38,7 @@ AxisSpread measureAxisSpread(const BoxSet& inBoxes, int inAxis, int inThreads,
 /// points at must not change meanwhile).
 class FrameSpread {
  public:
-  explicit FrameSpread(const BoxSet& inBoxes) : boxes_(&inBoxes) {}
+  explicit FrameSpread(const BoxColumns& inBoxes) : boxes_(&inBoxes) {}
 
   /// The spread on inAxis, measured on up to inThreads threads if not measured yet (the same
   /// spread for any thread count).
@@ -49,10 +49,10 @@ class FrameSpread {
     }
     return spreads_[inAxis];
   }
-  const BoxSet& boxes() const { return *boxes_; }
+  const BoxColumns& boxes() const { return *boxes_; }
 
  private:
-  const BoxSet* boxes_;
+  const BoxColumns* boxes_;
   AxisSpread spreads_[3];
   bool measured_[3] = {false, false, false};
 };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
 
@@ -48,6 +49,9 @@ BoxColumns columnsOf(const BoxFrame& inFrame);
 /// The check validate() and the engine's load make, on boxes already in columns: the problem
 /// of the lowest box index, named as validate() says, with inFrame's spans to name it.
 std::optional<ValidationError> checkColumns(const BoxColumns& inBoxes, const BoxFrame& inFrame);
+
+/// The oracle on columns: every pair tested (brute_force.h; the engine's smallest frames).
+std::vector<IdPair> bruteForcePairs(const BoxColumns& inBoxes);
 
 inline bool boxesOverlap(const BoxColumns& inBoxesA, std::size_t a, const BoxColumns& inBoxesB,
                          std::size_t b) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <sstream>
 
+#include "core/box_columns.h"
 #include "core/radix_sort.h"
 #include "core/work_units.h"
 
@@ -22,7 +23,7 @@ std::string formatNumber(double inValue) {
 
 // Why box i cannot be used: NaN in a bound (in field order min_x .. max_z), or min > max on
 // some axis. Called only for a box that is not usable.
-ValidationError coordinateProblem(const BoxSet& inBoxes, std::size_t i) {
+ValidationError coordinateProblem(const BoxColumns& inBoxes, std::size_t i) {
   ValidationError error{i, inBoxes.ids[i], ""};
   for (int coordinate = 0; coordinate < 6; ++coordinate) {
     const int axis = coordinate % 3;
@@ -48,7 +49,7 @@ ValidationError coordinateProblem(const BoxSet& inBoxes, std::size_t i) {
 
 // First box with an unusable coordinate. `low <= high` is false exactly when either is NaN or
 // low > high, so the scan is one comparison a bound and a message is built only for a bad box.
-std::optional<ValidationError> findBadCoordinate(const BoxSet& inBoxes) {
+std::optional<ValidationError> findBadCoordinate(const BoxColumns& inBoxes) {
   const std::size_t n = inBoxes.size();
   for (std::size_t i = 0; i < n; ++i) {
     bool usable = true;
@@ -58,7 +59,7 @@ std::optional<ValidationError> findBadCoordinate(const BoxSet& inBoxes) {
   return std::nullopt;
 }
 
-ValidationError duplicateAt(const BoxSet& inBoxes, std::size_t inIndex, std::size_t inEarlier) {
+ValidationError duplicateAt(const BoxColumns& inBoxes, std::size_t inIndex, std::size_t inEarlier) {
   ValidationError error{inIndex, inBoxes.ids[inIndex],
                         "duplicate id (also box " + std::to_string(inEarlier) + ")"};
   error.problem = BoxProblem::kDuplicateId;
@@ -69,7 +70,7 @@ ValidationError duplicateAt(const BoxSet& inBoxes, std::size_t inIndex, std::siz
 // First repeated id (the smallest index whose id an earlier box has). Ids are usually dense
 // (0..n-1, or a robot's range): then one pass over a bit per possible id finds it; sparse ids
 // are radix-sorted instead, O(n) passes either way.
-std::optional<ValidationError> findDuplicateId(const BoxSet& inBoxes) {
+std::optional<ValidationError> findDuplicateId(const BoxColumns& inBoxes) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   if (n < 2) return std::nullopt;
   const auto [smallest, largest] = std::minmax_element(inBoxes.ids.begin(), inBoxes.ids.end());
@@ -99,32 +100,58 @@ std::optional<ValidationError> findDuplicateId(const BoxSet& inBoxes) {
   return first;
 }
 
+// The first box whose span's id_offset + id does not fit 32 bits (a span's ids are checked
+// only when it has an offset: without one every id fits).
+std::optional<ValidationError> findIdOverflow(const BoxFrame& inFrame) {
+  std::size_t first_box = 0;
+  for (std::size_t s = 0; s < inFrame.spanCount(); ++s) {
+    const BoxSpan& span = inFrame.span(s);
+    for (std::size_t i = 0; span.id_offset != 0 && i < span.count; ++i) {
+      if (span.idOf(i) <= UINT32_MAX) continue;
+      ValidationError error{first_box + i, static_cast<uint32_t>(span.idOf(i)),
+                            "id offset " + std::to_string(span.id_offset) + " + id " +
+                                std::to_string(span.idOf(i) - span.id_offset) +
+                                " exceeds 4294967295"};
+      error.problem = BoxProblem::kIdOverflow;
+      return error;
+    }
+    first_box += span.count;
+  }
+  return std::nullopt;
+}
+
+ValidationError shapeError(std::string inReason) {
+  return ValidationError{0, 0, std::move(inReason)};
+}
+
+// The index in its span of frame box inIndex: the span, and the boxes before it.
+std::size_t spanOf(const BoxFrame& inFrame, std::size_t inIndex) {
+  std::size_t first_box = 0;
+  for (std::size_t s = 0; s < inFrame.spanCount(); ++s) {
+    if (inIndex < first_box + inFrame.span(s).count) return s;
+    first_box += inFrame.span(s).count;
+  }
+  return inFrame.spanCount();
+}
+
 }  // namespace
 
 void BoxSet::clear() {
   ids.clear();
-  for (int axis = 0; axis < 3; ++axis) {
-    lo[axis].clear();
-    hi[axis].clear();
-  }
+  bounds.clear();
   groups.clear();
   masks.clear();
 }
 
 void BoxSet::reserve(std::size_t inCount) {
   ids.reserve(inCount);
-  for (int axis = 0; axis < 3; ++axis) {
-    lo[axis].reserve(inCount);
-    hi[axis].reserve(inCount);
-  }
+  bounds.reserve(kBoundsPerBox * inCount);
 }
 
 void BoxSet::add(uint32_t inId, const double inMin[3], const double inMax[3]) {
   ids.push_back(inId);
-  for (int axis = 0; axis < 3; ++axis) {
-    lo[axis].push_back(inMin[axis]);
-    hi[axis].push_back(inMax[axis]);
-  }
+  bounds.insert(bounds.end(), inMin, inMin + 3);
+  bounds.insert(bounds.end(), inMax, inMax + 3);
   if (!groups.empty()) groups.push_back(kDefaultGroup);
   if (!masks.empty()) masks.push_back(kDefaultMask);
 }
@@ -134,72 +161,149 @@ void BoxSet::add(uint32_t inId, const double inMin[3], const double inMax[3], ui
   const std::size_t before = size();
   if (groups.empty()) groups.assign(before, kDefaultGroup);
   if (masks.empty()) masks.assign(before, kDefaultMask);
+  add(inId, inMin, inMax);
+  groups.back() = inGroup;
+  masks.back() = inMask;
+}
+
+namespace {
+
+// Why the arrays of inBoxes cannot form a span, if they cannot.
+std::optional<ValidationError> shapeProblem(const BoxSet& inBoxes) {
+  const std::size_t n = inBoxes.size();
+  if (inBoxes.bounds.size() != kBoundsPerBox * n)
+    return shapeError("bounds has " + std::to_string(inBoxes.bounds.size()) + " values for " +
+                      std::to_string(n) + " ids (6 a box)");
+  if (!inBoxes.groups.empty() && inBoxes.groups.size() != n)
+    return shapeError("groups has " + std::to_string(inBoxes.groups.size()) + " entries for " +
+                      std::to_string(n) + " boxes");
+  if (!inBoxes.masks.empty() && inBoxes.masks.size() != n)
+    return shapeError("masks has " + std::to_string(inBoxes.masks.size()) + " entries for " +
+                      std::to_string(n) + " boxes");
+  return std::nullopt;
+}
+
+}  // namespace
+
+BoxSpan BoxSet::span() const {
+  if (auto problem = shapeProblem(*this)) throw InvalidBoxes(std::move(*problem));
+  BoxSpan span;
+  span.count = size();
+  span.bounds = bounds.data();
+  span.ids = ids.data();
+  span.groups = groups.empty() ? nullptr : groups.data();
+  span.masks = masks.empty() ? nullptr : masks.data();
+  return span;
+}
+
+void BoxColumns::clear() {
+  ids.clear();
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis].clear();
+    hi[axis].clear();
+  }
+  groups.clear();
+  masks.clear();
+}
+
+void BoxColumns::reserve(std::size_t inCount) {
+  ids.reserve(inCount);
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis].reserve(inCount);
+    hi[axis].reserve(inCount);
+  }
+}
+
+void BoxColumns::resize(std::size_t inCount, bool inFiltered) {
+  ids.resize(inCount);
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis].resize(inCount);
+    hi[axis].resize(inCount);
+  }
+  groups.resize(inFiltered ? inCount : 0);
+  masks.resize(inFiltered ? inCount : 0);
+}
+
+void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3]) {
   ids.push_back(inId);
   for (int axis = 0; axis < 3; ++axis) {
     lo[axis].push_back(inMin[axis]);
     hi[axis].push_back(inMax[axis]);
   }
-  groups.push_back(inGroup);
-  masks.push_back(inMask);
+  if (!groups.empty()) groups.push_back(kDefaultGroup);
+  if (!masks.empty()) masks.push_back(kDefaultMask);
 }
 
-void copyInterleaved(const InterleavedBoxes& inBoxes, BoxSet& outBoxes, int inThreads) {
-  const std::size_t count = inBoxes.count;
-  outBoxes.ids.resize(count);
-  for (int axis = 0; axis < 3; ++axis) {
-    outBoxes.lo[axis].resize(count);
-    outBoxes.hi[axis].resize(count);
+void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3], uint32_t inGroup,
+                     uint32_t inMask) {
+  const std::size_t before = size();
+  if (groups.empty()) groups.assign(before, kDefaultGroup);
+  if (masks.empty()) masks.assign(before, kDefaultMask);
+  add(inId, inMin, inMax);
+  groups.back() = inGroup;
+  masks.back() = inMask;
+}
+
+void copyFrame(const BoxFrame& inFrame, BoxColumns& outBoxes, int inThreads) {
+  outBoxes.resize(inFrame.size(), inFrame.hasFilters());
+  const bool filtered = inFrame.hasFilters();
+  std::size_t first_box = 0;
+  for (std::size_t s = 0; s < inFrame.spanCount(); ++s) {
+    const BoxSpan& span = inFrame.span(s);
+    // A 2^20-box frame is 50 MB: copied in work units on the threads (one unit inline).
+    runOverItems(WorkUnits{span.count}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+      for (std::size_t i = inBegin; i < inEnd; ++i) {
+        const double* box = span.bounds + kBoundsPerBox * i;
+        const std::size_t k = first_box + i;
+        for (int axis = 0; axis < 3; ++axis) {
+          outBoxes.lo[axis][k] = box[axis];
+          outBoxes.hi[axis][k] = box[3 + axis];
+        }
+        outBoxes.ids[k] = static_cast<uint32_t>(span.idOf(i));
+        if (filtered) {
+          outBoxes.groups[k] = span.groupOf(i);
+          outBoxes.masks[k] = span.maskOf(i);
+        }
+      }
+    });
+    first_box += span.count;
   }
-  const bool filtered = inBoxes.hasFilters();
-  outBoxes.groups.resize(filtered ? count : 0);
-  outBoxes.masks.resize(filtered ? count : 0);
-  // A 2^20-box frame is 50 MB: copied in work units on the threads (one unit inline).
-  runOverItems(WorkUnits{count}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
-    for (std::size_t i = inBegin; i < inEnd; ++i) {
-      const double* box = inBoxes.bounds + 6 * i;
-      for (int axis = 0; axis < 3; ++axis) {
-        outBoxes.lo[axis][i] = box[axis];
-        outBoxes.hi[axis][i] = box[3 + axis];
-      }
-      outBoxes.ids[i] = inBoxes.ids ? inBoxes.ids[i] : static_cast<uint32_t>(i);
-      if (filtered) {
-        outBoxes.groups[i] = inBoxes.groups ? inBoxes.groups[i] : kDefaultGroup;
-        outBoxes.masks[i] = inBoxes.masks ? inBoxes.masks[i] : kDefaultMask;
-      }
-    }
-  });
+}
+
+BoxColumns columnsOf(const BoxFrame& inFrame) {
+  BoxColumns boxes;
+  copyFrame(inFrame, boxes);
+  return boxes;
 }
 
 std::string ValidationError::message() const {
   return "box " + std::to_string(index) + " (id " + std::to_string(id) + "): " + reason;
 }
 
-std::optional<ValidationError> validate(const BoxSet& inBoxes) {
+std::optional<ValidationError> checkColumns(const BoxColumns& inBoxes, const BoxFrame& inFrame) {
   const std::size_t n = inBoxes.size();
-  for (int axis = 0; axis < 3; ++axis) {
-    if (inBoxes.lo[axis].size() != n || inBoxes.hi[axis].size() != n)
-      return ValidationError{0, 0,
-                             std::string("bounds on axis ") + kAxisNames[axis] + " have " +
-                                 std::to_string(inBoxes.lo[axis].size()) + " mins and " +
-                                 std::to_string(inBoxes.hi[axis].size()) + " maxes for " +
-                                 std::to_string(n) + " ids"};
-  }
-  if (!inBoxes.groups.empty() && inBoxes.groups.size() != n)
-    return ValidationError{0, 0,
-                           "groups has " + std::to_string(inBoxes.groups.size()) + " entries for " +
-                               std::to_string(n) + " boxes"};
-  if (!inBoxes.masks.empty() && inBoxes.masks.size() != n)
-    return ValidationError{0, 0,
-                           "masks has " + std::to_string(inBoxes.masks.size()) + " entries for " +
-                               std::to_string(n) + " boxes"};
   if (n > kMaxBoxes)
-    return ValidationError{
-        0, 0,
-        std::to_string(n) + " boxes exceed the engine's limit of " + std::to_string(kMaxBoxes)};
-  std::optional<ValidationError> bad = findBadCoordinate(inBoxes);
-  std::optional<ValidationError> repeated = findDuplicateId(inBoxes);
-  if (bad && repeated) return repeated->index < bad->index ? repeated : bad;
-  return bad ? bad : repeated;
+    return shapeError(std::to_string(n) + " boxes exceed the engine's limit of " +
+                      std::to_string(kMaxBoxes));
+  std::optional<ValidationError> problem = findBadCoordinate(inBoxes);
+  for (auto id_problem : {findIdOverflow(inFrame), findDuplicateId(inBoxes)}) {
+    if (id_problem && (!problem || id_problem->index < problem->index)) problem = id_problem;
+  }
+  if (problem) {
+    problem->span = spanOf(inFrame, problem->index);
+    if (problem->problem == BoxProblem::kDuplicateId)
+      problem->earlier_span = spanOf(inFrame, problem->earlier);
+  }
+  return problem;
+}
+
+std::optional<ValidationError> validate(const BoxFrame& inFrame) {
+  return checkColumns(columnsOf(inFrame), inFrame);
+}
+
+std::optional<ValidationError> validate(const BoxSet& inBoxes) {
+  if (auto problem = shapeProblem(inBoxes)) return problem;
+  return validate(inBoxes.span());
 }
 
 }  // namespace sap_broadphase

@@ -1,7 +1,8 @@
 // The per-frame flow (docs/ARCHITECTURE.md walks through it step by step):
 //
-//   boxes -> drop boxes that pair with nothing -> frame history: delta since the last frame
-//         -> do the kept candidates still cover the boxes? -> plan, once -> one strategy:
+//   a frame of records -> the frame history loads it: the one copy and check, and the delta
+//         since the last frame -> do the kept candidates still cover the boxes? -> plan, once ->
+//         one strategy:
 //            reuse | kept candidates | sweep (grown by a skin or plain) | small frame | brute
 //         -> learn the costs -> the declared scenery's pairs sorted on their own and merged
 //            into the strategy's canonical list -> remember the frame, give back memory a
@@ -47,51 +48,62 @@ struct Broadphase::Impl {
   int passes_threads = 0;      // threads of the history's passes: the last work's, learnt (0: all)
   PairList pairs;              // the frame's one canonical pair list
   bool pairs_valid = false;    // pairs hold the last frame's whole answer
+  std::vector<uint32_t> scenery_ids;  // the scenery's ids, sorted: a frame's ids must differ
   struct Buffers {
-    BoxSet collidable;                // the frame without boxes that can pair with nothing
     SmallFrameWorkspace small_frame;  // the small-frame path's
     std::vector<uint32_t> every_box;  // 0..n-1: the scenery's queries
     PairSortScratch pair_sort;
-    PairList scenery_pairs;   // the frame's pairs with the scenery, sorted, then merged
-    PairList merged;          // the strategy's and the scenery's pairs, merged
-    BoxSet filtered_records;  // a frame of records with groups or masks, in the BoxSet layout
+    PairList scenery_pairs;  // the frame's pairs with the scenery, sorted, then merged
+    PairList merged;         // the strategy's and the scenery's pairs, merged
   } buffers;
   GiveBackWatch give_back;
 
-  const BoxSet& dropBoxesThatPairWithNothing(const BoxSet& inBoxes);
-  FramePlan plan(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads);
+  std::optional<ValidationError> sceneryIdConflict(const BoxColumns& inBoxes,
+                                                   const BoxFrame& inFrame) const;
+  void countBoxesThatPairWithNothing(const BoxColumns& inBoxes);
+  FramePlan plan(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
   std::optional<ThreadedWork> chooseThreads(FramePlan& ioPlan, std::size_t inBoxes);
   void execute(const FramePlan& inPlan, FrameSpread& ioSpread);
-  void addSceneryPairs(const BoxSet& inBoxes, int inThreads);
+  void addSceneryPairs(const BoxColumns& inBoxes, int inThreads);
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
-  void runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads);
+  void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
   int passThreads(int inThreads) const { return passes_threads > 0 ? passes_threads : inThreads; }
 };
 
-// A box with group 0 or mask 0 passes no filter: it is left out before anything else. The
-// copy is made only when such boxes exist.
-const BoxSet& Broadphase::Impl::dropBoxesThatPairWithNothing(const BoxSet& inBoxes) {
-  if (!inBoxes.hasFilters()) return inBoxes;
+// A box with group 0 or mask 0 passes no filter: the strategies never pair it (each tests
+// the filter), so it stays in the frame rather than being copied out of it; the report counts it.
+void Broadphase::Impl::countBoxesThatPairWithNothing(const BoxColumns& inBoxes) {
+  if (!inBoxes.hasFilters()) return;
   std::size_t excluded = 0;
   for (std::size_t i = 0; i < inBoxes.size(); ++i)
-    excluded += inBoxes.group(i) == 0 || inBoxes.mask(i) == 0;
+    excluded += inBoxes.groups[i] == 0 || inBoxes.masks[i] == 0;
   report.boxes_filtered_out = excluded;
-  if (excluded == 0) return inBoxes;
-  buffers.collidable.clear();
-  buffers.collidable.reserve(inBoxes.size() - excluded);
+}
+
+// The scenery's ids and the frame's must differ (a pair names boxes by id): the lowest frame box
+// whose id a scenery box has, named as a repeated id. Only a frame of other ids than the last
+// one can have one.
+std::optional<ValidationError> Broadphase::Impl::sceneryIdConflict(const BoxColumns& inBoxes,
+                                                                   const BoxFrame& inFrame) const {
+  if (scenery_ids.empty()) return std::nullopt;
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;
-    const double low[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
-    const double high[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
-    buffers.collidable.add(inBoxes.ids[i], low, high, inBoxes.group(i), inBoxes.mask(i));
+    if (!std::binary_search(scenery_ids.begin(), scenery_ids.end(), inBoxes.ids[i])) continue;
+    ValidationError error{i, inBoxes.ids[i], "id of a static box (setStaticBoxes)"};
+    error.problem = BoxProblem::kDuplicateId;
+    error.earlier_span = ValidationError::kScenery;
+    std::size_t first_box = 0;
+    while (error.span + 1 < inFrame.spanCount() && i >= first_box + inFrame.span(error.span).count)
+      first_box += inFrame.span(error.span++).count;
+    return error;
   }
-  return buffers.collidable;
+  return std::nullopt;
 }
 
 // The plan, made once: whether the kept candidates still cover the boxes is known before it
 // (SkinReuse::coversFrame), so the plan cannot be wrong about them.
-FramePlan Broadphase::Impl::plan(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads) {
+FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& inDelta,
+                                 int inThreads) {
   PlanInputs inputs;
   inputs.config = &config;
   inputs.delta = inDelta;
@@ -134,7 +146,7 @@ std::optional<ThreadedWork> Broadphase::Impl::chooseThreads(FramePlan& ioPlan,
 // canonical order. ioSpread (the boxes' spread) is measured by whichever strategy needs it
 // first and read again by the cost learning after it.
 void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
-  const BoxSet& boxes = ioSpread.boxes();
+  const BoxColumns& boxes = ioSpread.boxes();
   switch (inPlan.path) {
     case FramePath::kEmpty:
       pairs.clear();
@@ -158,7 +170,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
     case FramePath::kSequential:
     case FramePath::kParallel:
       if (inPlan.sweep_skin > 0.0) {
-        const BoxSet& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
+        const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         sweep.run(grown, grown_spread, inPlan.path, inPlan.threads, report, pairs);
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
@@ -173,7 +185,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
 // The pairs with the declared scenery join the strategy's pairs, already in canonical order:
 // only the scenery's pairs are sorted, then the two sorted lists are merged (no pair is in
 // both: scenery ids differ from the frame's, and the strategy pairs frame boxes only).
-void Broadphase::Impl::addSceneryPairs(const BoxSet& inBoxes, int inThreads) {
+void Broadphase::Impl::addSceneryPairs(const BoxColumns& inBoxes, int inThreads) {
   if (scenery.size() == 0 || inBoxes.size() == 0) return;
   PairList& scenery_pairs = buffers.scenery_pairs;
   scenery_pairs.clear();
@@ -232,7 +244,8 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 
 // Everything of a frame after the history has compared (or loaded) it: inBoxes are the boxes
 // that may pair, as the history now holds them.
-void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta, int inThreads) {
+void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta,
+                                int inThreads) {
   skin.startFrame(inDelta);
   FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
   const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, inBoxes.size());
@@ -253,10 +266,7 @@ void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta
     skin.learn(frame_plan, spread, pairs.size(), report);
   }
   if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, inThreads);
-  {
-    PhaseTimer timer(report.ms_history);
-    history.remember(inBoxes);
-  }
+  history.remember();
   world.setFrame(history.remembered());
   pairs_valid = true;
   PhaseTimer timer(report.ms_plan);
@@ -264,58 +274,28 @@ void Broadphase::Impl::runFrame(const BoxSet& inBoxes, const FrameDelta& inDelta
   describeFrame(frame_plan, inDelta);
 }
 
-const PairList& Broadphase::update(const BoxSet& inBoxes) {
-  Impl& impl = *impl_;
-  impl.world.clear();  // the history's copy is about to change
-  FrameReport& report = impl.report;
-  report = FrameReport();
-  {
-    PhaseTimer total(report.ms_total);
-    report.boxes = inBoxes.size();
-    const int threads = resolveThreadCount(impl.config.threads);
-    const BoxSet& boxes = [&]() -> const BoxSet& {
-      PhaseTimer timer(report.ms_plan);
-      return impl.dropBoxesThatPairWithNothing(inBoxes);
-    }();
-    const FrameDelta delta = [&] {
-      PhaseTimer timer(report.ms_history);
-      return impl.history.compare(boxes, impl.passThreads(threads));
-    }();
-    impl.runFrame(boxes, delta, threads);
-  }
-  SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
-  return impl.pairs;
-}
-
-const PairList& Broadphase::update(const InterleavedBoxes& inBoxes) {
+const PairList& Broadphase::update(const BoxFrame& inFrame) {
   Impl& impl = *impl_;
   impl.world.clear();  // the history's copy is about to change
   const int threads = resolveThreadCount(impl.config.threads);
-  if (inBoxes.hasFilters()) {
-    // Boxes that pair with nothing are dropped before the history sees a frame, so a filtered
-    // frame takes the BoxSet path: one copy, checked, then as any BoxSet.
-    copyInterleaved(inBoxes, impl.buffers.filtered_records, threads);
-    if (auto problem = validate(impl.buffers.filtered_records)) {
-      reset();
-      throw InvalidBoxes(std::move(*problem));
-    }
-    return update(impl.buffers.filtered_records);
-  }
   FrameReport& report = impl.report;
   report = FrameReport();
   {
     PhaseTimer total(report.ms_total);
-    report.boxes = inBoxes.count;
     std::optional<ValidationError> problem;
     const FrameDelta delta = [&] {
       PhaseTimer timer(report.ms_history);
-      return impl.history.load(inBoxes, impl.passThreads(threads), problem);
+      return impl.history.load(inFrame, impl.passThreads(threads), problem);
     }();
+    const BoxColumns& boxes = impl.history.loaded();
+    if (!problem && !delta.sameIds()) problem = impl.sceneryIdConflict(boxes, inFrame);
     if (problem) {
       reset();  // the kept state described a frame the caller has since replaced
       throw InvalidBoxes(std::move(*problem));
     }
-    impl.runFrame(impl.history.loaded(), delta, threads);
+    report.boxes = boxes.size();
+    impl.countBoxesThatPairWithNothing(boxes);
+    impl.runFrame(boxes, delta, threads);
   }
   SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
   return impl.pairs;
@@ -335,15 +315,22 @@ void Broadphase::reset() {
   impl_->pairs_valid = false;
 }
 
-void Broadphase::setStaticBoxes(const BoxSet& inStaticBoxes) {
-  std::vector<uint32_t> every_box(inStaticBoxes.size());
+void Broadphase::setStaticBoxes(const BoxFrame& inStaticBoxes) {
+  BoxColumns scenery;
+  copyFrame(inStaticBoxes, scenery, resolveThreadCount(impl_->config.threads));
+  if (auto problem = checkColumns(scenery, inStaticBoxes)) throw InvalidBoxes(std::move(*problem));
+  std::vector<uint32_t> every_box(scenery.size());
   std::iota(every_box.begin(), every_box.end(), 0u);
-  impl_->scenery.build(inStaticBoxes, every_box, resolveThreadCount(impl_->config.threads));
+  impl_->scenery.build(scenery, every_box, resolveThreadCount(impl_->config.threads));
+  impl_->scenery_ids = scenery.ids;
+  std::sort(impl_->scenery_ids.begin(), impl_->scenery_ids.end());
   impl_->pairs_valid = false;  // the last pairs were computed against other scenery
+  impl_->history.forget();     // the next frame's ids are checked against the new scenery
 }
 
 void Broadphase::clearStaticBoxes() {
   impl_->scenery = StaticIndex();
+  impl_->scenery_ids.clear();
   impl_->pairs_valid = false;
 }
 
@@ -351,16 +338,12 @@ std::size_t Broadphase::staticBoxCount() const {
   return impl_->scenery.size();
 }
 
-QueryHitList Broadphase::query(const BoxSet& inQueries) const {
-  if (auto problem = validate(inQueries)) throw InvalidBoxes(std::move(*problem));
-  return answerQueries(inQueries, impl_->world, impl_->scenery,
-                       resolveThreadCount(impl_->config.threads));
-}
-
-QueryHitList Broadphase::query(const InterleavedBoxes& inQueries) const {
-  BoxSet queries;
-  copyInterleaved(inQueries, queries, resolveThreadCount(impl_->config.threads));
-  return query(queries);
+QueryHitList Broadphase::query(const BoxFrame& inQueries) const {
+  const int threads = resolveThreadCount(impl_->config.threads);
+  BoxColumns queries;  // a query's own: queries may run concurrently
+  copyFrame(inQueries, queries, threads);
+  if (auto problem = checkColumns(queries, inQueries)) throw InvalidBoxes(std::move(*problem));
+  return answerQueries(queries, impl_->world, impl_->scenery, threads);
 }
 
 }  // namespace sap_broadphase

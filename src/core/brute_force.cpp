@@ -1,11 +1,13 @@
 #include "sap_broadphase/core/brute_force.h"
 
 #include <algorithm>
+
+#include "core/box_columns.h"
 #include "core/pair_sort.h"
 
 namespace sap_broadphase {
 
-PairList bruteForcePairs(const BoxSet& inBoxes) {
+PairList bruteForcePairs(const BoxColumns& inBoxes) {
   PairList pairs;
   const std::size_t n = inBoxes.size();
   for (std::size_t a = 0; a < n; ++a)
@@ -16,13 +18,19 @@ PairList bruteForcePairs(const BoxSet& inBoxes) {
   return pairs;
 }
 
-QueryHitList bruteForceQuery(const BoxSet& inQueries, const BoxSet& inWorld) {
+PairList bruteForcePairs(const BoxFrame& inFrame) {
+  return bruteForcePairs(columnsOf(inFrame));
+}
+
+QueryHitList bruteForceQuery(const BoxFrame& inQueryFrame, const BoxFrame& inWorldFrame) {
+  const BoxColumns queries = columnsOf(inQueryFrame);
+  const BoxColumns world = columnsOf(inWorldFrame);
   QueryHitList hits;
-  for (std::size_t q = 0; q < inQueries.size(); ++q)
-    for (std::size_t w = 0; w < inWorld.size(); ++w)
-      if (boxesOverlap(inQueries, q, inWorld, w) &&
-          groupsMayPair(inQueries.group(q), inQueries.mask(q), inWorld.group(w), inWorld.mask(w)))
-        hits.push_back(QueryHit{inQueries.ids[q], inWorld.ids[w]});
+  for (std::size_t q = 0; q < queries.size(); ++q)
+    for (std::size_t w = 0; w < world.size(); ++w)
+      if (boxesOverlap(queries, q, world, w) &&
+          groupsMayPair(queries.group(q), queries.mask(q), world.group(w), world.mask(w)))
+        hits.push_back(QueryHit{queries.ids[q], world.ids[w]});
   std::sort(hits.begin(), hits.end());
   return hits;
 }

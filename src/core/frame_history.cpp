@@ -1,5 +1,6 @@
 #include "core/frame_history.h"
 #include "core/assert.h"
+#include "core/box_columns.h"
 #include "core/buffers.h"
 #include "core/tuning.h"
 #include "core/work_units.h"
@@ -10,13 +11,6 @@
 
 namespace sap_broadphase {
 namespace {
-
-template <typename T>
-void copySlice(const std::vector<T>& inFrom, std::vector<T>& outTo, std::size_t inBegin,
-               std::size_t inEnd) {
-  if (inFrom.empty()) return;  // groups and masks may be absent
-  std::copy(inFrom.begin() + inBegin, inFrom.begin() + inEnd, outTo.begin() + inBegin);
-}
 
 uint64_t bitsOf(double inValue) {
   uint64_t bits;
@@ -75,7 +69,7 @@ struct BoundArrays {
   const double* at[6];
 };
 
-BoundArrays boundArrays(const BoxSet& inBoxes, std::size_t inBegin) {
+BoundArrays boundArrays(const BoxColumns& inBoxes, std::size_t inBegin) {
   BoundArrays arrays;
   for (int axis = 0; axis < 3; ++axis) {
     arrays.at[axis] = inBoxes.lo[axis].data() + inBegin;
@@ -102,31 +96,19 @@ BlockChanges compareBounds(const BoundArrays& inNow, const BoundArrays& inBefore
   return changes;
 }
 
-// Clears outUnchanged[i] of boxes whose group or mask changed; returns how many did.
-std::size_t markFilterChanges(const BoxSet& inNow, const BoxSet& inBefore, std::size_t inBegin,
-                              std::size_t inEnd, uint8_t* ioUnchanged) {
-  if (inNow.groups.empty() && inNow.masks.empty()) return 0;
-  std::size_t changed = 0;
-  for (std::size_t i = inBegin; i < inEnd; ++i) {
-    const bool same_filter =
-        inNow.group(i) == inBefore.group(i) && inNow.mask(i) == inBefore.mask(i);
-    ioUnchanged[i] &= same_filter;
-    changed += !same_filter;
-  }
-  return changed;
-}
-
 std::size_t countChanged(const uint8_t* inUnchanged, std::size_t inBegin, std::size_t inEnd) {
   std::size_t changed = 0;
   for (std::size_t i = inBegin; i < inEnd; ++i) changed += inUnchanged[i] == 0;
   return changed;
 }
 
-// A block of boxes read from records (InterleavedBoxes) into the layout the comparison and the
-// copy read: each thread's, on its stack (28 KB, cache-resident while the block is handled).
+// A block of the frame's records read into the layout the comparison and the copy read: each
+// thread's, on its stack (about 32 KB, cache-resident while the block is handled).
 struct RecordBlock {
   double bounds[6][kBlock];  // min x, y, z, then max x, y, z, as in a record
   uint32_t ids[kBlock];
+  uint32_t groups[kBlock];  // filtered frames only
+  uint32_t masks[kBlock];
 };
 
 BoundArrays boundArrays(const RecordBlock& inBlock) {
@@ -135,73 +117,99 @@ BoundArrays boundArrays(const RecordBlock& inBlock) {
   return arrays;
 }
 
-// Reads boxes [inBegin, inEnd) into outBlock and checks them on the way: false when some box
-// has a NaN bound or min > max (`low <= high` is false exactly then, as in validate()).
-bool readRecords(const InterleavedBoxes& inBoxes, std::size_t inBegin, std::size_t inEnd,
-                 RecordBlock& outBlock) {
-  bool usable = true;
-  for (std::size_t i = inBegin; i < inEnd; ++i) {
-    const double* record = inBoxes.bounds + 6 * i;
-    for (int array = 0; array < 6; ++array) outBlock.bounds[array][i - inBegin] = record[array];
-    for (int axis = 0; axis < 3; ++axis) usable &= record[axis] <= record[3 + axis];
+// The frame as the history reads it: its spans one after the other, box k of the frame being
+// box k - first_box[s] of span s.
+class FrameReader {
+ public:
+  explicit FrameReader(const BoxFrame& inFrame) : frame_(inFrame), filtered_(inFrame.hasFilters()) {
+    std::size_t first_box = 0;
+    for (std::size_t s = 0; s < inFrame.spanCount(); ++s) {
+      first_box_.push_back(first_box);
+      first_box += inFrame.span(s).count;
+    }
+    size_ = first_box;
   }
-  for (std::size_t i = inBegin; i < inEnd; ++i)
-    outBlock.ids[i - inBegin] = inBoxes.ids ? inBoxes.ids[i] : static_cast<uint32_t>(i);
-  return usable;
+  std::size_t size() const { return size_; }
+  bool filtered() const { return filtered_; }
+
+  // Reads frame boxes [inBegin, inEnd) into outBlock and checks them on the way: false when
+  // some box has a NaN bound or min > max (`low <= high` is false exactly then, as in
+  // validate()). Ids are read as the span numbers them; one beyond 32 bits makes the block
+  // unusable too (the full check names it).
+  bool read(std::size_t inBegin, std::size_t inEnd, RecordBlock& outBlock) const {
+    bool usable = true;
+    std::size_t s = spanOf(inBegin);
+    for (std::size_t k = inBegin; k < inEnd; ++s) {
+      const BoxSpan& span = frame_.span(s);
+      const std::size_t first = first_box_[s];
+      const std::size_t end = std::min(inEnd, first + span.count);
+      for (; k < end; ++k) {
+        const std::size_t i = k - first, slot = k - inBegin;
+        const double* record = span.bounds + kBoundsPerBox * i;
+        for (int array = 0; array < 6; ++array) outBlock.bounds[array][slot] = record[array];
+        for (int axis = 0; axis < 3; ++axis) usable &= record[axis] <= record[3 + axis];
+        const uint64_t id = span.idOf(i);
+        usable &= id <= UINT32_MAX;
+        outBlock.ids[slot] = static_cast<uint32_t>(id);
+        if (filtered_) {
+          outBlock.groups[slot] = span.groupOf(i);
+          outBlock.masks[slot] = span.maskOf(i);
+        }
+      }
+    }
+    return usable;
+  }
+
+ private:
+  // The span that holds frame box inBox (the last span that starts at or before it, skipping
+  // empty spans).
+  std::size_t spanOf(std::size_t inBox) const {
+    const auto after = std::upper_bound(first_box_.begin(), first_box_.end(), inBox);
+    std::size_t s = static_cast<std::size_t>(after - first_box_.begin()) - 1;
+    while (frame_.span(s).count == 0) ++s;
+    return s;
+  }
+
+  const BoxFrame& frame_;
+  const bool filtered_;
+  std::vector<std::size_t> first_box_;
+  std::size_t size_ = 0;
+};
+
+// Clears outUnchanged[k] of boxes whose group or mask changed; returns how many did.
+std::size_t markFilterChanges(const RecordBlock& inBlock, const BoxColumns& inLast,
+                              std::size_t inBegin, std::size_t inEnd, uint8_t* ioUnchanged) {
+  std::size_t changed = 0;
+  for (std::size_t k = inBegin; k < inEnd; ++k) {
+    const bool same_filter = inBlock.groups[k - inBegin] == inLast.groups[k] &&
+                             inBlock.masks[k - inBegin] == inLast.masks[k];
+    ioUnchanged[k] &= same_filter;
+    changed += !same_filter;
+  }
+  return changed;
 }
 
-// One block of the frame as the comparison reads it: its six bound arrays and its ids (in the
-// frame itself for a BoxSet, in the thread's scratch for records), and whether every bound of
-// it is usable.
-struct BlockView {
-  BoundArrays bounds;
-  const uint32_t* ids;
-  bool usable;
-};
+void copyBlock(const RecordBlock& inBlock, bool inFiltered, std::size_t inBegin,
+               std::size_t inCount, BoxColumns& ioLast) {
+  for (int axis = 0; axis < 3; ++axis) {
+    std::copy(inBlock.bounds[axis], inBlock.bounds[axis] + inCount,
+              ioLast.lo[axis].begin() + inBegin);
+    std::copy(inBlock.bounds[3 + axis], inBlock.bounds[3 + axis] + inCount,
+              ioLast.hi[axis].begin() + inBegin);
+  }
+  if (!inFiltered) return;
+  std::copy(inBlock.groups, inBlock.groups + inCount, ioLast.groups.begin() + inBegin);
+  std::copy(inBlock.masks, inBlock.masks + inCount, ioLast.masks.begin() + inBegin);
+}
 
-// A frame given as a BoxSet: its blocks are views of its arrays; groups and masks are compared
-// and copied with the bounds.
-struct BoxSetFrame {
-  const BoxSet& boxes;
-  struct Scratch {};
-  std::size_t size() const { return boxes.size(); }
-  BlockView block(std::size_t inBegin, std::size_t /*inEnd*/, Scratch& /*ioScratch*/) const {
-    return {boundArrays(boxes, inBegin), boxes.ids.data() + inBegin, true};
-  }
-  std::size_t markFilterChanges(const BoxSet& inLast, std::size_t inBegin, std::size_t inEnd,
-                                uint8_t* ioUnchanged) const {
-    return sap_broadphase::markFilterChanges(boxes, inLast, inBegin, inEnd, ioUnchanged);
-  }
-  void copyFilters(BoxSet& ioLast, std::size_t inBegin, std::size_t inEnd) const {
-    copySlice(boxes.groups, ioLast.groups, inBegin, inEnd);
-    copySlice(boxes.masks, ioLast.masks, inBegin, inEnd);
-  }
-};
-
-// A frame given as records, without groups or masks: each block is read into the thread's
-// scratch (checked on the way), so the caller's memory is read once.
-struct RecordFrame {
-  const InterleavedBoxes& boxes;
-  using Scratch = RecordBlock;
-  std::size_t size() const { return boxes.count; }
-  BlockView block(std::size_t inBegin, std::size_t inEnd, RecordBlock& ioScratch) const {
-    const bool usable = readRecords(boxes, inBegin, inEnd, ioScratch);
-    return {boundArrays(ioScratch), ioScratch.ids, usable};
-  }
-  std::size_t markFilterChanges(const BoxSet&, std::size_t, std::size_t, uint8_t*) const {
-    return 0;
-  }
-  void copyFilters(BoxSet&, std::size_t, std::size_t) const {}
-};
-
-// One pass over the boxes in work units (work_units.h), block by block: a block is compared with
-// ioLast's without a branch and, where some box of it differs, copied at once while both are
-// in the cache (a separate copy after the sweep would read both frames from memory again;
-// copying a whole block keeps the copy a plain streaming one, and unchanged boxes in it are
-// rewritten with their own bits). The ids are copied too, so that ioLast equals the frame in
-// every case. ioLast has the frame's size, and groups and masks where the frame has them.
-template <typename Frame>
-FramePass compareAndCopyBlocks(const Frame& inFrame, int inThreads, BoxSet& ioLast,
+// One pass over the boxes in work units (work_units.h), block by block: a block is read from
+// the caller's records into the thread's scratch (checked on the way), compared with ioLast's
+// without a branch and, where some box of it differs, copied at once while both are in the
+// cache (a separate copy after the sweep would read both frames from memory again; copying a
+// whole block keeps the copy a plain streaming one, and unchanged boxes in it are rewritten
+// with their own bits). The ids are copied too, so that ioLast equals the frame in every case.
+// ioLast has the frame's size, and groups and masks where the frame has them.
+FramePass compareAndCopyBlocks(const FrameReader& inFrame, int inThreads, BoxColumns& ioLast,
                                std::vector<uint8_t>& outUnchanged) {
   const std::size_t n = inFrame.size();
   outUnchanged.resize(n);
@@ -209,27 +217,21 @@ FramePass compareAndCopyBlocks(const Frame& inFrame, int inThreads, BoxSet& ioLa
       WorkUnits{n}, inThreads, UnitChanges{},
       [&](std::size_t inBegin, std::size_t inEnd) {
         UnitChanges unit;
-        typename Frame::Scratch scratch;
+        RecordBlock block;
         for (std::size_t begin = inBegin; begin < inEnd; begin += kBlock) {
           const std::size_t end = std::min(inEnd, begin + kBlock), count = end - begin;
-          const BlockView block = inFrame.block(begin, end, scratch);
-          unit.unusable += !block.usable;
+          unit.unusable += !inFrame.read(begin, end, block);
           if (!std::equal(block.ids, block.ids + count, ioLast.ids.begin() + begin)) {
             std::copy(block.ids, block.ids + count, ioLast.ids.begin() + begin);
             ++unit.other_ids;
           }
-          const BlockChanges bounds = compareBounds(block.bounds, boundArrays(ioLast, begin), count,
-                                                    outUnchanged.data() + begin);
+          const BlockChanges bounds = compareBounds(boundArrays(block), boundArrays(ioLast, begin),
+                                                    count, outUnchanged.data() + begin);
           const std::size_t filters =
-              inFrame.markFilterChanges(ioLast, begin, end, outUnchanged.data());
+              inFrame.filtered() ? markFilterChanges(block, ioLast, begin, end, outUnchanged.data())
+                                 : 0;
           if (bounds.changed_boxes > 0 || filters > 0) {
-            for (int axis = 0; axis < 3; ++axis) {
-              std::copy(block.bounds.at[axis], block.bounds.at[axis] + count,
-                        ioLast.lo[axis].begin() + begin);
-              std::copy(block.bounds.at[3 + axis], block.bounds.at[3 + axis] + count,
-                        ioLast.hi[axis].begin() + begin);
-            }
-            inFrame.copyFilters(ioLast, begin, end);
+            copyBlock(block, inFrame.filtered(), begin, count, ioLast);
             unit.moved += countChanged(outUnchanged.data(), begin, end);
           }
           unit.filters_changed += filters;
@@ -246,47 +248,29 @@ FramePass compareAndCopyBlocks(const Frame& inFrame, int inThreads, BoxSet& ioLa
 
 }  // namespace
 
-const FrameDelta& FrameHistory::load(const InterleavedBoxes& inBoxes, int inThreads,
+const FrameDelta& FrameHistory::load(const BoxFrame& inFrame, int inThreads,
                                      std::optional<ValidationError>& outProblem) {
-  SAP_ASSERT(!inBoxes.hasFilters(), "load() takes frames without groups or masks");
+  const FrameReader reader(inFrame);
   const bool had_last = valid_;
   delta_ = FrameDelta();
-  threads_ = inThreads;
-  valid_ = false;
-  copied_ = true;  // last_ becomes the frame here: remember() has nothing to copy
+  valid_ = false;  // from here until remember(), last_ is being made this frame
   const bool comparable =
-      had_last && last_.size() == inBoxes.count && last_.groups.empty() && last_.masks.empty();
+      had_last && last_.size() == reader.size() && last_.hasFilters() == reader.filtered();
   if (!comparable) {
-    // A first frame, or other ids: every box copied, then checked as any BoxSet is.
-    copyInterleaved(inBoxes, last_, inThreads);
-    outProblem = validate(last_);
+    // A first frame, or other ids: every box copied, then checked in full.
+    copyFrame(inFrame, last_, inThreads);
+    outProblem = checkColumns(last_, inFrame);
     if (had_last) delta_.relation = FrameRelation::kOtherIds;
   } else {
-    const FramePass pass = compareAndCopyBlocks(RecordFrame{inBoxes}, inThreads, last_, unchanged_);
+    const FramePass pass = compareAndCopyBlocks(reader, inThreads, last_, unchanged_);
     // Same ids as a frame that passed: no id can repeat, and only a box found unusable on the
     // way needs the full check (which names the lowest bad box with validate()'s words).
-    outProblem = pass.other_ids || pass.unusable ? validate(last_) : std::nullopt;
+    outProblem = pass.other_ids || pass.unusable ? checkColumns(last_, inFrame) : std::nullopt;
     describeSameSize(pass);
   }
   if (outProblem) forget();
-  SAP_ASSERT(outProblem || last_.size() == inBoxes.count, "the loaded frame lost boxes");
-  SAP_ASSERT(delta_.moved_boxes <= inBoxes.count, "more boxes moved than the frame holds");
-  return delta_;
-}
-
-const FrameDelta& FrameHistory::compare(const BoxSet& inBoxes, int inThreads) {
-  delta_ = FrameDelta();
-  threads_ = inThreads;
-  copied_ = false;
-  if (!valid_) return delta_;
-  valid_ = false;  // from here until remember(), last_ is being made this frame
-  delta_.relation = FrameRelation::kOtherIds;
-  if (last_.size() != inBoxes.size() || last_.groups.empty() != inBoxes.groups.empty() ||
-      last_.masks.empty() != inBoxes.masks.empty())
-    return delta_;
-  copied_ = true;
-  describeSameSize(compareAndCopyBlocks(BoxSetFrame{inBoxes}, inThreads, last_, unchanged_));
-  SAP_ASSERT(unchanged_.size() == inBoxes.size(), "one unchanged flag per box");
+  SAP_ASSERT(outProblem || last_.size() == reader.size(), "the loaded frame lost boxes");
+  SAP_ASSERT(delta_.moved_boxes <= reader.size(), "more boxes moved than the frame holds");
   return delta_;
 }
 
@@ -301,57 +285,17 @@ void FrameHistory::describeSameSize(const FramePass& inPass) {
   delta_.unchanged = &unchanged_;
 }
 
-namespace {
-
-// Bit for bit the same boxes (ids, bounds, groups, masks).
-bool sameBoxes(const BoxSet& inA, const BoxSet& inB) {
-  bool same = sameElements(inA.ids, inB.ids) && sameElements(inA.groups, inB.groups) &&
-              sameElements(inA.masks, inB.masks);
-  for (int axis = 0; axis < 3; ++axis)
-    same = same && sameElements(inA.lo[axis], inB.lo[axis]) &&
-           sameElements(inA.hi[axis], inB.hi[axis]);
-  return same;
-}
-
-}  // namespace
-
-void FrameHistory::remember(const BoxSet& inBoxes) {
-  if (!copied_) copyWholeFrame(inBoxes, threads_);
+void FrameHistory::remember() {
   valid_ = true;
-  copied_ = false;
-  // Only the boxes compare() found changed were copied: the copy must now be the frame.
-  SAP_ASSERT(sameBoxes(last_, inBoxes), "the frame history's copy differs from the frame");
-}
-
-// A first frame, or other ids: every box copied, unit by unit (vectors keep their
-// capacity, so only a larger frame than any before allocates).
-void FrameHistory::copyWholeFrame(const BoxSet& inBoxes, int inThreads) {
-  const std::size_t n = inBoxes.size();
-  last_.ids.resize(n);
-  for (int axis = 0; axis < 3; ++axis) {
-    last_.lo[axis].resize(n);
-    last_.hi[axis].resize(n);
-  }
-  last_.groups.resize(inBoxes.groups.size());
-  last_.masks.resize(inBoxes.masks.size());
-  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
-    copySlice(inBoxes.ids, last_.ids, inBegin, inEnd);
-    for (int axis = 0; axis < 3; ++axis) {
-      copySlice(inBoxes.lo[axis], last_.lo[axis], inBegin, inEnd);
-      copySlice(inBoxes.hi[axis], last_.hi[axis], inBegin, inEnd);
-    }
-    copySlice(inBoxes.groups, last_.groups, inBegin, inEnd);
-    copySlice(inBoxes.masks, last_.masks, inBegin, inEnd);
-  });
 }
 
 void FrameHistory::forget() {
-  valid_ = copied_ = false;
+  valid_ = false;
   delta_ = FrameDelta();
 }
 
 void FrameHistory::shrinkToFit() {
-  last_ = BoxSet(last_);  // a copy holds only what is used
+  last_ = BoxColumns(last_);  // a copy holds only what is used
   unchanged_.shrink_to_fit();
 }
 

@@ -11,7 +11,7 @@
 #include <optional>
 #include <vector>
 
-#include "sap_broadphase/core/box_set.h"
+#include "core/box_columns.h"
 
 namespace sap_broadphase {
 
@@ -41,35 +41,31 @@ struct FrameDelta {
 struct FramePass {
   std::size_t moved_boxes = 0;
   bool other_ids = false;  ///< some id differs from the last frame's
-  bool unusable = false;   ///< some box has a NaN bound or min > max (records only)
+  bool unusable = false;   ///< some box has a NaN bound, min > max or an id beyond 32 bits
   bool filters_changed = false;
   double max_displacement = 0.0;
 };
 
 class FrameHistory {
  public:
-  /// Compares inBoxes with the last frame. Where ids, their count and the presence of groups
-  /// and masks agree, the same pass over the boxes (each thread its slice) also copies the
-  /// changed boxes: the copy then holds inBoxes, but counts as the last frame only after
-  /// remember(), so a frame that throws in between leaves a first frame behind.
-  const FrameDelta& compare(const BoxSet& inBoxes, int inThreads);
-  /// compare() for a frame given as records, checked on the way: the history's copy is made
-  /// from inBoxes directly (read block by block into a cache-resident scratch while compared)
-  /// and is the frame the engine then runs on, loaded(); the caller's memory is read once.
-  /// On a NaN bound, min > max or a repeated id, outProblem names the lowest bad box as
-  /// validate() does and the history is forgotten (the next frame is a first frame). Frames
-  /// without groups and masks only: the engine drops boxes that pair with nothing first.
-  const FrameDelta& load(const InterleavedBoxes& inBoxes, int inThreads,
+  /// Loads inFrame: the history's copy is made from the caller's records directly (read block
+  /// by block into a cache-resident scratch while compared with the last frame, and checked on
+  /// the way) and is the frame the engine then runs on, loaded(); the caller's memory is read
+  /// once. This is the one place a frame is copied and checked. On a NaN bound, min > max, a
+  /// repeated id or an id beyond 32 bits, outProblem names the lowest bad box as validate()
+  /// does and the history is forgotten (the next frame is a first frame). The copy counts as
+  /// the last frame only after remember(), so a frame that throws in between leaves a first
+  /// frame behind.
+  const FrameDelta& load(const BoxFrame& inFrame, int inThreads,
                          std::optional<ValidationError>& outProblem);
-  /// The frame load() made, until the next compare(), load() or forget().
-  const BoxSet& loaded() const { return last_; }
+  /// The frame load() made, until the next load() or forget().
+  const BoxColumns& loaded() const { return last_; }
   /// The last frame remember() made, still there after forget() (which only stops the next
-  /// frame from being compared with it), until the next compare() or load() starts replacing
-  /// it. Box queries read the world here (frame_query.h).
-  const BoxSet& remembered() const { return last_; }
-  /// Makes inBoxes, the frame given to compare() or load(), the last frame (copied in parallel
-  /// unless compare() copied it already).
-  void remember(const BoxSet& inBoxes);
+  /// frame from being compared with it), until the next load() starts replacing it. Box
+  /// queries read the world here (frame_query.h).
+  const BoxColumns& remembered() const { return last_; }
+  /// Makes the loaded frame the last frame, the one the next load() is compared with.
+  void remember();
   /// Forgets the last frame: the next one is a first frame.
   void forget();
   /// Gives back the capacity the copy does not use (after a burst of larger frames).
@@ -79,12 +75,9 @@ class FrameHistory {
   // The delta of a frame of the last frame's size, from the one pass that compared and copied
   // it (frame_history.cpp).
   void describeSameSize(const FramePass& inPass);
-  void copyWholeFrame(const BoxSet& inBoxes, int inThreads);
 
-  BoxSet last_;
-  bool valid_ = false;   // last_ is the last frame
-  bool copied_ = false;  // compare() made last_ equal to its frame; remember() need not copy
-  int threads_ = 1;      // compare()'s, for remember()
+  BoxColumns last_;
+  bool valid_ = false;  // last_ is the last frame
   std::vector<uint8_t> unchanged_;
   FrameDelta delta_;
 };

@@ -22,7 +22,7 @@ std::vector<uint32_t> everyIndex(std::size_t inCount) {
 
 }  // namespace
 
-void FrameQuery::setFrame(const BoxSet& inFrame) {
+void FrameQuery::setFrame(const BoxColumns& inFrame) {
   frame_ = &inFrame;
   indexed_.store(false, std::memory_order_release);
   scanned_queries_.store(0, std::memory_order_relaxed);
@@ -47,7 +47,7 @@ void FrameQuery::buildIndex(int inThreads) const {
   indexed_.store(true, std::memory_order_release);
 }
 
-void FrameQuery::query(const BoxSet& inQueries, int inThreads, PairList& outHits) const {
+void FrameQuery::query(const BoxColumns& inQueries, int inThreads, PairList& outHits) const {
   if (frame_ == nullptr || frame_->size() == 0 || inQueries.size() == 0) return;
   if (!shouldIndex(inQueries.size())) {
     scan(inQueries, inThreads, outHits);
@@ -60,8 +60,8 @@ void FrameQuery::query(const BoxSet& inQueries, int inThreads, PairList& outHits
 
 // Frame boxes in blocks, each block tested against every query box: the primary axis first, as
 // the sweep does, since it rejects most boxes reading two of their six bounds.
-void FrameQuery::scan(const BoxSet& inQueries, int inThreads, PairList& outHits) const {
-  const BoxSet& frame = *frame_;
+void FrameQuery::scan(const BoxColumns& inQueries, int inThreads, PairList& outHits) const {
+  const BoxColumns& frame = *frame_;
   const std::size_t boxes = frame.size();
   const std::size_t blocks = (boxes + tuning::kQueryScanBlock - 1) / tuning::kQueryScanBlock;
   const int threads = static_cast<int>(
@@ -90,7 +90,7 @@ void FrameQuery::scan(const BoxSet& inQueries, int inThreads, PairList& outHits)
   for (const PairList& part : parts) outHits.insert(outHits.end(), part.begin(), part.end());
 }
 
-QueryHitList answerQueries(const BoxSet& inQueries, const FrameQuery& inFrame,
+QueryHitList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
                            const StaticIndex& inScenery, int inThreads) {
   PairList hits;
   inFrame.query(inQueries, inThreads, hits);

@@ -16,8 +16,8 @@
 #include <cstdint>
 #include <mutex>
 
+#include "core/box_columns.h"
 #include "core/static_index.h"
-#include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
@@ -27,7 +27,7 @@ class FrameQuery {
  public:
   /// Queries now ask about inFrame (kept by reference: the caller keeps it unchanged until the
   /// next setFrame() or clear()). Forgets the last frame's index (its memory is kept).
-  void setFrame(const BoxSet& inFrame);
+  void setFrame(const BoxColumns& inFrame);
   /// Queries now find nothing.
   void clear();
   /// Gives back the index's memory (after a burst of large frames; the next index sizes it).
@@ -36,16 +36,16 @@ class FrameQuery {
   /// (closed intervals) and passes the group/mask filter both ways, in any order. inQueries
   /// are valid (validate()). May run concurrently with other query() calls, never with
   /// setFrame() or clear().
-  void query(const BoxSet& inQueries, int inThreads, PairList& outHits) const;
+  void query(const BoxColumns& inQueries, int inThreads, PairList& outHits) const;
   /// True once this frame's index has been built (for tests and benchmarks).
   bool indexed() const { return indexed_.load(std::memory_order_acquire); }
 
  private:
   bool shouldIndex(std::size_t inQueries) const;
   void buildIndex(int inThreads) const;
-  void scan(const BoxSet& inQueries, int inThreads, PairList& outHits) const;
+  void scan(const BoxColumns& inQueries, int inThreads, PairList& outHits) const;
 
-  const BoxSet* frame_ = nullptr;
+  const BoxColumns* frame_ = nullptr;
   // The index is built by whichever concurrent query first needs it; the others wait on the
   // mutex, then read it without a lock once indexed_ says it is complete.
   mutable std::mutex index_mutex_;
@@ -58,7 +58,7 @@ class FrameQuery {
 /// Broadphase::query() for valid inQueries: the hits in the last frame (inFrame) and in the
 /// declared scenery (inScenery; its ids differ from the frame's), sorted by (query id, world
 /// id), on up to inThreads threads.
-QueryHitList answerQueries(const BoxSet& inQueries, const FrameQuery& inFrame,
+QueryHitList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
                            const StaticIndex& inScenery, int inThreads);
 
 }  // namespace sap_broadphase

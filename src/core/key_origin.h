@@ -7,8 +7,8 @@
 #include <cstring>
 
 #include "core/axis_spread.h"
+#include "core/box_columns.h"
 #include "core/sort_keys.h"
-#include "sap_broadphase/core/box_set.h"
 
 namespace sap_broadphase {
 

@@ -150,10 +150,7 @@ void SceneSimulator::writeBoxes() {
   const std::size_t n = center_[0].size();
   boxes_.clear();
   boxes_.ids.resize(n);
-  for (int axis = 0; axis < 3; ++axis) {
-    boxes_.lo[axis].resize(n);
-    boxes_.hi[axis].resize(n);
-  }
+  boxes_.bounds.resize(kBoundsPerBox * n);
   const double progress = static_cast<double>(frame_) / config_.frames;
   for (std::size_t i = 0; i < n; ++i) {
     boxes_.ids[i] = static_cast<uint32_t>(i);
@@ -174,8 +171,8 @@ void SceneSimulator::writeBoxes() {
       if (config_.kind == SceneKind::kBallCluster ||
           (config_.kind == SceneKind::kPlaneCluster && axis == config_.plane_axis))
         centre *= scale;
-      boxes_.lo[axis][i] = centre - half_extent_[axis][i];
-      boxes_.hi[axis][i] = centre + half_extent_[axis][i];
+      boxes_.lo(axis, i) = centre - half_extent_[axis][i];
+      boxes_.hi(axis, i) = centre + half_extent_[axis][i];
     }
   }
 }

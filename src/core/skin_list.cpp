@@ -23,13 +23,13 @@ namespace sap_broadphase {
 namespace {
 
 /// Box i of inBoxes as a record (lane 3 zero).
-BoundsRecord recordOf(const BoxSet& inBoxes, std::size_t i) {
+BoundsRecord recordOf(const BoxColumns& inBoxes, std::size_t i) {
   return {{inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i], 0.0},
           {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i], 0.0}};
 }
 
 /// True when box i of inBoxes lies inside box i of inOuter (closed: equal bounds are inside).
-inline bool boxInside(const BoxSet& inBoxes, const BoxSet& inOuter, std::size_t i) {
+inline bool boxInside(const BoxColumns& inBoxes, const BoxColumns& inOuter, std::size_t i) {
   bool inside = true;
   for (int axis = 0; axis < 3; ++axis)
     inside &=
@@ -100,7 +100,7 @@ class IndexOfId {
 
 /// The axis along which the finite lower bounds of inMembers spread widest: sorting along it
 /// puts the fewest boxes between a box and its partners.
-int widestAxis(const BoxSet& inBoxes, const std::vector<uint32_t>& inMembers) {
+int widestAxis(const BoxColumns& inBoxes, const std::vector<uint32_t>& inMembers) {
   int widest = 0;
   double widest_spread = -1.0;
   for (int axis = 0; axis < 3; ++axis) {
@@ -137,7 +137,7 @@ bool sameSlice(const std::vector<uint32_t>& inA, const std::vector<uint32_t>& in
 
 }  // namespace
 
-bool SkinList::covers(const BoxSet& inBoxes, int inThreads) const {
+bool SkinList::covers(const BoxColumns& inBoxes, int inThreads) const {
   if (!valid_ || !sameCounts(inBoxes)) return false;
   const std::size_t n = inBoxes.size();
   return reduceOverItems(
@@ -151,7 +151,7 @@ bool SkinList::covers(const BoxSet& inBoxes, int inThreads) const {
       [](bool& ioAll, bool inUnit) { ioAll = ioAll && inUnit; });
 }
 
-const BoxSet& SkinList::inflate(const BoxSet& inBoxes, double inSkin, int inThreads) {
+const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, int inThreads) {
   const double margin = inSkin / 2;
   const double infinity = std::numeric_limits<double>::infinity();
   const std::size_t n = inBoxes.size();
@@ -180,7 +180,7 @@ const BoxSet& SkinList::inflate(const BoxSet& inBoxes, double inSkin, int inThre
   return reference_;
 }
 
-void SkinList::adopt(const BoxSet& inBoxes, const PairList& inCandidates) {
+void SkinList::adopt(const BoxColumns& inBoxes, const PairList& inCandidates) {
   const std::size_t count = inCandidates.size();
   if (count > std::numeric_limits<uint32_t>::max())
     throw std::length_error("skin reuse keeps fewer than 2^32 candidate pairs");
@@ -271,7 +271,7 @@ void SkinList::keepSpatialCandidates() {
   }
 }
 
-bool SkinList::gather(const BoxSet& inBoxes, int inThreads) {
+bool SkinList::gather(const BoxColumns& inBoxes, int inThreads) {
   frame_gathered_ = valid_ && sameCounts(inBoxes) && gatherInside(inBoxes, inThreads);
   return frame_gathered_;
 }
@@ -283,7 +283,7 @@ void SkinList::collectGathered(int inThreads, PairList& outPairs) {
   copyHits(inThreads, outPairs);
 }
 
-bool SkinList::sameCounts(const BoxSet& inBoxes) const {
+bool SkinList::sameCounts(const BoxColumns& inBoxes) const {
   return reference_.ids.size() == inBoxes.ids.size() &&
          reference_.groups.size() == inBoxes.groups.size() &&
          reference_.masks.size() == inBoxes.masks.size();
@@ -291,7 +291,7 @@ bool SkinList::sameCounts(const BoxSet& inBoxes) const {
 
 // Boxes [inBegin, inEnd) have the reference's ids, groups and masks (after sameCounts()): each
 // thread compares its own slice, so that no serial pass over the ids grows with the frame.
-bool SkinList::sameIdsAndFilters(const BoxSet& inBoxes, std::size_t inBegin,
+bool SkinList::sameIdsAndFilters(const BoxColumns& inBoxes, std::size_t inBegin,
                                  std::size_t inEnd) const {
   return sameSlice(reference_.ids, inBoxes.ids, inBegin, inEnd) &&
          sameSlice(reference_.groups, inBoxes.groups, inBegin, inEnd) &&
@@ -303,7 +303,7 @@ bool SkinList::sameIdsAndFilters(const BoxSet& inBoxes, std::size_t inBegin,
 // written once at its position (boxes without candidates onto their thread's scratch record behind
 // the positions, which stays in the cache). Blocks of boxes end the pass early when one box has
 // left its skin.
-bool SkinList::gatherInside(const BoxSet& inBoxes, int inThreads) {
+bool SkinList::gatherInside(const BoxColumns& inBoxes, int inThreads) {
   constexpr std::size_t kBlock = tuning::kGatherBlockBoxes;
   const std::size_t n = inBoxes.size();
   resizeDiscarding(gathered_, std::size_t{spatial_count_} + std::max(1, inThreads));

@@ -25,7 +25,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sap_broadphase/core/box_set.h"
+#include "core/box_columns.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -42,21 +42,21 @@ class SkinList {
   /// The boxes of inBoxes grown by inSkin / 2 on every side (rounded outward), kept as the
   /// reference of the next candidates and returned for the sweep that finds them (valid until
   /// the next inflate()).
-  const BoxSet& inflate(const BoxSet& inBoxes, double inSkin, int inThreads = 1);
+  const BoxColumns& inflate(const BoxColumns& inBoxes, double inSkin, int inThreads = 1);
   /// Keeps inCandidates (pairs of the inflated boxes, canonical order, filters honoured) as the
   /// candidates; inBoxes are the boxes given to inflate(). Throws std::length_error when there
   /// are 2^32 candidates or more (their rows are indexed in 32 bits).
-  void adopt(const BoxSet& inBoxes, const PairList& inCandidates);
+  void adopt(const BoxColumns& inBoxes, const PairList& inCandidates);
   /// True when every box of inBoxes lies inside its inflated box (same ids, groups and masks in
   /// the same order), and then the frame's bounds are gathered for collectGathered(). One read
   /// of the frame, so that the engine can know before planning whether the candidates answer
   /// the frame; when they do not, the caller sweeps (inflate, sweep, adopt) instead.
-  bool gather(const BoxSet& inBoxes, int inThreads);
+  bool gather(const BoxColumns& inBoxes, int inThreads);
   /// After gather() returned true for this frame: the candidates that overlap exactly in the
   /// gathered bounds, in canonical order, into outPairs.
   void collectGathered(int inThreads, PairList& outPairs);
   /// The containment test of gather() alone, without gathering.
-  bool covers(const BoxSet& inBoxes, int inThreads) const;
+  bool covers(const BoxColumns& inBoxes, int inThreads) const;
   /// True while candidates are kept (after adopt(), until clear() or the next inflate()).
   bool valid() const { return valid_; }
   /// Number of candidate pairs kept.
@@ -65,17 +65,17 @@ class SkinList {
   void clear() { valid_ = frame_gathered_ = false; }
 
  private:
-  bool sameCounts(const BoxSet& inBoxes) const;
-  bool sameIdsAndFilters(const BoxSet& inBoxes, std::size_t inBegin, std::size_t inEnd) const;
+  bool sameCounts(const BoxColumns& inBoxes) const;
+  bool sameIdsAndFilters(const BoxColumns& inBoxes, std::size_t inBegin, std::size_t inEnd) const;
   bool holdsEveryCandidate() const;
   void keepSpatialOrder();
   void keepSpatialCandidates();
-  bool gatherInside(const BoxSet& inBoxes, int inThreads);
+  bool gatherInside(const BoxColumns& inBoxes, int inThreads);
   void testSpatialCandidates(int inThreads);
   void copyHits(int inThreads, PairList& outPairs);
   std::size_t verdictWords() const { return (canonical_pairs_.size() + 63) / 64; }
 
-  BoxSet reference_;  // the inflated boxes of the last sweep (ids, groups, masks included)
+  BoxColumns reference_;  // the inflated boxes of the last sweep (ids, groups, masks included)
   // The spatial order: positions 0..m-1 for the m boxes that have candidates; the others all
   // have position m, which a pass turns into a scratch record per thread that no candidate
   // reads.

@@ -40,7 +40,7 @@ double SkinReuse::recentMotion() const {
   return *std::max_element(std::begin(recent_motion_), std::end(recent_motion_));
 }
 
-bool SkinReuse::coversFrame(const BoxSet& inSwept, int inThreads, FrameReport& ioReport) {
+bool SkinReuse::coversFrame(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport) {
   times_.ms_pass = 0.0;  // the pass that answers the frame starts with this gather
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer pass_timer(times_.ms_pass);
@@ -54,15 +54,15 @@ void SkinReuse::answerFromCandidates(int inThreads, FrameReport& ioReport, PairL
   kept_.collectGathered(inThreads, outPairs);
 }
 
-const BoxSet& SkinReuse::grow(const BoxSet& inSwept, double inSkin, int inThreads,
-                              FrameReport& ioReport) {
+const BoxColumns& SkinReuse::grow(const BoxColumns& inSwept, double inSkin, int inThreads,
+                                  FrameReport& ioReport) {
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer grow_timer(times_.ms_grow);
   skin_ = inSkin;
   return kept_.inflate(inSwept, inSkin, inThreads);
 }
 
-void SkinReuse::keepAndAnswer(const BoxSet& inSwept, int inThreads, FrameReport& ioReport,
+void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport,
                               PairList& ioPairs) {
   {
     PhaseTimer timer(ioReport.ms_skin);
@@ -82,7 +82,7 @@ void SkinReuse::keepAndAnswer(const BoxSet& inSwept, int inThreads, FrameReport&
 // sweep: the skin's work is in the report's ms_skin.
 void SkinReuse::learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t inSweepPairs,
                       const FrameReport& inReport) {
-  const BoxSet& swept = ioSwept.boxes();
+  const BoxColumns& swept = ioSwept.boxes();
   const double boxes = static_cast<double>(swept.size());
   const bool grown_sweep = isSweep(inPlan.path) && inPlan.sweep_skin > 0.0;
   if (isSweep(inPlan.path) && swept.size() >= tuning::kMinSkinBoxes) {

@@ -10,11 +10,11 @@
 #include <cstddef>
 
 #include "core/axis_spread.h"
+#include "core/box_columns.h"
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/skin_list.h"
 #include "core/tuning.h"
-#include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/frame_report.h"
 #include "sap_broadphase/core/pair_set.h"
 
@@ -28,17 +28,18 @@ class SkinReuse {
   /// True when the kept candidates answer the frame inSwept: every box inside its grown box
   /// of the last grown sweep (same ids, groups and masks). The frame's bounds are then
   /// gathered for answerFromCandidates().
-  bool coversFrame(const BoxSet& inSwept, int inThreads, FrameReport& ioReport);
+  bool coversFrame(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport);
   /// FramePath::kSkin, after coversFrame() said yes: the candidates that overlap
   /// now, in canonical order, into outPairs (replaced).
   void answerFromCandidates(int inThreads, FrameReport& ioReport, PairList& outPairs);
 
   /// A grown sweep, first half: inSwept grown by inSkin / 2 a side, for the sweep to run on
   /// (valid until the next grow()).
-  const BoxSet& grow(const BoxSet& inSwept, double inSkin, int inThreads, FrameReport& ioReport);
+  const BoxColumns& grow(const BoxColumns& inSwept, double inSkin, int inThreads,
+                         FrameReport& ioReport);
   /// A grown sweep, second half: ioPairs holds the grown boxes' pairs; they become the kept
   /// candidates, and ioPairs the pairs of inSwept among them.
-  void keepAndAnswer(const BoxSet& inSwept, int inThreads, FrameReport& ioReport,
+  void keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport,
                      PairList& ioPairs);
   /// Forgets the kept candidates (a plain sweep, a small frame or reset()).
   void forget() { kept_.clear(); }

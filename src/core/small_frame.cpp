@@ -119,7 +119,7 @@ inline bool provesOverlap(const SweepArrays& inArrays, uint32_t i, uint32_t j) {
 // Reports a float hit between entries i and j of a run (boxes inFirst and inSecond) when the
 // exact boxes overlap: proven by the floats (most hits: no float64 bounds of two random boxes
 // fetched), else tested on the float64 input.
-inline void reportIfExact(const BoxSet& inBoxes, const SweepArrays& inArrays, uint32_t i,
+inline void reportIfExact(const BoxColumns& inBoxes, const SweepArrays& inArrays, uint32_t i,
                           uint32_t j, uint32_t inFirst, uint32_t inSecond, PairList& outPairs) {
   if ((provesOverlap(inArrays, i, j) || boxesOverlap(inBoxes, inFirst, inSecond)) &&
       filtersAllow(inBoxes, inFirst, inSecond))
@@ -192,8 +192,8 @@ void forEachCell(uint32_t inRange, uint32_t inCells1, Visit&& inVisit) {
 // frame's key origin, as the sweep's are: a robot's few thousand boxes in UTM or Earth-centred
 // coordinates would otherwise share their float32 values and all become candidates of one
 // another.
-void outwardBoundsPortable(const BoxSet& inBoxes, const KeyOrigin& inOrigin, const int (&inAxes)[3],
-                           uint32_t inFirst, float* outBounds) {
+void outwardBoundsPortable(const BoxColumns& inBoxes, const KeyOrigin& inOrigin,
+                           const int (&inAxes)[3], uint32_t inFirst, float* outBounds) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   for (uint32_t i = inFirst; i < n; ++i) {
     float* bounds = outBounds + 6 * std::size_t{i};
@@ -239,7 +239,7 @@ __attribute__((target("avx2"))) __m128 outwardFloats(__m256d inValues, __m256d i
 }
 
 // outwardBoundsPortable, four boxes at a time; the last few boxes on the portable loop.
-__attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxSet& inBoxes,
+__attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxColumns& inBoxes,
                                                        const KeyOrigin& inOrigin,
                                                        const int (&inAxes)[3], float* outBounds) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
@@ -265,7 +265,7 @@ __attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxSet& inBoxes,
 // One pass over the boxes in input order: their outward float bounds (six in a row, inAxis
 // first), the sort key of each low on inAxis, the cells each box reaches (packed as four
 // bytes: first and last cell on grid axis 0, then on grid axis 1) and each cell's count.
-void measureBoxes(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
+void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
                   const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   resizeDiscarding(ioWork.order, n);
@@ -293,7 +293,7 @@ void measureBoxes(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
 
 // Sorts the boxes by low key on the sweep axis and copies each, in that order, into every cell
 // it reaches: each cell's run is sorted by low key and followed by kBlock NaNs.
-void fillCells(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
+void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
                const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, ioWork);
@@ -333,7 +333,7 @@ void fillCells(const BoxSet& inBoxes, const KeyOrigin& inOrigin, int inAxis,
 // Sweeps each cell of the grid; a float hit is reported only in the cell of the larger lows
 // (the one cell both boxes reach that is a function of the pair alone), so a pair whose boxes
 // share several cells is reported once. Without a grid, the one cell holds every box.
-void sweepCells(const BoxSet& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
+void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
                 const SmallFrameWorkspace& inWork, PairList& outPairs) {
   const uint32_t cells1 = inGrid[1].cells;
   for (uint32_t cell = 0; cell + 1 < inWork.cell_start.size(); ++cell) {
@@ -353,7 +353,7 @@ void sweepCells(const BoxSet& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
   }
 }
 
-void pairWith(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
+void pairWith(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
               PairList& outPairs, bool inAvx2) {
   outPairs.clear();
   if (inBoxes.size() < 2) return;
@@ -384,17 +384,17 @@ int chooseSmallFrameAxis(FrameSpread& ioSpread) {
   return best_axis;
 }
 
-void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
+void pairSmallFrame(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
                     PairList& outPairs) {
   pairWith(inBoxes, ioSpread, ioWork, outPairs, cpuHasAvx2());
 }
 
-void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
+void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
   FrameSpread spread(inBoxes);
   pairSmallFrame(inBoxes, spread, ioWork, outPairs);
 }
 
-void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork,
+void pairSmallFramePortable(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork,
                             PairList& outPairs) {
   FrameSpread spread(inBoxes);
   pairWith(inBoxes, spread, ioWork, outPairs, false);

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "core/axis_spread.h"
+#include "core/box_columns.h"
 #include "core/buffers.h"
 #include "core/pair_sort.h"
-#include "sap_broadphase/core/box_set.h"
 
 namespace sap_broadphase {
 
@@ -50,12 +50,13 @@ int chooseSmallFrameAxis(FrameSpread& ioSpread);
 /// canonical order, into outPairs (replaced). One thread; AVX2 blocks of 8 candidates where
 /// the CPU has them, a portable loop otherwise (chosen at run time). ioSpread is the spread of
 /// inBoxes: the sweep axis and the key origin are read from it.
-void pairSmallFrame(const BoxSet& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
+void pairSmallFrame(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
                     PairList& outPairs);
 /// The same, measuring the spread of inBoxes itself.
-void pairSmallFrame(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
+void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
 
 /// The same, forced onto the portable loop (for tests and benchmarks on AVX2 machines).
-void pairSmallFramePortable(const BoxSet& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
+void pairSmallFramePortable(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork,
+                            PairList& outPairs);
 
 }  // namespace sap_broadphase

@@ -64,7 +64,7 @@ bool overlapsAndAllowed(const Slot& inSlot, const QueryBox& inBox) {
 
 }  // namespace
 
-void StaticIndex::build(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes,
+void StaticIndex::build(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes,
                         int inThreads) {
   const int threads = resolveThreadCount(inThreads);
   chooseGrid(inBoxes, inIndexes, threads);
@@ -76,7 +76,7 @@ void StaticIndex::build(const BoxSet& inBoxes, const std::vector<uint32_t>& inIn
 
 // Every box of inIndexes has one slot (its id once among the slots' ids), and every grid slot
 // is listed in its home cell, the cell of its low corner.
-bool StaticIndex::holdsEveryBoxOnce(const BoxSet& inBoxes,
+bool StaticIndex::holdsEveryBoxOnce(const BoxColumns& inBoxes,
                                     const std::vector<uint32_t>& inIndexes) const {
   if (slots_.size() != inIndexes.size() || live_count_ != inIndexes.size()) return false;
   std::vector<uint32_t> ids;
@@ -94,7 +94,7 @@ bool StaticIndex::holdsEveryBoxOnce(const BoxSet& inBoxes,
   return true;
 }
 
-void StaticIndex::chooseGrid(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes,
+void StaticIndex::chooseGrid(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes,
                              int inThreads) {
   AxisSpread spreads[3];
   for (int axis = 0; axis < 3; ++axis) {
@@ -119,7 +119,7 @@ void StaticIndex::chooseGrid(const BoxSet& inBoxes, const std::vector<uint32_t>&
   }
 }
 
-void StaticIndex::placeBoxes(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes,
+void StaticIndex::placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes,
                              int inThreads) {
   const std::size_t count = inIndexes.size();
   constexpr uint64_t kLarge = std::numeric_limits<uint64_t>::max();
@@ -230,7 +230,7 @@ bool StaticIndex::remove(uint32_t inId) {
   return true;
 }
 
-void StaticIndex::query(const BoxSet& inQueries, std::size_t inQuery, PairList& outPairs,
+void StaticIndex::query(const BoxColumns& inQueries, std::size_t inQuery, PairList& outPairs,
                         PairOrder inOrder) const {
   QueryBox box;
   box.order = inOrder;
@@ -305,7 +305,8 @@ void StaticIndex::scanSlots(const QueryBox& inBox, std::size_t inBegin, std::siz
 // cells' offsets, their slot lists and the slots themselves, one miss after the other. The
 // three are fetched ahead in stages, for the query tuning::kSceneryPrefetchAhead[stage] positions
 // later: offsets first, the slot lists once the offsets are in, the slots once the lists are in.
-void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, int inStage) const {
+void StaticIndex::prefetchQuery(const BoxColumns& inQueries, std::size_t inQuery,
+                                int inStage) const {
   if (grid_count_ == 0) return;
   const double box_low[3] = {inQueries.lo[0][inQuery], inQueries.lo[1][inQuery],
                              inQueries.lo[2][inQuery]};
@@ -334,9 +335,9 @@ void StaticIndex::prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, in
   }
 }
 
-void StaticIndex::queryRange(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
-                             std::size_t inBegin, std::size_t inEnd, PairOrder inOrder,
-                             PairList& outPairs) const {
+void StaticIndex::queryRange(const BoxColumns& inQueries,
+                             const std::vector<uint32_t>& inQueryIndexes, std::size_t inBegin,
+                             std::size_t inEnd, PairOrder inOrder, PairList& outPairs) const {
   for (std::size_t k = inBegin; k < inEnd; ++k) {
     for (int stage = 0; stage < 3; ++stage) {
       if (k + tuning::kSceneryPrefetchAhead[stage] < inEnd)
@@ -346,7 +347,7 @@ void StaticIndex::queryRange(const BoxSet& inQueries, const std::vector<uint32_t
   }
 }
 
-void StaticIndex::queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+void StaticIndex::queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                            int inThreads, PairList& outPairs, PairOrder inOrder) const {
   // Units of queries, each unit's pairs in its own part, the parts joined in unit order: the
   // sequential order for any thread count (a frame of one unit queries inline).

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sap_broadphase/core/box_set.h"
+#include "core/box_columns.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -25,9 +25,9 @@ namespace sap_broadphase {
 class StaticIndex {
  public:
   /// Indexes boxes inIndexes (distinct positions in inBoxes) of inBoxes with inThreads threads
-  /// (0 = all cores); keeps its own copy of their bounds, ids, groups and masks (the BoxSet may
+  /// (0 = all cores); keeps its own copy of their bounds, ids, groups and masks (the BoxColumns may
   /// change afterwards). Replaces any earlier content.
-  void build(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
+  void build(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
   /// Number of indexed boxes not removed.
   std::size_t size() const { return live_count_; }
   /// How a pair is written: makeIdPair(query id, indexed id), as the engine's pairs are, or
@@ -38,13 +38,13 @@ class StaticIndex {
   /// and passes the group/mask filter both ways; each pair once. Allocates nothing beyond
   /// outPairs' growth. In canonical order, query ids are expected to differ from indexed ids
   /// (a box queried against itself would give the pair (id, id)).
-  void query(const BoxSet& inQueries, std::size_t inQuery, PairList& outPairs,
+  void query(const BoxColumns& inQueries, std::size_t inQuery, PairList& outPairs,
              PairOrder inOrder = PairOrder::kCanonical) const;
   /// All pairs between boxes inQueryIndexes of inQueries and the index, in parallel with
   /// inThreads threads (0 = all cores), appended to outPairs (any order; the caller sorts
   /// canonically). The order is the same on every run with the same thread count.
-  void queryAll(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes, int inThreads,
-                PairList& outPairs, PairOrder inOrder = PairOrder::kCanonical) const;
+  void queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+                int inThreads, PairList& outPairs, PairOrder inOrder = PairOrder::kCanonical) const;
   /// Marks the indexed box with id inId as removed (it no longer answers queries); false if
   /// no such box is indexed or it was already removed.
   bool remove(uint32_t inId);
@@ -75,17 +75,17 @@ class StaticIndex {
     if (position >= last_cell_[inAxis]) return dims_[inAxis] - 1;  // also +inf
     return static_cast<uint32_t>(position);
   }
-  void chooseGrid(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
-  void placeBoxes(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
+  void chooseGrid(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
+  void placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
   void fillCells();
   void buildIdLookup();
-  bool holdsEveryBoxOnce(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexes) const;
+  bool holdsEveryBoxOnce(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes) const;
   /// The cells a box covers on each axis (outLow..outHigh), and how many they are.
   uint64_t cellRange(const double inLow[3], const double inHigh[3], uint32_t outLow[3],
                      uint32_t outHigh[3]) const;
   void scanCells(const QueryBox& inBox, PairList& outPairs) const;
-  void prefetchQuery(const BoxSet& inQueries, std::size_t inQuery, int inStage) const;
-  void queryRange(const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+  void prefetchQuery(const BoxColumns& inQueries, std::size_t inQuery, int inStage) const;
+  void queryRange(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                   std::size_t inBegin, std::size_t inEnd, PairOrder inOrder,
                   PairList& outPairs) const;
   void scanSlots(const QueryBox& inBox, std::size_t inBegin, std::size_t inEnd,

@@ -8,12 +8,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/box_columns.h"
 #include "core/buffers.h"
 #include "core/pair_sort.h"
 #include "core/slab_grid.h"
 #include "core/succ_tree.h"
 #include "core/tuning.h"
-#include "sap_broadphase/core/box_set.h"
 
 namespace sap_broadphase {
 
@@ -66,8 +66,8 @@ struct PairingInput {
   uint32_t objects = 0;                       ///< n
   const uint32_t* object_of_rank = nullptr;   ///< R^-
   const RankedKeys* keys = nullptr;           ///< outward keys by rank
-  const BoxSet* boxes = nullptr;  ///< exact float64 test for near-touching keys; null in the
-                                  ///< keys-only mode, where overlapping keys are reported
+  const BoxColumns* boxes = nullptr;  ///< exact float64 test for near-touching keys; null in the
+                                      ///< keys-only mode, where overlapping keys are reported
   const RankedFilter* filters = nullptr;  ///< null when no box has a group or mask
   const uint32_t* ids = nullptr;          ///< box ids, by object index
   const RankedSlabs* slabs = nullptr;     ///< null when slab_count is 1

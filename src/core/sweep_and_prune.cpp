@@ -62,7 +62,7 @@ void SweepAndPrune::placeKeyOrigins(FrameSpread& ioSpread, int inThreads) {
 
 // Keys of one axis (lows at i, highs at i + n), packed with their indexes, then Algorithm 2.
 // Returns D.
-double SweepAndPrune::sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
+double SweepAndPrune::sortAxis(const BoxColumns& inBoxes, int inAxis, int inThreads,
                                FrameReport& ioReport) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const std::size_t endpoints = 2 * std::size_t{n};
@@ -90,7 +90,7 @@ double SweepAndPrune::sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads,
 }
 
 // Box data in primary-rank order, so a candidate range is a contiguous stretch of memory.
-void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, FrameSpread& ioSpread, int inThreads) {
+void SweepAndPrune::gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSpread, int inThreads) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const bool filtered = inBoxes.hasFilters();
   resizeDiscarding(ranked_keys_, n);
@@ -123,7 +123,7 @@ void SweepAndPrune::gatherByRank(const BoxSet& inBoxes, FrameSpread& ioSpread, i
   });
 }
 
-void SweepAndPrune::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads,
+void SweepAndPrune::pair(const BoxColumns& inBoxes, FramePath inPath, int inThreads,
                          FrameReport& ioReport) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   PairingInput input;
@@ -148,7 +148,7 @@ void SweepAndPrune::pair(const BoxSet& inBoxes, FramePath inPath, int inThreads,
   }
 }
 
-void SweepAndPrune::run(const BoxSet& inBoxes, FrameSpread& ioSpread, FramePath inPath,
+void SweepAndPrune::run(const BoxColumns& inBoxes, FrameSpread& ioSpread, FramePath inPath,
                         int inThreads, FrameReport& ioReport, PairList& outPairs) {
   SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the sweep reads the spread of other boxes");
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());

@@ -30,7 +30,7 @@ class SweepAndPrune {
   /// inPath is FramePath::kSequential (Algorithm 1) or kParallel (Algorithms 2-4). Fills the
   /// report's sweep phases, dispersions, axes and slabs. ioSpread is the spread of inBoxes,
   /// which the key origins and the slabs are placed from.
-  void run(const BoxSet& inBoxes, FrameSpread& ioSpread, FramePath inPath, int inThreads,
+  void run(const BoxColumns& inBoxes, FrameSpread& ioSpread, FramePath inPath, int inThreads,
            FrameReport& ioReport, PairList& outPairs);
   /// The sweep axes in force (§5 may have swapped them).
   int primaryAxis() const { return primary_axis_; }
@@ -44,9 +44,9 @@ class SweepAndPrune {
 
  private:
   void placeKeyOrigins(FrameSpread& ioSpread, int inThreads);
-  double sortAxis(const BoxSet& inBoxes, int inAxis, int inThreads, FrameReport& ioReport);
-  void gatherByRank(const BoxSet& inBoxes, FrameSpread& ioSpread, int inThreads);
-  void pair(const BoxSet& inBoxes, FramePath inPath, int inThreads, FrameReport& ioReport);
+  double sortAxis(const BoxColumns& inBoxes, int inAxis, int inThreads, FrameReport& ioReport);
+  void gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSpread, int inThreads);
+  void pair(const BoxColumns& inBoxes, FramePath inPath, int inThreads, FrameReport& ioReport);
   void decideAxes(bool inWarm, FrameReport& ioReport);
 
   const bool exact_final_test_;

@@ -165,8 +165,8 @@ std::optional<ParseError> problemOfBoxes(const BoxSet& inBoxes,
       break;
     case BoxProblem::kMinAboveMax: {
       const int axis = error->coordinate;
-      reason = std::string("min_") + kAxisNames[axis] + " (" + formatDouble(inBoxes.lo[axis][i]) +
-               ") > max_" + kAxisNames[axis] + " (" + formatDouble(inBoxes.hi[axis][i]) + ")";
+      reason = std::string("min_") + kAxisNames[axis] + " (" + formatDouble(inBoxes.lo(axis, i)) +
+               ") > max_" + kAxisNames[axis] + " (" + formatDouble(inBoxes.hi(axis, i)) + ")";
       break;
     }
     case BoxProblem::kDuplicateId:
@@ -174,6 +174,7 @@ std::optional<ParseError> problemOfBoxes(const BoxSet& inBoxes,
                std::to_string(inLines[error->earlier]) + ")";
       break;
     case BoxProblem::kShape:
+    case BoxProblem::kIdOverflow:
       break;
   }
   return ParseError{inSource, i < inLines.size() ? inLines[i] : 0, reason};
@@ -256,7 +257,7 @@ void writeBoxText(std::ostream& ioOutput, const BoxSet& inBoxes) {
     char* out = writer.reserve(kMaxLineBytes);
     out = std::to_chars(out, out + 16, inBoxes.ids[i]).ptr;
     for (int k = 0; k < 6; ++k) {
-      const double value = k < 3 ? inBoxes.lo[k][i] : inBoxes.hi[k - 3][i];
+      const double value = k < 3 ? inBoxes.lo(k, i) : inBoxes.hi(k - 3, i);
       *out++ = ' ';
       out = std::to_chars(out, out + 31, value).ptr;
     }

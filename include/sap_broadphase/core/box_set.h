@@ -136,9 +136,9 @@ struct ValidationError {
   uint32_t id = 0;        ///< its id
   std::string reason;     ///< e.g. "min_y (3) > max_y (2)" or "max_x is NaN"
   BoxProblem problem = BoxProblem::kShape;
-  int coordinate = 0;       ///< kNaN, kMinAboveMax: 0..5 = min_x, min_y, min_z, max_x, ...
-  std::size_t earlier = 0;  ///< kDuplicateId: index in the frame of the earlier box, same id
-  std::size_t span = 0;     ///< the span that holds box `index`
+  int coordinate = 0;            ///< kNaN, kMinAboveMax: 0..5 = min_x, min_y, min_z, max_x, ...
+  std::size_t earlier = 0;       ///< kDuplicateId: index in the frame of the earlier box, same id
+  std::size_t span = 0;          ///< the span that holds box `index`
   std::size_t earlier_span = 0;  ///< kDuplicateId: the span that holds box `earlier`, or kScenery
   /// earlier_span of an id that a declared scenery box has (Broadphase::setStaticBoxes).
   static constexpr std::size_t kScenery = static_cast<std::size_t>(-1);

@@ -7,12 +7,12 @@
 
 namespace sap_broadphase {
 
-/// All overlapping, filter-allowed pairs of inBoxes by testing every pair (O(n^2)),
-/// in canonical (a, b) order.
-PairList bruteForcePairs(const BoxSet& inBoxes);
+/// All overlapping, filter-allowed pairs of the frame's boxes by testing every pair (O(n^2)),
+/// in canonical (a, b) order. The frame is not checked (validate() it).
+PairList bruteForcePairs(const BoxFrame& inFrame);
 
 /// What Broadphase::query() answers, by testing every query box against every box of inWorld
 /// (O(m n)): {query id, world id} for each overlapping, filter-allowed pair, sorted.
-QueryHitList bruteForceQuery(const BoxSet& inQueries, const BoxSet& inWorld);
+QueryHitList bruteForceQuery(const BoxFrame& inQueries, const BoxFrame& inWorld);
 
 }  // namespace sap_broadphase
