@@ -158,12 +158,13 @@ void BoxSet::add(uint32_t inId, const double inMin[3], const double inMax[3]) {
 
 void BoxSet::add(uint32_t inId, const double inMin[3], const double inMax[3], uint32_t inGroup,
                  uint32_t inMask) {
-  const std::size_t before = size();
-  if (groups.empty()) groups.assign(before, kDefaultGroup);
-  if (masks.empty()) masks.assign(before, kDefaultMask);
-  add(inId, inMin, inMax);
-  groups.back() = inGroup;
-  masks.back() = inMask;
+  groups.resize(size(), kDefaultGroup);  // earlier boxes get the defaults
+  masks.resize(size(), kDefaultMask);
+  groups.push_back(inGroup);
+  masks.push_back(inMask);
+  ids.push_back(inId);
+  bounds.insert(bounds.end(), inMin, inMin + 3);
+  bounds.insert(bounds.end(), inMax, inMax + 3);
 }
 
 namespace {
@@ -236,12 +237,15 @@ void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3]
 
 void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3], uint32_t inGroup,
                      uint32_t inMask) {
-  const std::size_t before = size();
-  if (groups.empty()) groups.assign(before, kDefaultGroup);
-  if (masks.empty()) masks.assign(before, kDefaultMask);
-  add(inId, inMin, inMax);
-  groups.back() = inGroup;
-  masks.back() = inMask;
+  groups.resize(size(), kDefaultGroup);  // earlier boxes get the defaults
+  masks.resize(size(), kDefaultMask);
+  groups.push_back(inGroup);
+  masks.push_back(inMask);
+  ids.push_back(inId);
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis].push_back(inMin[axis]);
+    hi[axis].push_back(inMax[axis]);
+  }
 }
 
 void copyFrame(const BoxFrame& inFrame, BoxColumns& outBoxes, int inThreads) {

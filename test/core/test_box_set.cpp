@@ -49,7 +49,7 @@ TEST(Validate, RefusesNaNNamingIndexIdAndAxis) {
   for (int side = 0; side < 2; ++side) {
     for (int axis = 0; axis < 3; ++axis) {
       BoxSet boxes = threeBoxes();
-      (side == 0 ? boxes.lo : boxes.hi)[axis][1] = kNaN;
+      (side == 0 ? boxes.lo(axis, 1) : boxes.hi(axis, 1)) = kNaN;
       const auto error = validate(boxes);
       ASSERT_TRUE(error.has_value());
       EXPECT_EQ(error->index, 1u);
@@ -65,8 +65,8 @@ TEST(Validate, RefusesMinAboveMaxNamingTheAxis) {
   const char* const kAxes[3] = {"x", "y", "z"};
   for (int axis = 0; axis < 3; ++axis) {
     BoxSet boxes = threeBoxes();
-    boxes.lo[axis][2] = 3.0;
-    boxes.hi[axis][2] = 2.0;
+    boxes.lo(axis, 2) = 3.0;
+    boxes.hi(axis, 2) = 2.0;
     const auto error = validate(boxes);
     ASSERT_TRUE(error.has_value());
     EXPECT_EQ(error->index, 2u);
@@ -77,15 +77,15 @@ TEST(Validate, RefusesMinAboveMaxNamingTheAxis) {
         << error->reason;
   }
   BoxSet inverted = threeBoxes();
-  inverted.lo[0][0] = kInf;
-  inverted.hi[0][0] = -kInf;
+  inverted.lo(0, 0) = kInf;
+  inverted.hi(0, 0) = -kInf;
   EXPECT_TRUE(validate(inverted).has_value());
 }
 
 TEST(Validate, ReportsTheLowestBadIndex) {
   BoxSet boxes = threeBoxes();
-  boxes.lo[2][2] = kNaN;
-  boxes.lo[1][1] = 5.0;  // min_y > max_y on box 1
+  boxes.lo(2, 2) = kNaN;
+  boxes.lo(1, 1) = 5.0;  // min_y > max_y on box 1
   const auto error = validate(boxes);
   ASSERT_TRUE(error.has_value());
   EXPECT_EQ(error->index, 1u);
@@ -93,14 +93,14 @@ TEST(Validate, ReportsTheLowestBadIndex) {
 
 TEST(Validate, NamesTheProblemForCallersThatWordItTheirWay) {
   BoxSet boxes = threeBoxes();
-  boxes.hi[2][1] = kNaN;
-  boxes.lo[1][1] = 5.0;  // min_y > max_y too, but the NaN of max_z comes first
+  boxes.hi(2, 1) = kNaN;
+  boxes.lo(1, 1) = 5.0;  // min_y > max_y too, but the NaN of max_z comes first
   auto error = validate(boxes);
   ASSERT_TRUE(error.has_value());
   EXPECT_EQ(error->problem, BoxProblem::kNaN);
   EXPECT_EQ(error->coordinate, 5);
   EXPECT_EQ(error->reason, "max_z is NaN");
-  boxes.hi[2][1] = 1.0;
+  boxes.hi(2, 1) = 1.0;
   error = validate(boxes);
   ASSERT_TRUE(error.has_value());
   EXPECT_EQ(error->problem, BoxProblem::kMinAboveMax);
@@ -108,7 +108,7 @@ TEST(Validate, NamesTheProblemForCallersThatWordItTheirWay) {
   // A repeated id on a lower index than a bad coordinate is the first problem.
   boxes = threeBoxes();
   boxes.ids[1] = boxes.ids[0];
-  boxes.lo[0][2] = kNaN;
+  boxes.lo(0, 2) = kNaN;
   error = validate(boxes);
   ASSERT_TRUE(error.has_value());
   EXPECT_EQ(error->problem, BoxProblem::kDuplicateId);
@@ -145,14 +145,13 @@ TEST(Validate, FindsTheFirstRepeatWithDenseAndSparseIds) {
 }
 
 TEST(Validate, RefusesMismatchedLengths) {
-  for (int axis = 0; axis < 3; ++axis) {
-    BoxSet shortLo = threeBoxes();
-    shortLo.lo[axis].pop_back();
-    EXPECT_TRUE(validate(shortLo).has_value());
-    BoxSet longHi = threeBoxes();
-    longHi.hi[axis].push_back(1.0);
-    EXPECT_TRUE(validate(longHi).has_value());
-  }
+  BoxSet short_bounds = threeBoxes();
+  short_bounds.bounds.pop_back();
+  EXPECT_TRUE(validate(short_bounds).has_value());
+  EXPECT_THROW(short_bounds.span(), InvalidBoxes);  // a span cannot hold the mismatch
+  BoxSet long_bounds = threeBoxes();
+  long_bounds.bounds.push_back(1.0);
+  EXPECT_TRUE(validate(long_bounds).has_value());
   BoxSet groups = threeBoxes();
   groups.groups = {1, 2};
   EXPECT_TRUE(validate(groups).has_value());

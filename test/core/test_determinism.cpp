@@ -40,8 +40,8 @@ BoxSet determinismFrame(SceneSimulator& ioScene, const BoxSet& inFirst) {
   boxes.masks.assign(boxes.size(), kDefaultMask);
   for (std::size_t i = 0; i < kResting; ++i) {
     for (int axis = 0; axis < 3; ++axis) {
-      boxes.lo[axis][i] = inFirst.lo[axis][i];
-      boxes.hi[axis][i] = inFirst.hi[axis][i];
+      boxes.lo(axis, i) = inFirst.lo(axis, i);
+      boxes.hi(axis, i) = inFirst.hi(axis, i);
     }
     boxes.groups[i] = kSceneryGroup;
     boxes.masks[i] = kMoverGroup;
@@ -77,8 +77,8 @@ std::vector<BoxSet> determinismFrames() {
 BoxSet movers(const BoxSet& inBoxes) {
   BoxSet moving;
   for (std::size_t i = kResting; i < inBoxes.size(); ++i) {
-    const double lo[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
-    const double hi[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    const double lo[3] = {inBoxes.lo(0, i), inBoxes.lo(1, i), inBoxes.lo(2, i)};
+    const double hi[3] = {inBoxes.hi(0, i), inBoxes.hi(1, i), inBoxes.hi(2, i)};
     moving.add(inBoxes.ids[i], lo, hi, inBoxes.group(i), inBoxes.mask(i));
   }
   return moving;

@@ -183,8 +183,8 @@ TEST(EngineEdgeCases, KeysOnlyModeReportsASupersetThatOverlapsInFloat32) {
         const std::size_t a = indexOfId[pair.a];
         const std::size_t b = indexOfId[pair.b];
         for (int axis = 0; axis < 3; ++axis) {
-          ASSERT_LE(lowKey(boxes.lo[axis][a]), highKey(boxes.hi[axis][b]));
-          ASSERT_LE(lowKey(boxes.lo[axis][b]), highKey(boxes.hi[axis][a]));
+          ASSERT_LE(lowKey(boxes.lo(axis, a)), highKey(boxes.hi(axis, b)));
+          ASSERT_LE(lowKey(boxes.lo(axis, b)), highKey(boxes.hi(axis, a)));
         }
       }
     }

@@ -1,4 +1,4 @@
-// Frames given as records (InterleavedBoxes, a BoxArray's layout): the engine loads and checks
+// Frames given as records (BoxSpan, a BoxArray's layout): the engine loads and checks
 // them itself. The pairs, the frame history and the refusals must be those of the same frame
 // given as a checked BoxSet.
 #include <gtest/gtest.h>
@@ -26,15 +26,15 @@ struct Records {
 
   explicit Records(const BoxSet& inBoxes) {
     for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-      for (int axis = 0; axis < 3; ++axis) bounds.push_back(inBoxes.lo[axis][i]);
-      for (int axis = 0; axis < 3; ++axis) bounds.push_back(inBoxes.hi[axis][i]);
+      for (int axis = 0; axis < 3; ++axis) bounds.push_back(inBoxes.lo(axis, i));
+      for (int axis = 0; axis < 3; ++axis) bounds.push_back(inBoxes.hi(axis, i));
     }
     ids = inBoxes.ids;
     groups = inBoxes.groups;
     masks = inBoxes.masks;
   }
-  InterleavedBoxes view(bool inWithIds = true) const {
-    InterleavedBoxes records;
+  BoxSpan view(bool inWithIds = true) const {
+    BoxSpan records;
     records.count = bounds.size() / 6;
     records.bounds = bounds.data();
     records.ids = inWithIds ? ids.data() : nullptr;
@@ -56,11 +56,11 @@ BoxSet frameOf(SceneSimulator& ioScene, int inFrame, const BoxSet& inLast) {
     const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     boxes.add(700000 + inFrame, lo, hi);
   }
-  if (inFrame % 7 == 3) boxes.hi[1][17] += 5.0;
+  if (inFrame % 7 == 3) boxes.hi(1, 17) += 5.0;
   if (inFrame % 13 == 6) std::swap(boxes.ids[3], boxes.ids[40]);
   if (inFrame % 10 == 8) {  // box 5 starts at z = 0.0 on one such frame, -0.0 on the next
-    boxes.hi[2][5] = std::max(boxes.hi[2][5], 0.0);
-    boxes.lo[2][5] = inFrame % 20 == 8 ? 0.0 : -0.0;
+    boxes.hi(2, 5) = std::max(boxes.hi(2, 5), 0.0);
+    boxes.lo(2, 5) = inFrame % 20 == 8 ? 0.0 : -0.0;
   }
   return boxes;
 }
@@ -126,7 +126,7 @@ TEST(RecordFrames, InfinitiesAndSignedZerosAreBoxes) {
   boxes.add(2, lo2, hi2);
   Broadphase engine;
   EXPECT_EQ(engine.update(Records(boxes).view()), bruteForcePairs(boxes));
-  boxes.lo[0][1] = -0.0;  // a change of size 0 is still a change
+  boxes.lo(0, 1) = -0.0;  // a change of size 0 is still a change
   EXPECT_EQ(engine.update(Records(boxes).view()), bruteForcePairs(boxes));
   EXPECT_EQ(engine.stats().moved_boxes, 1u);
 }
@@ -154,18 +154,18 @@ TEST(RecordFrames, BadBoxesAreRefusedAsValidateNamesThem) {
     void (*spoil)(BoxSet&);
   };
   const Case cases[] = {
-      {"NaN", [](BoxSet& b) { b.hi[2][1234] = std::nan(""); }},
-      {"min > max", [](BoxSet& b) { b.lo[1][2345] = b.hi[1][2345] + 1.0; }},
+      {"NaN", [](BoxSet& b) { b.hi(2, 1234) = std::nan(""); }},
+      {"min > max", [](BoxSet& b) { b.lo(1, 2345) = b.hi(1, 2345) + 1.0; }},
       {"two bad boxes",
        [](BoxSet& b) {
-         b.lo[0][3000] = b.hi[0][3000] + 1.0;
-         b.lo[2][700] = std::nan("");
+         b.lo(0, 3000) = b.hi(0, 3000) + 1.0;
+         b.lo(2, 700) = std::nan("");
        }},
       {"repeated id", [](BoxSet& b) { b.ids[3500] = b.ids[12]; }},
       {"repeated id before a bad box",
        [](BoxSet& b) {
          b.ids[100] = b.ids[99];
-         b.lo[0][200] = std::nan("");
+         b.lo(0, 200) = std::nan("");
        }},
   };
   for (const Case& bad_case : cases) {
@@ -187,7 +187,7 @@ TEST(RecordFrames, BadBoxesAreRefusedAsValidateNamesThem) {
 TEST(RecordFrames, FilteredBadBoxesAreRefusedToo) {
   BoxSet bad = test_support::randomBoxes(1000, 10.0, 1.5, 81);
   test_support::addRandomFilters(bad, 82);
-  bad.lo[0][10] = std::nan("");
+  bad.lo(0, 10) = std::nan("");
   Broadphase engine;
   expectRefusedAsValidateWould(engine, bad, "filtered");
 }

@@ -68,14 +68,14 @@ TEST(EngineReuse, UnchangedFramesGiveTheSamePairs) {
 TEST(EngineReuse, OneBitOfOneBoundIsAChange) {
   const double kInf = std::numeric_limits<double>::infinity();
   expectChangeSeen("hi_x nudged down one ulp", [&](BoxSet& ioBoxes) {
-    ioBoxes.hi[0][500] = std::nextafter(ioBoxes.hi[0][500], -kInf);
+    ioBoxes.hi(0, 500) = std::nextafter(ioBoxes.hi(0, 500), -kInf);
   });
   expectChangeSeen("lo_x nudged up one ulp", [&](BoxSet& ioBoxes) {
-    ioBoxes.lo[0][501] = std::nextafter(ioBoxes.lo[0][501], kInf);
+    ioBoxes.lo(0, 501) = std::nextafter(ioBoxes.lo(0, 501), kInf);
   });
   expectChangeSeen("lo_z moved away", [](BoxSet& ioBoxes) {
-    ioBoxes.lo[2][4899] = 5.0;
-    ioBoxes.hi[2][4899] = 6.0;
+    ioBoxes.lo(2, 4899) = 5.0;
+    ioBoxes.hi(2, 4899) = 6.0;
   });
 }
 
@@ -84,8 +84,8 @@ TEST(EngineReuse, IdsOrderAndFiltersAreChanges) {
   expectChangeSeen("two boxes swapped in order", [](BoxSet& ioBoxes) {
     std::swap(ioBoxes.ids[10], ioBoxes.ids[4000]);
     for (int axis = 0; axis < 3; ++axis) {
-      std::swap(ioBoxes.lo[axis][10], ioBoxes.lo[axis][4000]);
-      std::swap(ioBoxes.hi[axis][10], ioBoxes.hi[axis][4000]);
+      std::swap(ioBoxes.lo(axis, 10), ioBoxes.lo(axis, 4000));
+      std::swap(ioBoxes.hi(axis, 10), ioBoxes.hi(axis, 4000));
     }
   });
   expectChangeSeen("ids swapped, bounds kept",

@@ -155,7 +155,7 @@ TEST(EngineScenes, PairingLayoutOfTheLastFrameOutgrownAndReused) {
       frames.push_back(test_support::randomBoxes(n, world, 1.5, static_cast<uint64_t>(world)));
     } else {
       frames.push_back(frames.back());
-      frames.back().lo[0][0] -= 0.25;
+      frames.back().lo(0, 0) -= 0.25;
     }
   }
   std::vector<PairList> oracles;

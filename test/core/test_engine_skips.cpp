@@ -66,7 +66,7 @@ TEST(SkinReuse, ExactOverMovingFramesAndReusesWhenBoxesStayInside) {
           const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
           boxes.add(900000 + frame, lo, hi);
         }
-        if (frame % 13 == 7) boxes.hi[0][3] += 10.0;  // one box jumps out of its skin
+        if (frame % 13 == 7) boxes.hi(0, 3) += 10.0;  // one box jumps out of its skin
         const PairList oracle = bruteForcePairs(boxes);
         for (std::size_t e = 0; e < engines.size(); ++e) {
           ASSERT_EQ(engines[e].update(boxes), oracle)

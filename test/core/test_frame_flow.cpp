@@ -43,8 +43,8 @@ PairList oracleWithScenery(const BoxSet& inMoving, const BoxSet& inScenery) {
     all.masks.assign(all.size(), kDefaultMask);
   }
   for (std::size_t i = 0; i < inScenery.size(); ++i) {
-    const double low[3] = {inScenery.lo[0][i], inScenery.lo[1][i], inScenery.lo[2][i]};
-    const double high[3] = {inScenery.hi[0][i], inScenery.hi[1][i], inScenery.hi[2][i]};
+    const double low[3] = {inScenery.lo(0, i), inScenery.lo(1, i), inScenery.lo(2, i)};
+    const double high[3] = {inScenery.hi(0, i), inScenery.hi(1, i), inScenery.hi(2, i)};
     if (filtered)
       all.add(inScenery.ids[i], low, high, inScenery.group(i), inScenery.mask(i));
     else
@@ -79,8 +79,8 @@ struct MixedScene {
       double move = velocity[i];
       if (move != 0.0 && inFrame % 6 == 5 && i % 97 == 0) move = 2.0;  // out of any skin
       for (int axis = 0; axis < 3; ++axis) {
-        boxes.lo[axis][i] += move;
-        boxes.hi[axis][i] += move;
+        boxes.lo(axis, i) += move;
+        boxes.hi(axis, i) += move;
       }
     }
   }
@@ -276,16 +276,16 @@ TEST(FrameFlow, LargeWorldCoordinatesKeepKeysApart) {
   BoxSet at_origin = makeSceneFrame(scene_config, 0);
   for (int axis = 0; axis < 3; ++axis)
     for (std::size_t i = 0; i < at_origin.size(); ++i) {
-      at_origin.lo[axis][i] *= 0.05;  // 5 cm boxes
-      at_origin.hi[axis][i] *= 0.05;
+      at_origin.lo(axis, i) *= 0.05;  // 5 cm boxes
+      at_origin.hi(axis, i) *= 0.05;
     }
   const double offsets[][3] = {{4.2e6, 1.1e6, 4.7e6}, {-1e9, 1e9, 3e8}, {5e5, 4.4e6, -20.0}};
   for (const auto& offset : offsets) {
     BoxSet far = at_origin;
     for (int axis = 0; axis < 3; ++axis)
       for (std::size_t i = 0; i < far.size(); ++i) {
-        far.lo[axis][i] += offset[axis];
-        far.hi[axis][i] += offset[axis];
+        far.lo(axis, i) += offset[axis];
+        far.hi(axis, i) += offset[axis];
       }
     for (int threads : {1, 2}) {
       BroadphaseConfig config;

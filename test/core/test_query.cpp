@@ -127,8 +127,8 @@ TEST(Query, RandomWorldsWithSceneryFiltersAndThreadCounts) {
       // One box at a time first (the frame is scanned), then the whole batch (indexed).
       for (std::size_t q = 0; q < 5; ++q) {
         BoxSet one;
-        const double lo[3] = {queries.lo[0][q], queries.lo[1][q], queries.lo[2][q]};
-        const double hi[3] = {queries.hi[0][q], queries.hi[1][q], queries.hi[2][q]};
+        const double lo[3] = {queries.lo(0, q), queries.lo(1, q), queries.lo(2, q)};
+        const double hi[3] = {queries.hi(0, q), queries.hi(1, q), queries.hi(2, q)};
         one.add(queries.ids[q], lo, hi, queries.group(q), queries.mask(q));
         expectQueriesMatch(engine, one, world, label + ", query " + std::to_string(q));
       }
@@ -238,14 +238,14 @@ TEST(Query, AfterEveryFrameOfMovingScenes) {
         // The world's extent, for query boxes that land in it.
         double low = kInf, high = -kInf;
         for (std::size_t i = 0; i < boxes.size(); ++i) {
-          low = std::min(low, boxes.lo[0][i]);
-          high = std::max(high, boxes.hi[0][i]);
+          low = std::min(low, boxes.lo(0, i));
+          high = std::max(high, boxes.hi(0, i));
         }
         BoxSet queries = queryBoxes(frame % 3 == 0 ? 60 : 3, 1.0, 31 * frame + 1);
         for (int axis = 0; axis < 3; ++axis) {
           for (std::size_t q = 0; q < queries.size(); ++q) {
-            queries.lo[axis][q] = low + (high - low) * queries.lo[axis][q];
-            queries.hi[axis][q] = low + (high - low) * queries.hi[axis][q];
+            queries.lo(axis, q) = low + (high - low) * queries.lo(axis, q);
+            queries.hi(axis, q) = low + (high - low) * queries.hi(axis, q);
           }
         }
         expectQueriesMatch(engine, queries, boxes,
@@ -275,10 +275,10 @@ TEST(Query, RecordsAreQueryIndexes) {
   const BoxSet queries = queryBoxes(25, 50.0, 6);
   std::vector<double> bounds;
   for (std::size_t q = 0; q < queries.size(); ++q) {
-    for (int axis = 0; axis < 3; ++axis) bounds.push_back(queries.lo[axis][q]);
-    for (int axis = 0; axis < 3; ++axis) bounds.push_back(queries.hi[axis][q]);
+    for (int axis = 0; axis < 3; ++axis) bounds.push_back(queries.lo(axis, q));
+    for (int axis = 0; axis < 3; ++axis) bounds.push_back(queries.hi(axis, q));
   }
-  InterleavedBoxes records;
+  BoxSpan records;
   records.count = queries.size();
   records.bounds = bounds.data();
   Broadphase engine;
@@ -294,8 +294,8 @@ TEST(Query, BadQueryBoxesAreRefusedWithValidatesWordsAndChangeNothing) {
   const QueryHitList before = engine.query(good);
   for (int problem = 0; problem < 3; ++problem) {
     BoxSet bad = good;
-    if (problem == 0) bad.hi[1][4] = std::nan("");
-    if (problem == 1) bad.lo[2][6] = bad.hi[2][6] + 1.0;
+    if (problem == 0) bad.hi(1, 4) = std::nan("");
+    if (problem == 1) bad.lo(2, 6) = bad.hi(2, 6) + 1.0;
     if (problem == 2) bad.ids[7] = bad.ids[2];
     const std::optional<ValidationError> expected = validate(bad);
     ASSERT_TRUE(expected.has_value());
@@ -328,7 +328,7 @@ TEST(Query, TheWorldIsTheLastFrameThatReturned) {
   // A frame of records refused half-way: the world is the scenery alone until the next frame.
   std::vector<double> bounds(6 * frame.size(), 1.0);
   bounds[6 * 200 + 0] = 2.0;  // min_x > max_x of box 200
-  InterleavedBoxes records;
+  BoxSpan records;
   records.count = frame.size();
   records.bounds = bounds.data();
   EXPECT_THROW(engine.update(records), InvalidBoxes);
@@ -372,8 +372,8 @@ TEST(Query, QueriesFromOtherThreadsBetweenFrames) {
       queries[k] = renumbered(randomBoxes(k == 3 ? 80 : 2 + k, 1.0, 0.3, 100 * frame + k), 0);
       for (int axis = 0; axis < 3; ++axis) {
         for (std::size_t q = 0; q < queries[k].size(); ++q) {
-          queries[k].lo[axis][q] = 2.0 * queries[k].lo[axis][q] - 1.0;
-          queries[k].hi[axis][q] = 2.0 * queries[k].hi[axis][q] - 1.0;
+          queries[k].lo(axis, q) = 2.0 * queries[k].lo(axis, q) - 1.0;
+          queries[k].hi(axis, q) = 2.0 * queries[k].hi(axis, q) - 1.0;
         }
       }
       expected[k] = bruteForceQuery(queries[k], boxes);

@@ -30,8 +30,8 @@ BoxSet movedWithin(const BoxSet& inBoxes, double inReach, TestRandom& ioRandom) 
   BoxSet moved = inBoxes;
   for (std::size_t i = 0; i < moved.size(); ++i) {
     for (int axis = 0; axis < 3; ++axis) {
-      double& low = moved.lo[axis][i];
-      double& high = moved.hi[axis][i];
+      double& low = moved.lo(axis, i);
+      double& high = moved.hi(axis, i);
       const double shift = ioRandom.between(-0.5, 0.5) * inReach;
       const double grow = ioRandom.between(0.0, 0.5) * inReach;
       low += shift - grow;
@@ -78,7 +78,7 @@ TEST(SkinList, BoxThatLeavesItsSkinForcesASweep) {
   keepCandidates(list, boxes, skin);
   for (const std::size_t leaver : {std::size_t{0}, std::size_t{417}, boxes.size() - 1}) {
     BoxSet frame = boxes;
-    frame.hi[1][leaver] += skin;  // past the margin of skin / 2
+    frame.hi(1, leaver) += skin;  // past the margin of skin / 2
     for (int threads = 1; threads <= 4; ++threads) {
       EXPECT_FALSE(list.covers(frame, threads));
       EXPECT_FALSE(list.gather(frame, threads)) << "box " << leaver;
@@ -131,8 +131,8 @@ TEST(SkinList, SignedZerosTouch) {
   expectExactForAllThreadCounts(list, boxes, "touching at signed zeros");
   BoxSet flipped = boxes;
   for (int axis = 0; axis < 3; ++axis) {
-    flipped.hi[axis][0] = -flipped.hi[axis][0];
-    flipped.lo[axis][1] = -flipped.lo[axis][1];
+    flipped.hi(axis, 0) = -flipped.hi(axis, 0);
+    flipped.lo(axis, 1) = -flipped.lo(axis, 1);
   }
   expectExactForAllThreadCounts(list, flipped, "zeros of the other sign");
   PairList pairs;
@@ -145,8 +145,8 @@ TEST(SkinList, SignedZerosTouch) {
 TEST(SkinList, InfiniteBoundsStayInsideAndPair) {
   BoxSet boxes = test_support::randomBoxes(400, 20.0, 2.0, 23);
   for (std::size_t i = 0; i < boxes.size(); i += 37) {
-    boxes.lo[i % 3][i] = -kInfinity;
-    if (i % 2 == 0) boxes.hi[(i + 1) % 3][i] = kInfinity;
+    boxes.lo(i % 3, i) = -kInfinity;
+    if (i % 2 == 0) boxes.hi((i + 1) % 3, i) = kInfinity;
   }
   SkinList list;
   keepCandidates(list, boxes, 0.5);

@@ -25,8 +25,8 @@ PairList growSweepAndKeep(SkinReuse& ioSkin, const BoxSet& inBoxes, FrameReport&
 BoxSet shiftedX(const BoxSet& inBoxes, double inShift) {
   BoxSet moved = inBoxes;
   for (std::size_t i = 0; i < moved.size(); ++i) {
-    moved.lo[0][i] += inShift;
-    moved.hi[0][i] += inShift;
+    moved.lo(0, i) += inShift;
+    moved.hi(0, i) += inShift;
   }
   return moved;
 }
@@ -49,7 +49,7 @@ TEST(SkinReuse, KeptCandidatesAnswerExactlyWhileEveryBoxStaysInsideItsSkin) {
   EXPECT_EQ(report.skin_candidates, skin.candidates());
   // One box beyond its skin: not covered, known before any plan is made.
   BoxSet outside = inside;
-  outside.hi[1][7] += 0.3;
+  outside.hi(1, 7) += 0.3;
   EXPECT_FALSE(skin.coversFrame(outside, 2, report));
   // Other ids are never covered.
   BoxSet renamed = inside;

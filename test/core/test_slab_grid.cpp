@@ -21,8 +21,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kZ = 2;  // the third axis of the default sweep axes (x, y)
 
 // inCount boxes of edge inEdge on every axis, spread evenly along z over [0, inSpan].
-BoxSet boxesAlongZ(std::size_t inCount, double inSpan, double inEdge) {
-  BoxSet boxes;
+BoxColumns boxesAlongZ(std::size_t inCount, double inSpan, double inEdge) {
+  BoxColumns boxes;
   for (std::size_t i = 0; i < inCount; ++i) {
     const double z = inSpan * static_cast<double>(i) / static_cast<double>(inCount - 1);
     const double low[3] = {0.0, 0.0, z}, high[3] = {inEdge, inEdge, z + inEdge};
@@ -63,10 +63,10 @@ TEST(SlabGrid, TheDefaultIsThePapersSingleList) {
 }
 
 TEST(SlabGrid, FewBoxesOrOneRequestedSlabKeepOneList) {
-  const BoxSet few = boxesAlongZ(tuning::kMinBoxesForSlabs - 1, 1000.0, 1.0);
+  const BoxColumns few = boxesAlongZ(tuning::kMinBoxesForSlabs - 1, 1000.0, 1.0);
   FrameSpread few_spread(few);
   EXPECT_EQ(chooseSlabGrid(few_spread, kZ, 0, 1).count, 1);
-  const BoxSet many = boxesAlongZ(tuning::kMinBoxesForSlabs, 1000.0, 1.0);
+  const BoxColumns many = boxesAlongZ(tuning::kMinBoxesForSlabs, 1000.0, 1.0);
   FrameSpread many_spread(many);
   EXPECT_GT(chooseSlabGrid(many_spread, kZ, 0, 1).count, 1);
   EXPECT_EQ(chooseSlabGrid(many_spread, kZ, 1, 1).count, 1);
@@ -75,7 +75,7 @@ TEST(SlabGrid, FewBoxesOrOneRequestedSlabKeepOneList) {
 TEST(SlabGrid, AutomaticSlabsAreAboutTwoExtentsWideAndSpanTheBounds) {
   // Span 1001 (lowest 0, highest 1000 + 1), mean extent 1: ceil(1001 / 2) slabs, capped at 64.
   for (double span : {60.0, 1000.0}) {
-    const BoxSet boxes = boxesAlongZ(4096, span, 1.0);
+    const BoxColumns boxes = boxesAlongZ(4096, span, 1.0);
     FrameSpread spread(boxes);
     const SlabGrid grid = chooseSlabGrid(spread, kZ, 0, 2);
     const int expected = std::min(
@@ -89,25 +89,25 @@ TEST(SlabGrid, AutomaticSlabsAreAboutTwoExtentsWideAndSpanTheBounds) {
 }
 
 TEST(SlabGrid, ARequestedCountIsHonouredUpToTheMaximum) {
-  const BoxSet boxes = randomBoxes(3000, 100.0, 2.0, 8);
+  const BoxColumns boxes = columnsOf(randomBoxes(3000, 100.0, 2.0, 8));
   FrameSpread spread(boxes);
   EXPECT_EQ(chooseSlabGrid(spread, kZ, 7, 1).count, 7);
   EXPECT_EQ(chooseSlabGrid(spread, kZ, kMaxSlabs, 1).count, kMaxSlabs);
   // A small frame too: a requested count is not subject to the automatic minimum.
-  const BoxSet few = randomBoxes(10, 100.0, 2.0, 8);
+  const BoxColumns few = columnsOf(randomBoxes(10, 100.0, 2.0, 8));
   FrameSpread few_spread(few);
   EXPECT_EQ(chooseSlabGrid(few_spread, kZ, 3, 1).count, 3);
 }
 
 TEST(SlabGrid, NoFiniteSpanMeansOneSlab) {
   // Every box the same point on z: a span of 0.
-  BoxSet flat = boxesAlongZ(4096, 100.0, 1.0);
+  BoxColumns flat = boxesAlongZ(4096, 100.0, 1.0);
   for (std::size_t i = 0; i < flat.size(); ++i) flat.lo[kZ][i] = flat.hi[kZ][i] = 3.0;
   FrameSpread flat_spread(flat);
   EXPECT_EQ(chooseSlabGrid(flat_spread, kZ, 0, 1).count, 1);
   EXPECT_EQ(chooseSlabGrid(flat_spread, kZ, 8, 1).count, 1);
   // Every box unbounded on z: no finite bound at all.
-  BoxSet unbounded = boxesAlongZ(4096, 100.0, 1.0);
+  BoxColumns unbounded = boxesAlongZ(4096, 100.0, 1.0);
   for (std::size_t i = 0; i < unbounded.size(); ++i) {
     unbounded.lo[kZ][i] = -kInfinity;
     unbounded.hi[kZ][i] = kInfinity;
@@ -117,7 +117,7 @@ TEST(SlabGrid, NoFiniteSpanMeansOneSlab) {
 }
 
 TEST(SlabGrid, InfiniteBoxesFallInTheEndSlabs) {
-  BoxSet boxes = boxesAlongZ(4096, 1000.0, 1.0);
+  BoxColumns boxes = boxesAlongZ(4096, 1000.0, 1.0);
   boxes.lo[kZ][0] = -kInfinity;
   boxes.hi[kZ][4095] = kInfinity;
   FrameSpread spread(boxes);

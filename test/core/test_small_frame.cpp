@@ -19,12 +19,12 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-void addBox(BoxSet& ioBoxes, const double (&inLow)[3], const double (&inHigh)[3]) {
+void addBox(BoxColumns& ioBoxes, const double (&inLow)[3], const double (&inHigh)[3]) {
   ioBoxes.add(static_cast<uint32_t>(ioBoxes.size()), inLow, inHigh);
 }
 
 // Both sweeps, twice each on one workspace (the second run reuses its buffers), on a grid.
-void expectGridMatches(const BoxSet& inBoxes, const std::string& inLabel) {
+void expectGridMatches(const BoxColumns& inBoxes, const std::string& inLabel) {
   const PairList oracle = bruteForcePairs(inBoxes);
   SmallFrameWorkspace work;
   PairList pairs;
@@ -41,7 +41,7 @@ TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
   const auto per_cell = static_cast<std::size_t>(tuning::kSmallFrameBoxesPerCell);
   for (std::size_t n : {4 * per_cell + 100, 9 * per_cell + 100, 40 * per_cell}) {
     for (double edge : {0.5, 2.0, 6.0}) {
-      const BoxSet boxes = test_support::randomBoxes(n, 100.0, edge, n + 3);
+      const BoxColumns boxes = columnsOf(test_support::randomBoxes(n, 100.0, edge, n + 3));
       expectGridMatches(boxes, std::to_string(n) + " boxes, edge " + std::to_string(edge));
     }
   }
@@ -50,7 +50,7 @@ TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
 // Boxes reaching across many cells, or infinitely far on a grid axis (first to last cell), and
 // boxes beyond the finite span: each pair once, however many cells the two boxes share.
 TEST(SmallFrameGrid, WideAndInfiniteBoxesReachEveryCell) {
-  BoxSet boxes = test_support::randomBoxes(4000, 100.0, 1.0, 41);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(4000, 100.0, 1.0, 41));
   for (int axis = 0; axis < 3; ++axis) {
     for (double at : {10.0, 50.0, 90.0}) {
       double low[3] = {at, at, at}, high[3] = {at + 1, at + 1, at + 1};
@@ -73,7 +73,7 @@ TEST(SmallFrameGrid, WideAndInfiniteBoxesReachEveryCell) {
 // (the four-lane conversion steps +inf down to the largest float for a low): boxes touching
 // out there, and boxes crossing the largest float, still pair exactly.
 TEST(SmallFrameGrid, CoordinatesBeyondTheFloatRange) {
-  BoxSet boxes = test_support::randomBoxes(3000, 100.0, 1.0, 45);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(3000, 100.0, 1.0, 45));
   const double max_float = 3.4028234663852886e38;
   for (double at : {1e39, -1e39, max_float, -max_float}) {
     addBox(boxes, {at, 10, 10}, {at, 11, 11});
@@ -92,7 +92,7 @@ TEST(SmallFrameGrid, CoordinatesBeyondTheFloatRange) {
 // signed zeros, denormals, values beyond the float range and infinities.
 TEST(SmallFrameGrid, BoundsAreTheKeyOriginsOutwardKeys) {
   test_support::TestRandom random(91);
-  BoxSet boxes;
+  BoxColumns boxes;
   const double awkward[] = {0.0,     -0.0, 1e-45,  -1e-45,  1e-300, 0.1,        -0.1,
                             1.0 / 3, 3e38, 3.5e38, -3.5e38, 1e300,  5.4e6 + 0.1};
   for (uint32_t i = 0; i < 1001; ++i) {
@@ -133,7 +133,7 @@ TEST(SmallFrameGrid, BoundsAreTheKeyOriginsOutwardKeys) {
 // around 0 (where -0.0 has no key of its own): the floats cannot tell these pairs, so each
 // hit must go to the float64 test, and every miss stays a miss.
 TEST(SmallFrameGrid, NearMissesBelowTheFloatResolution) {
-  BoxSet boxes = test_support::randomBoxes(3000, 100.0, 1.0, 95);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(3000, 100.0, 1.0, 95));
   const double gaps[] = {-3e-6, -1e-7, -1e-12, 0.0, 1e-12, 1e-9, 1e-7, 3e-6, 8e-6};
   double at = 20.0;
   for (int axis = 0; axis < 3; ++axis) {
@@ -162,7 +162,7 @@ TEST(SmallFrameGrid, NearMissesBelowTheFloatResolution) {
 // zero extent; closed intervals make every touch a pair.
 TEST(SmallFrameGrid, TouchingFacesOnCellEdges) {
   for (uint64_t seed : {1u, 2u}) {
-    expectGridMatches(test_support::latticeBoxes(6000, 64, 2, seed), "lattice");
+    expectGridMatches(columnsOf(test_support::latticeBoxes(6000, 64, 2, seed)), "lattice");
   }
 }
 
@@ -171,7 +171,7 @@ TEST(SmallFrameGrid, TouchingFacesOnCellEdges) {
 // at 0.0 on each grid axis, right on a cell edge, and must pair across it.
 TEST(SmallFrameGrid, SignedZerosOnACellEdge) {
   const auto count = static_cast<std::size_t>(16 * tuning::kSmallFrameBoxesPerCell + 100);
-  BoxSet boxes = test_support::randomBoxes(count, 120.0, 1.0, 51);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(count, 120.0, 1.0, 51));
   for (int axis = 0; axis < 3; ++axis) {
     for (std::size_t i = 0; i < boxes.size(); ++i) {
       boxes.lo[axis][i] -= 60.0;
@@ -204,7 +204,7 @@ TEST(SmallFrameGrid, SignedZerosOnACellEdge) {
 // Identical boxes (equal keys on every axis) in clumps across the scene: every pair of a
 // clump, including clumps that straddle cell edges.
 TEST(SmallFrameGrid, IdenticalBoxesInClumps) {
-  BoxSet boxes = test_support::randomBoxes(3000, 100.0, 1.0, 61);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(3000, 100.0, 1.0, 61));
   for (double at : {0.0, 25.0, 33.3, 50.0, 99.0}) {
     for (int copy = 0; copy < 12; ++copy) addBox(boxes, {at, at, at}, {at + 2, at + 2, at + 2});
   }
@@ -213,8 +213,9 @@ TEST(SmallFrameGrid, IdenticalBoxesInClumps) {
 
 // Group and mask filters decide after the grid's float test, in whichever cell owns the pair.
 TEST(SmallFrameGrid, Filters) {
-  BoxSet boxes = test_support::randomBoxes(5000, 80.0, 4.0, 71);
-  test_support::addRandomFilters(boxes, 72);
+  BoxSet filtered = test_support::randomBoxes(5000, 80.0, 4.0, 71);
+  test_support::addRandomFilters(filtered, 72);
+  BoxColumns boxes = columnsOf(filtered);
   for (std::size_t i = 0; i < boxes.size(); i += 13) boxes.groups[i] = 0;
   expectGridMatches(boxes, "filters");
 }
@@ -222,8 +223,8 @@ TEST(SmallFrameGrid, Filters) {
 // Cells of every small count (0 to a few blocks), so that a cell's NaN padding ends each
 // block: a clustered scene with empty, nearly empty and full cells.
 TEST(SmallFrameGrid, CellsOfEveryOccupancy) {
-  BoxSet boxes = test_support::randomBoxes(3000, 20.0, 0.5, 81);
-  const BoxSet sparse = test_support::randomBoxes(300, 100.0, 0.5, 82);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(3000, 20.0, 0.5, 81));
+  const BoxColumns sparse = columnsOf(test_support::randomBoxes(300, 100.0, 0.5, 82));
   for (std::size_t i = 0; i < sparse.size(); ++i) {
     const double low[3] = {sparse.lo[0][i], sparse.lo[1][i], sparse.lo[2][i]};
     const double high[3] = {sparse.hi[0][i], sparse.hi[1][i], sparse.hi[2][i]};

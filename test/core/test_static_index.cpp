@@ -33,8 +33,8 @@ PairList bruteForceCross(const BoxSet& inBoxes, const std::vector<uint32_t>& inI
         continue;
       bool overlap = true;
       for (int axis = 0; axis < 3; ++axis)
-        overlap = overlap && !(inQueries.lo[axis][q] > inBoxes.hi[axis][s] ||
-                               inBoxes.lo[axis][s] > inQueries.hi[axis][q]);
+        overlap = overlap && !(inQueries.lo(axis, q) > inBoxes.hi(axis, s) ||
+                               inBoxes.lo(axis, s) > inQueries.hi(axis, q));
       const bool allowed = (inQueries.group(q) & inBoxes.mask(s)) != 0 &&
                            (inBoxes.group(s) & inQueries.mask(q)) != 0;
       if (overlap && allowed) pairs.push_back(makeIdPair(inQueries.ids[q], inBoxes.ids[s]));
@@ -117,8 +117,8 @@ BoxSet adversarialBoxes(std::size_t inCount, double inWorld, double inOddShare, 
     if (i > 0 && i % 7 == 0) {
       const std::size_t copy = random.below(i);
       for (int axis = 0; axis < 3; ++axis) {
-        lo[axis] = boxes.lo[axis][copy];
-        hi[axis] = boxes.hi[axis][copy];
+        lo[axis] = boxes.lo(axis, copy);
+        hi[axis] = boxes.hi(axis, copy);
       }
     } else {
       for (int axis = 0; axis < 3; ++axis) {

@@ -58,8 +58,8 @@ BoxSet shuffledSubset(const BoxSet& inBoxes, double inKeep, bool inSparseIds, ui
       do id = static_cast<uint32_t>(random.bits());
       while (!used.insert(id).second);
     }
-    const double lo[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
-    const double hi[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    const double lo[3] = {inBoxes.lo(0, i), inBoxes.lo(1, i), inBoxes.lo(2, i)};
+    const double hi[3] = {inBoxes.hi(0, i), inBoxes.hi(1, i), inBoxes.hi(2, i)};
     if (inBoxes.hasFilters())
       subset.add(id, lo, hi, inBoxes.group(i), inBoxes.mask(i));
     else

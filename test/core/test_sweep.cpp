@@ -12,6 +12,7 @@
 #include "core/axis_spread.h"
 #include "core/key_origin.h"
 #include "core/radix_sort.h"
+#include "core/box_columns.h"
 #include "core/small_frame.h"
 #include "core/sort_keys.h"
 #include "core/sweep.h"
@@ -139,7 +140,8 @@ TEST(Candidates, ZeroObjectsWithAFreshWorkspace) {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-void addBox(BoxSet& ioBoxes, double inX0, double inY0, double inZ0, double inX1, double inY1,
+template <typename Boxes>
+void addBox(Boxes& ioBoxes, double inX0, double inY0, double inZ0, double inX1, double inY1,
             double inZ1) {
   const double low[3] = {inX0, inY0, inZ0};
   const double high[3] = {inX1, inY1, inZ1};
@@ -148,7 +150,7 @@ void addBox(BoxSet& ioBoxes, double inX0, double inY0, double inZ0, double inX1,
 
 // Runs the dispatched sweep (AVX2 where the CPU has it) and the portable one, twice each on one
 // workspace (the second run reuses grown buffers), against the oracle.
-void expectSmallFrameMatches(const BoxSet& inBoxes, const std::string& inLabel) {
+void expectSmallFrameMatches(const BoxColumns& inBoxes, const std::string& inLabel) {
   const PairList oracle = bruteForcePairs(inBoxes);
   SmallFrameWorkspace work;
   PairList pairs;
@@ -158,6 +160,10 @@ void expectSmallFrameMatches(const BoxSet& inBoxes, const std::string& inLabel) 
     pairSmallFramePortable(inBoxes, work, pairs);
     EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << " (portable)";
   }
+}
+
+void expectSmallFrameMatches(const BoxSet& inBoxes, const std::string& inLabel) {
+  expectSmallFrameMatches(columnsOf(inBoxes), inLabel);
 }
 
 TEST(SmallFrame, RandomBoxesOfEverySize) {
@@ -178,15 +184,15 @@ TEST(SmallFrame, SmallBoxesFarFromTheOriginKeepDistinctKeys) {
     BoxSet shifted = site;
     for (int axis = 0; axis < 3; ++axis) {
       for (std::size_t i = 0; i < site.size(); ++i) {
-        shifted.lo[axis][i] += offset;
-        shifted.hi[axis][i] += offset;
+        shifted.lo(axis, i) += offset;
+        shifted.hi(axis, i) += offset;
       }
     }
     const std::string label = "offset " + std::to_string(offset);
     expectSmallFrameMatches(shifted, label);
     SmallFrameWorkspace work;
     PairList pairs;
-    pairSmallFrame(shifted, work, pairs);
+    pairSmallFrame(columnsOf(shifted), work, pairs);
     std::vector<float> lows;  // every cell's sweep-axis lows, without the NaN padding
     for (float low : work.lo[0])
       if (!std::isnan(low)) lows.push_back(low);
@@ -252,12 +258,12 @@ TEST(SmallFrame, GapsSmallerThanAFloat32Step) {
 }
 
 TEST(SmallFrame, SweepsTheAxisWhereBoxesAreNarrowest) {
-  BoxSet boxes;
+  BoxColumns boxes;
   for (int i = 0; i < 200; ++i) addBox(boxes, 0, i, 0, 100, i + 0.5, 100);  // slices along y
   FrameSpread spread(boxes);
   EXPECT_EQ(chooseSmallFrameAxis(spread), 1);
   expectSmallFrameMatches(boxes, "slices along y");
-  BoxSet flat;
+  BoxColumns flat;
   for (int i = 0; i < 200; ++i) addBox(flat, i, 7, i % 5, i + 3, 7, i % 5 + 1);  // y span 0
   FrameSpread flat_spread(flat);
   EXPECT_NE(chooseSmallFrameAxis(flat_spread), 1);
@@ -268,7 +274,7 @@ TEST(SmallFrame, SweepsTheAxisWhereBoxesAreNarrowest) {
 // cost model): each axis is measured when first asked for and kept for the frame.
 TEST(FrameSpread, MeasuresEachAxisOnceWhenFirstAsked) {
   const double inf = std::numeric_limits<double>::infinity();
-  BoxSet boxes;
+  BoxColumns boxes;
   addBox(boxes, 0, 2, 0, 1, 5, 1);
   addBox(boxes, 3, -inf, 0, 4, 7, 1);  // infinite low end: not in the span or the extents
   addBox(boxes, 1, 4, 0, 2, inf, 1);
@@ -286,7 +292,7 @@ TEST(FrameSpread, MeasuresEachAxisOnceWhenFirstAsked) {
 }
 
 TEST(KeyOrigin, CentreOfTheFrameOnlyFarFromZero) {
-  BoxSet boxes;
+  BoxColumns boxes;
   addBox(boxes, 4.0e6, 995, -1, 4.0e6 + 2, 997, 1);
   addBox(boxes, 4.0e6 + 8, 1003, -3, 4.0e6 + 10, 1005, 3);
   FrameSpread spread(boxes);
@@ -294,7 +300,7 @@ TEST(KeyOrigin, CentreOfTheFrameOnlyFarFromZero) {
   EXPECT_EQ(origin.origin[0], 4.0e6 + 5) << "far from 0 against a span of 10: the centre";
   EXPECT_EQ(origin.origin[1], 1000.0) << "the centre lies 200 half-spans from 0";
   EXPECT_EQ(origin.origin[2], 0.0) << "around 0: the coordinates themselves";
-  const BoxSet no_boxes;
+  const BoxColumns no_boxes;
   FrameSpread empty_spread(no_boxes);
   EXPECT_EQ(keyOriginOf(empty_spread, 1).origin[0], 0.0) << "no finite bound: 0";
 }

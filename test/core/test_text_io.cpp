@@ -47,13 +47,13 @@ TEST(TextIo, ReadsOneBoxPerLine) {
   ASSERT_EQ(boxes.size(), 2u);
   EXPECT_EQ(boxes.ids[0], 7u);
   EXPECT_EQ(boxes.ids[1], 8u);
-  EXPECT_EQ(boxes.lo[0][0], 1.0);
-  EXPECT_EQ(boxes.lo[1][0], 2.0);
-  EXPECT_EQ(boxes.lo[2][0], 3.0);
-  EXPECT_EQ(boxes.hi[0][0], 4.0);
-  EXPECT_EQ(boxes.hi[1][0], 5.0);
-  EXPECT_EQ(boxes.hi[2][0], 6.0);
-  EXPECT_EQ(boxes.lo[2][1], -3.0);
+  EXPECT_EQ(boxes.lo(0, 0), 1.0);
+  EXPECT_EQ(boxes.lo(1, 0), 2.0);
+  EXPECT_EQ(boxes.lo(2, 0), 3.0);
+  EXPECT_EQ(boxes.hi(0, 0), 4.0);
+  EXPECT_EQ(boxes.hi(1, 0), 5.0);
+  EXPECT_EQ(boxes.hi(2, 0), 6.0);
+  EXPECT_EQ(boxes.lo(2, 1), -3.0);
   EXPECT_TRUE(boxes.groups.empty());
   EXPECT_TRUE(boxes.masks.empty());
 }
@@ -67,7 +67,7 @@ TEST(TextIo, EverySeparatorAndMixture) {
     const BoxSet boxes = parseOk(std::string(line) + "\n");
     ASSERT_EQ(boxes.size(), 1u) << line;
     EXPECT_EQ(boxes.ids[0], 1u) << line;
-    EXPECT_EQ(boxes.hi[2][0], 1.0) << line;
+    EXPECT_EQ(boxes.hi(2, 0), 1.0) << line;
   }
 }
 
@@ -82,7 +82,7 @@ TEST(TextIo, CommentsAndBlankLinesAreIgnored) {
       "  # indented comment\n");
   ASSERT_EQ(ok.size(), 2u);
   EXPECT_EQ(ok.ids[1], 2u);
-  EXPECT_EQ(ok.hi[2][1], 1.0);
+  EXPECT_EQ(ok.hi(2, 1), 1.0);
 }
 
 TEST(TextIo, EmptyInputIsNoBoxes) {
@@ -105,32 +105,32 @@ TEST(TextIo, NumbersAsStrtodReadsThem) {
       "6 0.1 0.2 0.3 0.30000000000000004 1.7976931348623157e308 1e308\n"
       "0004294967295 0 0 0 0 0 0\n");
   ASSERT_EQ(boxes.size(), 7u);
-  EXPECT_EQ(boxes.lo[0][0], -kInf);
-  EXPECT_EQ(boxes.lo[1][0], -kInf);
-  EXPECT_EQ(boxes.lo[2][0], -kInf);
-  EXPECT_EQ(boxes.hi[0][0], kInf);
-  EXPECT_EQ(boxes.hi[1][0], kInf);
-  EXPECT_EQ(boxes.hi[2][0], kInf);
-  EXPECT_TRUE(sameBits(boxes.lo[0][1], -0.0));
-  EXPECT_TRUE(sameBits(boxes.lo[1][1], -0.0));
-  EXPECT_TRUE(sameBits(boxes.lo[2][1], 0.0));
-  EXPECT_TRUE(sameBits(boxes.hi[2][1], -0.0));
-  EXPECT_EQ(boxes.lo[0][2], 1e-300);
-  EXPECT_EQ(boxes.lo[1][2], -1e300);
-  EXPECT_EQ(boxes.lo[2][2], 0.5);
-  EXPECT_EQ(boxes.hi[2][2], 5.0);
-  EXPECT_EQ(boxes.lo[0][3], 3.0);
-  EXPECT_EQ(boxes.lo[1][3], -16.0);
-  EXPECT_EQ(boxes.hi[0][3], 4.0);
-  EXPECT_EQ(boxes.hi[1][3], 10.0);
-  EXPECT_EQ(boxes.hi[2][3], std::numeric_limits<double>::max());
-  EXPECT_EQ(boxes.lo[0][4], std::numeric_limits<double>::denorm_min());
-  EXPECT_EQ(boxes.lo[1][4], -std::numeric_limits<double>::denorm_min());
-  EXPECT_EQ(boxes.lo[2][4], 1e-323);
-  EXPECT_EQ(boxes.hi[2][4], std::numeric_limits<double>::min());
-  EXPECT_EQ(boxes.hi[1][4], 1e-320);
-  EXPECT_EQ(boxes.lo[0][5], 0.1);
-  EXPECT_EQ(boxes.hi[0][5], 0.30000000000000004);
+  EXPECT_EQ(boxes.lo(0, 0), -kInf);
+  EXPECT_EQ(boxes.lo(1, 0), -kInf);
+  EXPECT_EQ(boxes.lo(2, 0), -kInf);
+  EXPECT_EQ(boxes.hi(0, 0), kInf);
+  EXPECT_EQ(boxes.hi(1, 0), kInf);
+  EXPECT_EQ(boxes.hi(2, 0), kInf);
+  EXPECT_TRUE(sameBits(boxes.lo(0, 1), -0.0));
+  EXPECT_TRUE(sameBits(boxes.lo(1, 1), -0.0));
+  EXPECT_TRUE(sameBits(boxes.lo(2, 1), 0.0));
+  EXPECT_TRUE(sameBits(boxes.hi(2, 1), -0.0));
+  EXPECT_EQ(boxes.lo(0, 2), 1e-300);
+  EXPECT_EQ(boxes.lo(1, 2), -1e300);
+  EXPECT_EQ(boxes.lo(2, 2), 0.5);
+  EXPECT_EQ(boxes.hi(2, 2), 5.0);
+  EXPECT_EQ(boxes.lo(0, 3), 3.0);
+  EXPECT_EQ(boxes.lo(1, 3), -16.0);
+  EXPECT_EQ(boxes.hi(0, 3), 4.0);
+  EXPECT_EQ(boxes.hi(1, 3), 10.0);
+  EXPECT_EQ(boxes.hi(2, 3), std::numeric_limits<double>::max());
+  EXPECT_EQ(boxes.lo(0, 4), std::numeric_limits<double>::denorm_min());
+  EXPECT_EQ(boxes.lo(1, 4), -std::numeric_limits<double>::denorm_min());
+  EXPECT_EQ(boxes.lo(2, 4), 1e-323);
+  EXPECT_EQ(boxes.hi(2, 4), std::numeric_limits<double>::min());
+  EXPECT_EQ(boxes.hi(1, 4), 1e-320);
+  EXPECT_EQ(boxes.lo(0, 5), 0.1);
+  EXPECT_EQ(boxes.hi(0, 5), 0.30000000000000004);
   EXPECT_EQ(boxes.ids[6], 4294967295u);
 }
 
@@ -165,16 +165,16 @@ TEST(TextIo, EveryNumberReadsBitForBitAsStrtodReadsIt) {
   ASSERT_EQ(boxes.size(), numbers.size());
   for (std::size_t k = 0; k < numbers.size(); ++k) {
     const double expected = std::strtod(numbers[k].c_str(), nullptr);
-    ASSERT_TRUE(sameBits(boxes.lo[0][k], expected)) << numbers[k];
+    ASSERT_TRUE(sameBits(boxes.lo(0, k), expected)) << numbers[k];
   }
 }
 
 TEST(TextIo, OverflowReadsAsInfinityLikeStrtod) {
   const BoxSet boxes = parseOk("1 -1e400 0 0 1e400 1e-400 0\n");
   ASSERT_EQ(boxes.size(), 1u);
-  EXPECT_EQ(boxes.lo[0][0], -kInf);
-  EXPECT_EQ(boxes.hi[0][0], kInf);
-  EXPECT_EQ(boxes.hi[1][0], 0.0);
+  EXPECT_EQ(boxes.lo(0, 0), -kInf);
+  EXPECT_EQ(boxes.hi(0, 0), kInf);
+  EXPECT_EQ(boxes.hi(1, 0), 0.0);
 }
 
 TEST(TextIo, InfiniteSlabsAndZeroExtentBoxesAreValid) {
@@ -351,8 +351,8 @@ TEST(TextIo, WriteReadRoundTripIsBitExact) {
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     ASSERT_EQ(back.ids[i], boxes.ids[i]);
     for (int axis = 0; axis < 3; ++axis) {
-      ASSERT_TRUE(sameBits(back.lo[axis][i], boxes.lo[axis][i])) << i;
-      ASSERT_TRUE(sameBits(back.hi[axis][i], boxes.hi[axis][i])) << i;
+      ASSERT_TRUE(sameBits(back.lo(axis, i), boxes.lo(axis, i))) << i;
+      ASSERT_TRUE(sameBits(back.hi(axis, i), boxes.hi(axis, i))) << i;
     }
   }
 }
