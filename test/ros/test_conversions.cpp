@@ -40,16 +40,19 @@ TEST(Conversions, RoundTripKeepsEverything) {
   EXPECT_EQ(back.bounds, original.bounds);
 }
 
-TEST(Conversions, MissingMasksOrGroupsGetDefaults) {
+TEST(Conversions, MissingMasksOrGroupsAreTheDefaults) {
   BoxArray msg = twoBoxes();
   msg.groups = {2u, 4u};
   BoxSet boxes;
   ASSERT_FALSE(boxArrayToBoxSet(msg, boxes));
-  EXPECT_EQ(boxes.masks, std::vector<uint32_t>(2, kDefaultMask));
+  EXPECT_EQ(boxes.groups, (std::vector<uint32_t>{2u, 4u}));
+  EXPECT_EQ(boxes.mask(0), kDefaultMask);
+  EXPECT_EQ(boxes.mask(1), kDefaultMask);
   msg = twoBoxes();
   msg.masks = {2u, 4u};
   ASSERT_FALSE(boxArrayToBoxSet(msg, boxes));
-  EXPECT_EQ(boxes.groups, std::vector<uint32_t>(2, kDefaultGroup));
+  EXPECT_EQ(boxes.group(0), kDefaultGroup);
+  EXPECT_EQ(boxes.group(1), kDefaultGroup);
 }
 
 TEST(Conversions, ShapeErrorsNameTheArray) {
