@@ -107,9 +107,9 @@ void moveBodies(Bodies& ioBodies, double inWorld) {
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < 3; ++a) {
       double& v = ioBodies.velocity[a][i];
-      if ((ioBodies.boxes.lo[a][i] + v < 0.0) || (ioBodies.boxes.hi[a][i] + v > inWorld)) v = -v;
-      ioBodies.boxes.lo[a][i] += v;
-      ioBodies.boxes.hi[a][i] += v;
+      if ((ioBodies.boxes.lo(a, i) + v < 0.0) || (ioBodies.boxes.hi(a, i) + v > inWorld)) v = -v;
+      ioBodies.boxes.lo(a, i) += v;
+      ioBodies.boxes.hi(a, i) += v;
     }
   }
 }
@@ -122,8 +122,8 @@ void appendBody(Bodies& ioBodies, const BodyRecord& inBody) {
 BodyRecord recordOf(const Bodies& inBodies, std::size_t i) {
   BodyRecord body{inBodies.boxes.ids[i], 0, {}, {}, {}};
   for (int a = 0; a < 3; ++a) {
-    body.lo[a] = inBodies.boxes.lo[a][i];
-    body.hi[a] = inBodies.boxes.hi[a][i];
+    body.lo[a] = inBodies.boxes.lo(a, i);
+    body.hi[a] = inBodies.boxes.hi(a, i);
     body.velocity[a] = inBodies.velocity[a][i];
   }
   return body;
@@ -137,7 +137,7 @@ void migrate(Bodies& ioBodies, const DistributedBroadphase& inBroadphase, MPI_Co
   std::vector<char> leaves(ioBodies.size(), 0);
   std::size_t leavingCount = 0;
   for (std::size_t i = 0; i < ioBodies.size(); ++i) {
-    const int home = inBroadphase.homeRank(ioBodies.boxes.lo[0][i], ioBodies.boxes.hi[0][i]);
+    const int home = inBroadphase.homeRank(ioBodies.boxes.lo(0, i), ioBodies.boxes.hi(0, i));
     if (home == rank) continue;
     leaving[home].push_back(recordOf(ioBodies, i));
     leaves[i] = 1;

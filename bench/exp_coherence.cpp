@@ -120,9 +120,9 @@ void measureMotion(const CoherenceCase& inCase, double& outMotion, double& outMe
   double edges = 0.0;
   for (int axis = 0; axis < 3; ++axis) {
     for (std::size_t i = 0; i < first.size(); ++i) {
-      outMotion = std::max({outMotion, std::abs(second.lo[axis][i] - first.lo[axis][i]),
-                            std::abs(second.hi[axis][i] - first.hi[axis][i])});
-      edges += first.hi[axis][i] - first.lo[axis][i];
+      outMotion = std::max({outMotion, std::abs(second.lo(axis, i) - first.lo(axis, i)),
+                            std::abs(second.hi(axis, i) - first.hi(axis, i))});
+      edges += first.hi(axis, i) - first.lo(axis, i);
     }
   }
   outMeanEdge = edges / (3.0 * std::max<std::size_t>(1, first.size()));

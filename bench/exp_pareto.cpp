@@ -101,23 +101,21 @@ class QuantisedContender : public EngineContender {
     quantised_.ids = inBoxes.ids;
     quantised_.groups = inBoxes.groups;
     quantised_.masks = inBoxes.masks;
+    quantised_.bounds.resize(sap_broadphase::kBoundsPerBox * n);
     constexpr double kOffset = 8388608.0;  // 2^23
     for (int axis = 0; axis < 3; ++axis) {
-      const double origin =
-          n ? *std::min_element(inBoxes.lo[axis].begin(), inBoxes.lo[axis].end()) : 0.0;
-      const double top =
-          n ? *std::max_element(inBoxes.hi[axis].begin(), inBoxes.hi[axis].end()) : 0.0;
+      double origin = n ? inBoxes.lo(axis, 0) : 0.0;
+      double top = n ? inBoxes.hi(axis, 0) : 0.0;
+      for (std::size_t i = 1; i < n; ++i) {
+        origin = std::min(origin, inBoxes.lo(axis, i));
+        top = std::max(top, inBoxes.hi(axis, i));
+      }
       const double scale = top > origin ? 65535.0 / (top - origin) : 0.0;
-      quantised_.lo[axis].resize(n);
-      quantised_.hi[axis].resize(n);
-      const double* lo = inBoxes.lo[axis].data();
-      const double* hi = inBoxes.hi[axis].data();
-      double* outLo = quantised_.lo[axis].data();
-      double* outHi = quantised_.hi[axis].data();
 #pragma omp parallel for num_threads(threads_) schedule(static) if (n >= kParallelMinBoxes)
       for (std::size_t i = 0; i < n; ++i) {
-        outLo[i] = kOffset + std::floor((lo[i] - origin) * scale);
-        outHi[i] = kOffset + std::min(65535.0, std::ceil((hi[i] - origin) * scale));
+        quantised_.lo(axis, i) = kOffset + std::floor((inBoxes.lo(axis, i) - origin) * scale);
+        quantised_.hi(axis, i) =
+            kOffset + std::min(65535.0, std::ceil((inBoxes.hi(axis, i) - origin) * scale));
       }
     }
   }
@@ -149,19 +147,19 @@ class FatMarginContender : public EngineContender {
       fat_ = inBoxes;
       for (int axis = 0; axis < 3; ++axis)
         for (std::size_t i = 0; i < n; ++i)
-          fat_.lo[axis][i] -= margin_, fat_.hi[axis][i] += margin_;
+          fat_.lo(axis, i) -= margin_, fat_.hi(axis, i) += margin_;
       return;
     }
 #pragma omp parallel for num_threads(threads_) schedule(static) if (n >= kParallelMinBoxes)
     for (std::size_t i = 0; i < n; ++i) {
       bool inside = true;
       for (int axis = 0; axis < 3; ++axis)
-        inside = inside && inBoxes.lo[axis][i] >= fat_.lo[axis][i] &&
-                 inBoxes.hi[axis][i] <= fat_.hi[axis][i];
+        inside = inside && inBoxes.lo(axis, i) >= fat_.lo(axis, i) &&
+                 inBoxes.hi(axis, i) <= fat_.hi(axis, i);
       if (inside) continue;
       for (int axis = 0; axis < 3; ++axis) {
-        fat_.lo[axis][i] = inBoxes.lo[axis][i] - margin_;
-        fat_.hi[axis][i] = inBoxes.hi[axis][i] + margin_;
+        fat_.lo(axis, i) = inBoxes.lo(axis, i) - margin_;
+        fat_.hi(axis, i) = inBoxes.hi(axis, i) + margin_;
       }
     }
   }
@@ -218,7 +216,7 @@ double meanEdge(const BoxSet& inBoxes) {
   double sum = 0.0;
   for (int axis = 0; axis < 3; ++axis)
     for (std::size_t i = 0; i < inBoxes.size(); ++i)
-      sum += inBoxes.hi[axis][i] - inBoxes.lo[axis][i];
+      sum += inBoxes.hi(axis, i) - inBoxes.lo(axis, i);
   return sum / (3.0 * std::max<std::size_t>(1, inBoxes.size()));
 }
 

@@ -31,8 +31,8 @@ using sap_broadphase::QueryHitList;
 BoxSet queryBatch(const BoxSet& inOther, std::size_t inCount) {
   BoxSet batch;
   for (std::size_t q = 0; q < inCount; ++q) {
-    const double lo[3] = {inOther.lo[0][q], inOther.lo[1][q], inOther.lo[2][q]};
-    const double hi[3] = {inOther.hi[0][q], inOther.hi[1][q], inOther.hi[2][q]};
+    const double lo[3] = {inOther.lo(0, q), inOther.lo(1, q), inOther.lo(2, q)};
+    const double hi[3] = {inOther.hi(0, q), inOther.hi(1, q), inOther.hi(2, q)};
     batch.add(static_cast<uint32_t>(q), lo, hi);
   }
   return batch;

@@ -85,8 +85,7 @@ std::string checkSuperset(const BoxSet& inBoxes, const PairList& inOracle,
 bool referenceRefusal(const BoxSet& inBoxes, std::size_t& outIndex, bool& outIndexKnown) {
   const std::size_t n = inBoxes.ids.size();
   outIndexKnown = false;
-  for (int axis = 0; axis < 3; ++axis)
-    if (inBoxes.lo[axis].size() != n || inBoxes.hi[axis].size() != n) return true;
+  if (inBoxes.bounds.size() != kBoundsPerBox * n) return true;
   if ((!inBoxes.groups.empty() && inBoxes.groups.size() != n) ||
       (!inBoxes.masks.empty() && inBoxes.masks.size() != n))
     return true;
@@ -95,8 +94,8 @@ bool referenceRefusal(const BoxSet& inBoxes, std::size_t& outIndex, bool& outInd
   for (std::size_t i = 0; i < n; ++i) {
     bool bad = !seen.insert(inBoxes.ids[i]).second;
     for (int axis = 0; axis < 3; ++axis) {
-      const double low = inBoxes.lo[axis][i];
-      const double high = inBoxes.hi[axis][i];
+      const double low = inBoxes.lo(axis, i);
+      const double high = inBoxes.hi(axis, i);
       bad = bad || std::isnan(low) || std::isnan(high) || low > high;
     }
     if (bad) {
@@ -168,13 +167,14 @@ BoxSet decodeBoxSet(const uint8_t* inData, std::size_t inSize, uint32_t& outVari
     // Small ids collide often (duplicates); a set top bit reads a full 32-bit id.
     const uint32_t id = (id_byte & 0x80) ? reader.u32() : id_byte;
     boxes.ids.push_back(id);
-    for (int axis = 0; axis < 3; ++axis) boxes.lo[axis].push_back(decodeCoordinate(reader));
-    for (int axis = 0; axis < 3; ++axis) boxes.hi[axis].push_back(decodeCoordinate(reader));
+    for (std::size_t k = 0; k < kBoundsPerBox; ++k)
+      boxes.bounds.push_back(decodeCoordinate(reader));
     // Mostly valid intervals: swap a reversed pair unless the flags ask for raw ones.
     if (!(flags & 0x4)) {
+      const std::size_t last = boxes.size() - 1;
       for (int axis = 0; axis < 3; ++axis) {
-        double& low = boxes.lo[axis].back();
-        double& high = boxes.hi[axis].back();
+        double& low = boxes.lo(axis, last);
+        double& high = boxes.hi(axis, last);
         if (low > high) std::swap(low, high);
       }
     }
@@ -184,14 +184,16 @@ BoxSet decodeBoxSet(const uint8_t* inData, std::size_t inSize, uint32_t& outVari
       boxes.masks.push_back(mask == 0xFF ? 0xFFFFFFFFu : (mask & 0x7));
     }
   }
-  // Broken shapes on request: one array one entry short.
+  // Broken shapes on request: one array one entry short (the bounds: the last box's min or
+  // max on one axis missing).
   if ((flags & 0x38) == 0x38 && !boxes.ids.empty()) {
+    const auto lastBox = boxes.bounds.end() - kBoundsPerBox;
     switch (flags >> 6) {
       case 0:
-        boxes.lo[outVariant % 3].pop_back();
+        boxes.bounds.erase(lastBox + outVariant % 3);
         break;
       case 1:
-        boxes.hi[outVariant % 3].pop_back();
+        boxes.bounds.erase(lastBox + 3 + outVariant % 3);
         break;
       case 2:
         if (!boxes.groups.empty()) boxes.groups.pop_back();
@@ -252,11 +254,10 @@ std::string checkTextInput(const uint8_t* inData, std::size_t inSize) {
   if (auto error = readBoxText(reread_input, "rewritten", reread))
     return "writeBoxText output refused: " + error->message();
   if (reread.ids != boxes.ids) return "ids changed in the round trip";
-  for (int axis = 0; axis < 3; ++axis)
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      if (!sameBits(boxes.lo[axis][i], reread.lo[axis][i]) ||
-          !sameBits(boxes.hi[axis][i], reread.hi[axis][i]))
-        return "coordinate of box " + std::to_string(i) + " changed in the round trip";
+  for (std::size_t k = 0; k < boxes.bounds.size(); ++k)
+    if (!sameBits(boxes.bounds[k], reread.bounds[k]))
+      return "coordinate of box " + std::to_string(k / kBoundsPerBox) +
+             " changed in the round trip";
   if (boxes.size() > kMaxEngineBoxes) return "";
   return checkEngine(boxes, static_cast<uint32_t>(inSize));
 }

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/box_columns.h"
 #include "core/skin_list.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
@@ -22,7 +23,7 @@ using namespace sap_broadphase;
 /// The former pass: containment, then each canonical (index, index) candidate tested in turn.
 class BaselineSkinList {
  public:
-  void adopt(const BoxSet& inInflated, const PairList& inCandidates) {
+  void adopt(const BoxColumns& inInflated, const PairList& inCandidates) {
     reference_ = inInflated;
     std::vector<uint32_t> index_of_id(inInflated.size());
     for (std::size_t i = 0; i < inInflated.size(); ++i)
@@ -33,7 +34,7 @@ class BaselineSkinList {
   }
   /// Containment, then the candidates that overlap; kept out of line so that a profiler
   /// (callgrind --toggle-collect) sees the pass on its own.
-  [[gnu::noinline]] bool collect(const BoxSet& inBoxes, PairList& outPairs) const {
+  [[gnu::noinline]] bool collect(const BoxColumns& inBoxes, PairList& outPairs) const {
     bool inside = true;
     for (std::size_t i = 0; i < inBoxes.size(); ++i) {
       for (int axis = 0; axis < 3; ++axis)
@@ -49,7 +50,7 @@ class BaselineSkinList {
   }
 
  private:
-  BoxSet reference_;
+  BoxColumns reference_;
   std::vector<std::pair<uint32_t, uint32_t>> candidate_indexes_;
 };
 
@@ -57,14 +58,27 @@ double skinArg(const benchmark::State& inState) {
   return static_cast<double>(inState.range(1)) / 100.0;
 }
 
-/// Frame 0 of the uniform scene swept with the skin, and frame 1 to answer from it.
+/// Frame 0 of the uniform scene swept with the skin, and frame 1 to answer from it, as the
+/// skin list reads them.
 struct SkinScene {
-  BoxSet swept;     // frame 0
-  BoxSet inflated;  // frame 0 grown by the skin
-  PairList kept;    // the pairs of the inflated boxes: the candidates
-  BoxSet next;      // frame 1, every box inside its skin
-  PairList exact;   // frame 1's pairs
+  BoxColumns swept;     // frame 0
+  BoxColumns inflated;  // frame 0 grown by the skin
+  PairList kept;        // the pairs of the inflated boxes: the candidates
+  BoxColumns next;      // frame 1, every box inside its skin
+  PairList exact;       // frame 1's pairs
 };
+
+/// inBoxes as records, for the engine that finds the inflated boxes' pairs.
+BoxSet recordsOf(const BoxColumns& inBoxes) {
+  BoxSet records;
+  records.reserve(inBoxes.size());
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    const double lo[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
+    const double hi[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    records.add(inBoxes.ids[i], lo, hi);
+  }
+  return records;
+}
 
 /// The scene of a benchmark's arguments (log2 boxes, skin and density in hundredths), built
 /// once.
@@ -80,16 +94,17 @@ const SkinScene& skinScene(const benchmark::State& inState) {
   config.n = std::size_t{1} << log2_boxes;
   config.density = density;
   SceneSimulator simulator(config);
-  slot->swept = simulator.boxes();
+  slot->swept = columnsOf(simulator.boxes());
   simulator.step();
-  slot->next = simulator.boxes();
+  const BoxSet next = simulator.boxes();
+  slot->next = columnsOf(next);
   SkinList list;
   slot->inflated = list.inflate(slot->swept, skin);
   BroadphaseConfig sweep;
   sweep.skin = 0.0;
   Broadphase engine(sweep);
-  slot->kept = engine.update(slot->inflated);
-  slot->exact = engine.update(slot->next);
+  slot->kept = engine.update(recordsOf(slot->inflated));
+  slot->exact = engine.update(next);
   return *slot;
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/box_columns.h"
 #include "core/static_index.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
@@ -21,6 +22,7 @@ constexpr std::size_t kMoving = 1000;
 /// pairs among themselves), the last kMoving moving (default filters). Built once.
 struct StaticScene {
   BoxSet all;
+  BoxColumns all_columns;  // the same boxes as the index reads them
   BoxSet moving;
   std::vector<uint32_t> static_indexes;
   std::vector<uint32_t> moving_indexes;
@@ -41,11 +43,12 @@ const StaticScene& staticScene() {
         built->static_indexes.push_back(i);
       } else {
         built->moving_indexes.push_back(i);
-        const double lo[3] = {built->all.lo[0][i], built->all.lo[1][i], built->all.lo[2][i]};
-        const double hi[3] = {built->all.hi[0][i], built->all.hi[1][i], built->all.hi[2][i]};
+        const double lo[3] = {built->all.lo(0, i), built->all.lo(1, i), built->all.lo(2, i)};
+        const double hi[3] = {built->all.hi(0, i), built->all.hi(1, i), built->all.hi(2, i)};
         built->moving.add(built->all.ids[i], lo, hi);
       }
     }
+    built->all_columns = columnsOf(built->all);
     return built;
   }();
   return *scene;
@@ -57,7 +60,7 @@ void BM_StaticIndexBuild(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   for (auto _ : state) {
     StaticIndex index;
-    index.build(scene.all, scene.static_indexes, threads);
+    index.build(scene.all_columns, scene.static_indexes, threads);
     benchmark::DoNotOptimize(index.size());
   }
   state.SetItemsProcessed(state.iterations() * kStatic);
@@ -69,11 +72,11 @@ void BM_StaticIndexQueryAll(benchmark::State& state) {
   const StaticScene& scene = staticScene();
   const int threads = static_cast<int>(state.range(0));
   StaticIndex index;
-  index.build(scene.all, scene.static_indexes, 0);
+  index.build(scene.all_columns, scene.static_indexes, 0);
   PairList pairs;
   for (auto _ : state) {
     pairs.clear();
-    index.queryAll(scene.all, scene.moving_indexes, threads, pairs);
+    index.queryAll(scene.all_columns, scene.moving_indexes, threads, pairs);
     benchmark::DoNotOptimize(pairs.data());
   }
   state.counters["pairs"] = static_cast<double>(pairs.size());

@@ -66,10 +66,10 @@ class BulletPeer : public Peer {
 
  private:
   static btVector3 lowCorner(const BoxSet& inBoxes, std::size_t i) {
-    return btVector3(inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]);
+    return btVector3(inBoxes.lo(0, i), inBoxes.lo(1, i), inBoxes.lo(2, i));
   }
   static btVector3 highCorner(const BoxSet& inBoxes, std::size_t i) {
-    return btVector3(inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]);
+    return btVector3(inBoxes.hi(0, i), inBoxes.hi(1, i), inBoxes.hi(2, i));
   }
 
   btDbvtBroadphase* build(const BoxSet& inBoxes, std::vector<btBroadphaseProxy*>& outProxies) {

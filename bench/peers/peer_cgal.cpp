@@ -26,8 +26,8 @@ std::vector<CgalBox> toCgalBoxes(const BoxSet& inBoxes) {
   std::vector<CgalBox> boxes;
   boxes.reserve(inBoxes.size());
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    const double lo[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
-    const double hi[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    const double lo[3] = {inBoxes.lo(0, i), inBoxes.lo(1, i), inBoxes.lo(2, i)};
+    const double hi[3] = {inBoxes.hi(0, i), inBoxes.hi(1, i), inBoxes.hi(2, i)};
     boxes.emplace_back(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), inBoxes.ids[i]);
   }
   return boxes;

@@ -37,9 +37,9 @@ bool collectPair(fcl::CollisionObjectd* inFirst, fcl::CollisionObjectd* inSecond
 }
 
 fcl::Vector3d centre(const BoxSet& inBoxes, std::size_t i) {
-  return fcl::Vector3d(0.5 * (inBoxes.lo[0][i] + inBoxes.hi[0][i]),
-                       0.5 * (inBoxes.lo[1][i] + inBoxes.hi[1][i]),
-                       0.5 * (inBoxes.lo[2][i] + inBoxes.hi[2][i]));
+  return fcl::Vector3d(0.5 * (inBoxes.lo(0, i) + inBoxes.hi(0, i)),
+                       0.5 * (inBoxes.lo(1, i) + inBoxes.hi(1, i)),
+                       0.5 * (inBoxes.lo(2, i) + inBoxes.hi(2, i)));
 }
 
 /// Equal up to rounding: centre +- half of an unchanged box may differ by an ulp per frame.
@@ -59,9 +59,9 @@ bool syncObjects(const BoxSet& inBoxes, Objects& ioObjects, bool& outMoved) {
   if (ioObjects.size() != inBoxes.size()) ioObjects.clear();
   ioObjects.resize(inBoxes.size());
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    const fcl::Vector3d side(inBoxes.hi[0][i] - inBoxes.lo[0][i],
-                             inBoxes.hi[1][i] - inBoxes.lo[1][i],
-                             inBoxes.hi[2][i] - inBoxes.lo[2][i]);
+    const fcl::Vector3d side(inBoxes.hi(0, i) - inBoxes.lo(0, i),
+                             inBoxes.hi(1, i) - inBoxes.lo(1, i),
+                             inBoxes.hi(2, i) - inBoxes.lo(2, i));
     auto& object = ioObjects[i];
     if (object &&
         sameSize(static_cast<const fcl::Boxd&>(*object->collisionGeometry()).side, side)) {

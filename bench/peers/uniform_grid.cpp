@@ -30,11 +30,11 @@ UniformGrid::UniformGrid(int inThreads, double inCellScale)
 void UniformGrid::chooseCells(const BoxSet& inBoxes) {
   const std::size_t n = inBoxes.size();
   for (int axis = 0; axis < 3; ++axis) {
-    double low = inBoxes.lo[axis][0], high = inBoxes.hi[axis][0], edges = 0.0;
+    double low = inBoxes.lo(axis, 0), high = inBoxes.hi(axis, 0), edges = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-      low = std::min(low, inBoxes.lo[axis][i]);
-      high = std::max(high, inBoxes.hi[axis][i]);
-      edges += inBoxes.hi[axis][i] - inBoxes.lo[axis][i];
+      low = std::min(low, inBoxes.lo(axis, i));
+      high = std::max(high, inBoxes.hi(axis, i));
+      edges += inBoxes.hi(axis, i) - inBoxes.lo(axis, i);
     }
     double cell = cell_scale_ * edges / static_cast<double>(n);
     // Never more cells per axis than the packing holds; never a zero-sized cell.
@@ -52,9 +52,9 @@ void UniformGrid::cellRange(const BoxSet& inBoxes, uint32_t inBox, int64_t outLo
     // both boxes' ranges contain, which makes the owner-cell rule exact.
     const double scale = inverse_cell_[axis];
     outLo[axis] =
-        static_cast<int64_t>(std::floor((inBoxes.lo[axis][inBox] - origin_[axis]) * scale));
+        static_cast<int64_t>(std::floor((inBoxes.lo(axis, inBox) - origin_[axis]) * scale));
     outHi[axis] =
-        static_cast<int64_t>(std::floor((inBoxes.hi[axis][inBox] - origin_[axis]) * scale));
+        static_cast<int64_t>(std::floor((inBoxes.hi(axis, inBox) - origin_[axis]) * scale));
     outLo[axis] = std::clamp<int64_t>(outLo[axis], 0, kMaxCellIndex);
     outHi[axis] = std::clamp<int64_t>(outHi[axis], 0, kMaxCellIndex);
   }
@@ -112,8 +112,6 @@ void UniformGrid::fillBuckets(const BoxSet& inBoxes) {
 }
 
 void UniformGrid::pairBuckets(const BoxSet& inBoxes) {
-  const std::vector<double>& lowX = inBoxes.lo[0];
-  const std::vector<double>& highX = inBoxes.hi[0];
   const int64_t buckets = static_cast<int64_t>(bucket_mask_ + 1);
 #pragma omp parallel num_threads(threads_)
   {
@@ -125,16 +123,16 @@ void UniformGrid::pairBuckets(const BoxSet& inBoxes) {
       if (last - first < 2) continue;
       // Group by cell, then sweep along x inside each cell.
       std::sort(first, last, [&](const Entry& x, const Entry& y) {
-        return x.cell != y.cell ? x.cell < y.cell : lowX[x.box] < lowX[y.box];
+        return x.cell != y.cell ? x.cell < y.cell : inBoxes.lo(0, x.box) < inBoxes.lo(0, y.box);
       });
       for (Entry* i = first; i != last; ++i) {
         for (Entry* j = i + 1; j != last && j->cell == i->cell; ++j) {
-          if (lowX[j->box] > highX[i->box]) break;
+          if (inBoxes.lo(0, j->box) > inBoxes.hi(0, i->box)) break;
           const uint32_t a = i->box, c = j->box;
           if (!overlap(inBoxes, a, c)) continue;
           int64_t owner[3];
           for (int axis = 0; axis < 3; ++axis) {
-            const double corner = std::max(inBoxes.lo[axis][a], inBoxes.lo[axis][c]);
+            const double corner = std::max(inBoxes.lo(axis, a), inBoxes.lo(axis, c));
             owner[axis] = std::clamp<int64_t>(
                 static_cast<int64_t>(std::floor((corner - origin_[axis]) * inverse_cell_[axis])), 0,
                 kMaxCellIndex);

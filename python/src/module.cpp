@@ -1,6 +1,6 @@
 // The Python module sap_broadphase._sap_broadphase (pybind11): numpy arrays in, numpy arrays
 // out. Boxes are (n, 6) float64 rows min_x min_y min_z max_x max_y max_z, read where they lie
-// when C-contiguous (the engine's records path, InterleavedBoxes); pairs and hits are (k, 2)
+// when C-contiguous (a BoxSpan over the array: the engine's one input); pairs and hits are (k, 2)
 // uint32 arrays that own the engine's result vectors (no copy). The GIL is released while
 // the engine works; refusals carry the engine's words.
 #include <pybind11/numpy.h>
@@ -97,8 +97,8 @@ struct BoxArgs {
         groups(uintArray(inGroups, bounds.shape(0), "groups")),
         masks(uintArray(inMasks, bounds.shape(0), "masks")) {}
 
-  sb::InterleavedBoxes view() const {
-    sb::InterleavedBoxes records;
+  sb::BoxSpan view() const {
+    sb::BoxSpan records;
     records.count = static_cast<std::size_t>(bounds.shape(0));
     records.bounds = bounds.data();
     records.ids = ids.size() > 0 ? ids.data() : nullptr;
@@ -229,11 +229,9 @@ class PyBroadphase {
                       const py::handle& inGroups, const py::handle& inMasks) {
     const BoxArgs args(inBoxes, inIds, inGroups, inMasks);
     py::gil_scoped_release release;
-    sb::BoxSet scenery;
-    sb::copyInterleaved(args.view(), scenery, sb::resolveThreadCount(engine_.config().threads));
-    if (auto problem = sb::validate(scenery)) throw sb::InvalidBoxes(std::move(*problem));
     std::unique_lock<std::shared_mutex> lock(mutex_);
-    engine_.setStaticBoxes(scenery);
+    engine_.setStaticBoxes(
+        args.view());  // checks the boxes: a bad one leaves the scenery as it was
   }
 
   template <typename Change>

@@ -47,24 +47,22 @@ const char* const kUsage =
     "Exit status: 0 success; 2 bad input (then nothing on stdout and 'FILE:LINE: reason' on\n"
     "stderr) or bad usage; 1 unexpected failure. mpirun may add its own lines to stderr.\n";
 
-/// Scatters one per-box array of rank 0 in blocks (counts and offsets in boxes).
+/// Scatters one per-box array of rank 0, inPerBox values a box, in blocks (counts and offsets
+/// in boxes: one MPI element a box, so the int counts reach kMaxBoxes boxes).
 template <typename T>
-void scatterBlocks(const std::vector<T>& inAll, std::vector<T>& outMine,
+void scatterBlocks(const std::vector<T>& inAll, std::vector<T>& outMine, std::size_t inPerBox,
                    const std::vector<int>& inCounts, const std::vector<int>& inOffsets,
                    int inRank) {
-  std::vector<int> byteCounts(inCounts.size());
-  std::vector<int> byteOffsets(inOffsets.size());
-  for (std::size_t r = 0; r < inCounts.size(); ++r) {
-    byteCounts[r] = inCounts[r] * static_cast<int>(sizeof(T));
-    byteOffsets[r] = inOffsets[r] * static_cast<int>(sizeof(T));
-  }
-  outMine.resize(static_cast<std::size_t>(inCounts[inRank]));
-  MPI_Scatterv(inAll.data(), byteCounts.data(), byteOffsets.data(), MPI_BYTE, outMine.data(),
-               byteCounts[inRank], MPI_BYTE, 0, MPI_COMM_WORLD);
+  MPI_Datatype box;
+  MPI_Type_contiguous(static_cast<int>(inPerBox * sizeof(T)), MPI_BYTE, &box);
+  MPI_Type_commit(&box);
+  outMine.resize(inPerBox * static_cast<std::size_t>(inCounts[inRank]));
+  MPI_Scatterv(inAll.data(), inCounts.data(), inOffsets.data(), box, outMine.data(),
+               inCounts[inRank], box, 0, MPI_COMM_WORLD);
+  MPI_Type_free(&box);
 }
 
-/// Rank 0's boxes dealt out in contiguous blocks of file order, one a rank. (Block byte
-/// offsets are ints: files of up to 2^31 / 8 boxes a rank.)
+/// Rank 0's boxes dealt out in contiguous blocks of file order, one a rank.
 BoxSet dealBoxes(const BoxSet& inAll, int inRank, int inRanks) {
   uint64_t total = inAll.size();
   MPI_Bcast(&total, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
@@ -77,11 +75,8 @@ BoxSet dealBoxes(const BoxSet& inAll, int inRank, int inRanks) {
     counts[r] = static_cast<int>(end - begin);
   }
   BoxSet mine;
-  scatterBlocks(inAll.ids, mine.ids, counts, offsets, inRank);
-  for (int axis = 0; axis < 3; ++axis) {
-    scatterBlocks(inAll.lo[axis], mine.lo[axis], counts, offsets, inRank);
-    scatterBlocks(inAll.hi[axis], mine.hi[axis], counts, offsets, inRank);
-  }
+  scatterBlocks(inAll.ids, mine.ids, 1, counts, offsets, inRank);
+  scatterBlocks(inAll.bounds, mine.bounds, kBoundsPerBox, counts, offsets, inRank);
   return mine;
 }
 

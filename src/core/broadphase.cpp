@@ -120,8 +120,8 @@ FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& in
   const FramePlan plan = planFrame(inputs);
   SAP_ASSERT(plan.path != FramePath::kSkin || inputs.kept_covers,
              "the plan answers from kept candidates that do not cover the frame");
-  SAP_ASSERT(plan.sweep_skin == 0.0 || isSweep(plan.path),
-             "a skin to grow boxes by on a frame that is not swept");
+  SAP_ASSERT(plan.sweep_skin == 0.0 || findsAllPairs(plan.path),
+             "a skin to grow boxes by on a frame whose pairs are not found from scratch");
   SAP_ASSERT(plan.threads >= 1 && plan.threads <= inThreads, "the plan's threads out of range");
   return plan;
 }
@@ -161,12 +161,21 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
     case FramePath::kSkin:
       skin.answerFromCandidates(inPlan.threads, report, pairs);
       break;
-    case FramePath::kSmallFrame: {
-      PhaseTimer timer(report.ms_pairing);
-      skin.forget();
-      pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs);
+    case FramePath::kSmallFrame:
+      if (inPlan.sweep_skin > 0.0) {
+        const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
+        FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
+        {
+          PhaseTimer timer(report.ms_pairing);
+          pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs);
+        }
+        skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
+      } else {
+        PhaseTimer timer(report.ms_pairing);
+        skin.forget();
+        pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs);
+      }
       break;
-    }
     case FramePath::kSequential:
     case FramePath::kParallel:
       if (inPlan.sweep_skin > 0.0) {
@@ -245,9 +254,10 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 // Everything of a frame after the history has compared (or loaded) it: inBoxes are the boxes
 // that may pair, as the history now holds them.
 void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta,
-                                int inThreads) {
+                                int inConfiguredThreads) {
+  const int threads = frameThreads(config, inBoxes.size(), inConfiguredThreads);
   skin.startFrame(inDelta);
-  FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
+  FramePlan frame_plan = plan(inBoxes, inDelta, threads);
   const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, inBoxes.size());
   FrameSpread spread(inBoxes);  // measured once, by the first part that needs it
   const auto work_start = std::chrono::steady_clock::now();
@@ -260,12 +270,12 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
   }
   // The next frame's passes over every box (memory-bound) run on as many threads as this work
   // is learnt to pay on; probes of the other count do not move them.
-  passes_threads = measured ? thread_choice.preferred(*measured, inThreads) : 0;
+  passes_threads = measured ? thread_choice.preferred(*measured, threads) : 0;
   if (!config.skin) {  // the costs only feed the automatic skin's choice
     PhaseTimer timer(report.ms_plan);
     skin.learn(frame_plan, spread, pairs.size(), report);
   }
-  if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, inThreads);
+  if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, threads);
   history.remember();
   world.setFrame(history.remembered());
   pairs_valid = true;

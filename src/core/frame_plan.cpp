@@ -56,6 +56,20 @@ double cycleNsPerFrame(const SkinCosts& inCosts, double inBoxes, double inSkin, 
   return (sweep_ns + frames * pass_ns) / frames;
 }
 
+// The automatic skin of a frame found from scratch (no skin on a first frame or one of other
+// ids: nothing is known of their motion).
+void chooseAutomaticSkin(const PlanInputs& inInputs, FramePlan& ioPlan) {
+  if (inInputs.delta.relation == FrameRelation::kFirst) {
+    ioPlan.skin_choice = SkinChoice::kFirstFrame;
+  } else if (!inInputs.delta.sameIds()) {
+    ioPlan.skin_choice = SkinChoice::kIdsChanged;
+  } else {
+    ioPlan.sweep_skin =
+        chooseSkin(inInputs.motion, inInputs.boxes, inInputs.costs, ioPlan.skin_choice);
+  }
+  ioPlan.skin = ioPlan.sweep_skin;
+}
+
 }  // namespace
 
 FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads) {
@@ -120,6 +134,13 @@ bool isSmallFrame(const BroadphaseConfig& inConfig, std::size_t inBoxes) {
   return inBoxes < inConfig.parallel_min_boxes;
 }
 
+int frameThreads(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads) {
+  const bool skin_fixed = inConfig.skin && *inConfig.skin > 0.0;
+  const bool small =
+      inConfig.method == Method::kAuto && !skin_fixed && isSmallFrame(inConfig, inBoxes);
+  return small ? 1 : inThreads;
+}
+
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
                      bool inLastPairsValid) {
   return inConfig.reuse_unchanged_frames && inDelta.relation == FrameRelation::kIdentical &&
@@ -160,24 +181,23 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     return plan;
   }
   if (config.method == Method::kAuto && !skin_fixed && isSmallFrame(config, inInputs.boxes)) {
-    plan.path = FramePath::kSmallFrame;  // no skin: a small frame costs less than its pass
+    // The small-frame kernel, on one thread (a frame of one work unit); grown by the automatic
+    // skin when its cycle pays, as a sweep is: what the paper's coherence (§4.2) is to the
+    // sweep, the kept candidates are to the kernel, which keeps nothing of its own.
+    plan.path = FramePath::kSmallFrame;
     plan.threads = 1;
+    if (!skin_off) chooseAutomaticSkin(inInputs, plan);
     return plan;
   }
   plan.path = sweepPath(config, inInputs.boxes, inInputs.threads);
   if (plan.path == FramePath::kSequential) plan.threads = 1;
   if (skin_off) return plan;
   if (skin_fixed) {
-    plan.sweep_skin = *config.skin;
+    plan.sweep_skin = plan.skin = *config.skin;
     plan.skin_choice = SkinChoice::kFixed;
-  } else if (delta.relation == FrameRelation::kFirst) {
-    plan.skin_choice = SkinChoice::kFirstFrame;
-  } else if (!delta.sameIds()) {
-    plan.skin_choice = SkinChoice::kIdsChanged;
   } else {
-    plan.sweep_skin = chooseSkin(inInputs.motion, inInputs.boxes, inInputs.costs, plan.skin_choice);
+    chooseAutomaticSkin(inInputs, plan);
   }
-  plan.skin = plan.sweep_skin;
   // The kept-candidate passes of a grown sweep run on every thread.
   if (plan.sweep_skin > 0.0) plan.threads = inInputs.threads;
   return plan;

@@ -12,14 +12,21 @@
 
 namespace sap_broadphase {
 
-/// True when inPath is a sweep and prune (Algorithm 1, or Algorithms 2-4), the one work a skin
-/// can grow the boxes of.
+/// True when inPath is a sweep and prune (Algorithm 1, or Algorithms 2-4).
 inline bool isSweep(FramePath inPath) {
   return inPath == FramePath::kSequential || inPath == FramePath::kParallel;
 }
 
+/// True when inPath finds the pairs of the whole frame from scratch, so that a skin can grow its
+/// boxes and keep what it finds as candidates: a sweep, or the small-frame kernel (which is to
+/// small frames what the sweep is to large ones).
+inline bool findsAllPairs(FramePath inPath) {
+  return isSweep(inPath) || inPath == FramePath::kSmallFrame;
+}
+
 /// What earlier frames measured, for choosing a skin. A sweep costs a part per box (keys,
-/// sorts, candidate ranges) and a part per box and candidate (pairing, output); a grown
+/// sorts, candidate ranges) and a part per box and candidate (pairing, output); the
+/// small-frame kernel is charged per box and candidate only (its cells' sweeps); a grown
 /// sweep adds the growing and the keeping of its candidates; a kept-candidate pass costs a
 /// part per box (containment) and one per candidate (the exact test). Each part is learnt
 /// only from the work it describes, so that a grown sweep's extra work is charged to the skin
@@ -68,10 +75,15 @@ struct FramePlan {
 /// The sequential or parallel sweep for inBoxes boxes (Method::kAuto's rule).
 FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
 
-/// True when a frame of inBoxes boxes goes to the small-frame path (Method::kAuto, no fixed
-/// skin) rather than the sweep, on any thread count: below parallel_min_boxes, the one cut-off
-/// of Method::kAuto (sweepPath's too).
+/// True when a frame of inBoxes boxes goes to the small-frame kernel (Method::kAuto, no fixed
+/// skin; grown by an automatic skin when one pays) rather than the sweep, on any thread count:
+/// below parallel_min_boxes, the one cut-off of Method::kAuto (sweepPath's too).
 bool isSmallFrame(const BroadphaseConfig& inConfig, std::size_t inBoxes);
+
+/// Threads a frame of inBoxes boxes may use when inThreads are configured: one for a small frame
+/// (whichever work answers it, the kernel or its kept candidates: a frame of one work unit, that
+/// no other core's availability may delay), inThreads otherwise.
+int frameThreads(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
 
 /// True when the frame's pairs are the last frame's: identical boxes, reuse on, the last
 /// pairs still held.

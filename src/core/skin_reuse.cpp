@@ -84,9 +84,11 @@ void SkinReuse::learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t
                       const FrameReport& inReport) {
   const BoxColumns& swept = ioSwept.boxes();
   const double boxes = static_cast<double>(swept.size());
-  const bool grown_sweep = isSweep(inPlan.path) && inPlan.sweep_skin > 0.0;
-  if (isSweep(inPlan.path) && swept.size() >= tuning::kMinSkinBoxes) {
-    const double candidates = static_cast<double>(grown_sweep ? kept_.candidates() : inSweepPairs);
+  const bool grown = findsAllPairs(inPlan.path) && inPlan.sweep_skin > 0.0;
+  if (findsAllPairs(inPlan.path) && swept.size() >= tuning::kMinSkinBoxes) {
+    const double candidates = static_cast<double>(grown ? kept_.candidates() : inSweepPairs);
+    // The small-frame kernel's phases are one (ms_pairing): its cost is charged per box and
+    // candidate, as the cells' sweeps it is made of cost.
     const double ms_sweep_per_box = inReport.ms_keys + inReport.ms_sort + inReport.ms_candidates;
     const double ms_sweep_per_item = inReport.ms_pairing + inReport.ms_output;
     costs_.sweep_ns_per_box = ms_sweep_per_box * 1e6 / boxes;
@@ -95,13 +97,13 @@ void SkinReuse::learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t
     costs_.reference_candidates = candidates;
     costs_.reference_skin = inPlan.sweep_skin;
     measureExtents(ioSwept, inPlan.threads, costs_);
-    if (grown_sweep) {
+    if (grown) {
       costs_.grow_ns_per_box = smoothed(costs_.grow_ns_per_box, times_.ms_grow * 1e6 / boxes);
       costs_.keep_ns_per_candidate =
           smoothed(costs_.keep_ns_per_candidate, times_.ms_keep * 1e6 / std::max(1.0, candidates));
     }
   }
-  const bool answered_by_pass = inPlan.path == FramePath::kSkin || grown_sweep;
+  const bool answered_by_pass = inPlan.path == FramePath::kSkin || grown;
   if (answered_by_pass && kept_.candidates() > 0) learnPassCosts(times_.ms_pass, boxes);
 }
 

@@ -155,7 +155,7 @@ void DistributedBroadphase::Impl::cutSlabs(const BoxSet& inBoxes) {
   const std::size_t stride = std::max<std::size_t>(n / wanted, 1);
   std::vector<double> local;
   for (std::size_t i = stride / 2; i < n; i += stride) {
-    if (auto position = samplePosition(inBoxes.lo[axis][i], inBoxes.hi[axis][i]))
+    if (auto position = samplePosition(inBoxes.lo(axis, i), inBoxes.hi(axis, i)))
       local.push_back(*position);
   }
   // A sample stands for stride boxes, so a rank with more boxes weighs more.
@@ -238,12 +238,10 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
   const std::size_t n = inBoxes.size();
   first_slab.resize(n);
   last_slab.resize(n);
-  const std::vector<double>& lo = inBoxes.lo[axis];
-  const std::vector<double>& hi = inBoxes.hi[axis];
 #pragma omp parallel for schedule(static) num_threads(resolveThreadCount(config.engine.threads))
   for (std::size_t i = 0; i < n; ++i) {
-    first_slab[i] = slabOf(lo[i]);
-    last_slab[i] = slabOf(hi[i]);
+    first_slab[i] = slabOf(inBoxes.lo(axis, i));
+    last_slab[i] = slabOf(inBoxes.hi(axis, i));
   }
 
   // Which own box was which last frame: the same ids in the same order (a simulation's usual
@@ -268,8 +266,8 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
       continue;  // lives in this slab only, now and before: nothing to tell anyone
     BoxRecord box{inBoxes.ids[i], inBoxes.group(i), inBoxes.mask(i), 0, {}, {}};
     for (int a = 0; a < 3; ++a) {
-      box.lo[a] = inBoxes.lo[a][i];
-      box.hi[a] = inBoxes.hi[a][i];
+      box.lo[a] = inBoxes.lo(a, i);
+      box.hi[a] = inBoxes.hi(a, i);
     }
     int u0 = 1;
     int u1 = 0;  // empty range: nobody holds it yet
@@ -419,7 +417,7 @@ void DistributedBroadphase::Impl::assembleBorderSet(const BoxSet& inBoxes) {
   for (std::size_t i = 0; i < inBoxes.size(); ++i) {
     if (first_slab[i] > rank || rank > last_slab[i]) continue;
     ++inSlab;
-    if (!stretches.empty() && meetsStretch(stretches, inBoxes.lo[axis][i], inBoxes.hi[axis][i]))
+    if (!stretches.empty() && meetsStretch(stretches, inBoxes.lo(axis, i), inBoxes.hi(axis, i)))
       ownTouching.push_back(static_cast<uint32_t>(i));
   }
   report.resident_boxes = held;
@@ -428,10 +426,7 @@ void DistributedBroadphase::Impl::assembleBorderSet(const BoxSet& inBoxes) {
   report.border_boxes = m;
 
   border.ids.resize(m);
-  for (int a = 0; a < 3; ++a) {
-    border.lo[a].resize(m);
-    border.hi[a].resize(m);
-  }
+  border.bounds.resize(kBoundsPerBox * m);
   border.groups.resize(filters ? m : 0);
   border.masks.resize(filters ? m : 0);
   border_ids.resize(m);
@@ -442,8 +437,8 @@ void DistributedBroadphase::Impl::assembleBorderSet(const BoxSet& inBoxes) {
   for (uint32_t i : ownTouching) {
     border.ids[k] = static_cast<uint32_t>(k);
     for (int a = 0; a < 3; ++a) {
-      border.lo[a][k] = inBoxes.lo[a][i];
-      border.hi[a][k] = inBoxes.hi[a][i];
+      border.lo(a, k) = inBoxes.lo(a, i);
+      border.hi(a, k) = inBoxes.hi(a, i);
     }
     if (filters) {
       border.groups[k] = inBoxes.group(i);
@@ -458,8 +453,8 @@ void DistributedBroadphase::Impl::assembleBorderSet(const BoxSet& inBoxes) {
     for (const BoxRecord& box : resident[p]) {
       border.ids[k] = static_cast<uint32_t>(k);
       for (int a = 0; a < 3; ++a) {
-        border.lo[a][k] = box.lo[a];
-        border.hi[a][k] = box.hi[a];
+        border.lo(a, k) = box.lo[a];
+        border.hi(a, k) = box.hi[a];
       }
       if (filters) {
         border.groups[k] = box.group;

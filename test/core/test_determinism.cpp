@@ -86,10 +86,7 @@ BoxSet movers(const BoxSet& inBoxes) {
 
 BoxSet scenery(const BoxSet& inBoxes) {
   BoxSet resting = inBoxes;
-  for (int axis = 0; axis < 3; ++axis) {
-    resting.lo[axis].resize(kResting);
-    resting.hi[axis].resize(kResting);
-  }
+  resting.bounds.resize(kBoundsPerBox * kResting);
   resting.ids.resize(kResting);
   resting.groups.resize(kResting);
   resting.masks.resize(kResting);

@@ -1,6 +1,6 @@
-// Frames given as records (BoxSpan, a BoxArray's layout): the engine loads and checks
-// them itself. The pairs, the frame history and the refusals must be those of the same frame
-// given as a checked BoxSet.
+// Frames given as records (BoxSpan, a BoxArray's layout), in one span or several (one per
+// source): the engine loads and checks them itself. The pairs, the frame history and the
+// refusals must be those of the same frame given as one BoxSet, and the oracle's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -65,7 +65,7 @@ BoxSet frameOf(SceneSimulator& ioScene, int inFrame, const BoxSet& inLast) {
   return boxes;
 }
 
-TEST(RecordFrames, SamePairsAsBoxSetFramesOnEveryPathAndThreadCount) {
+TEST(RecordFrames, SpansGiveTheSamePairsAsOneSetOnEveryPathAndThreadCount) {
   for (SceneKind kind : {SceneKind::kUniform, SceneKind::kBallCluster, SceneKind::kPlaneCluster}) {
     for (int threads : {1, 2, 3}) {
       BroadphaseConfig config = engineConfig(Method::kAuto, threads, 0, 1);
@@ -73,7 +73,7 @@ TEST(RecordFrames, SamePairsAsBoxSetFramesOnEveryPathAndThreadCount) {
       // A fixed skin on two threads (kept candidates, grown sweeps), none otherwise (plain
       // sweeps): the automatic skin's choice depends on costs each engine measures apart.
       config.skin = threads == 2 ? 0.5 : 0.0;
-      Broadphase from_sets(config), from_records(config);
+      Broadphase from_sets(config), from_records(config), from_spans(config);
       SceneSimulator scene(movingScene(kind, 31 + threads, 2500, 0.25, 60));
       BoxSet boxes;
       for (int frame = 0; frame < 45; ++frame) {
@@ -88,6 +88,11 @@ TEST(RecordFrames, SamePairsAsBoxSetFramesOnEveryPathAndThreadCount) {
         // The history sees the same frame: the same motion, hence the same plan.
         EXPECT_EQ(from_records.stats().moved_boxes, from_sets.stats().moved_boxes) << where;
         EXPECT_EQ(from_records.stats().path, from_sets.stats().path) << where;
+        // Several sources: spans of 1000 boxes, seams moving as boxes are added.
+        const std::vector<BoxSpan> spans = test_support::cutIntoSpans(boxes, 1000);
+        ASSERT_EQ(from_spans.update(BoxFrame(spans)), expected)
+            << where << " path " << framePathName(from_spans.stats().path);
+        EXPECT_EQ(from_spans.stats().moved_boxes, from_sets.stats().moved_boxes) << where;
       }
     }
   }
@@ -190,6 +195,83 @@ TEST(RecordFrames, FilteredBadBoxesAreRefusedToo) {
   bad.lo(0, 10) = std::nan("");
   Broadphase engine;
   expectRefusedAsValidateWould(engine, bad, "filtered");
+}
+
+// Spans numbered by their offsets (a source without ids, as numpy arrays come) pair as the
+// same boxes with those ids; query() reads spans too.
+TEST(RecordFrames, NumberedSpansWithOffsetsAndQueries) {
+  const BoxSet left = test_support::randomBoxes(700, 20.0, 1.5, 3);  // ids 0..699
+  const BoxSet right = test_support::randomBoxes(900, 20.0, 1.5, 4);
+  BoxSpan left_span = left.span(), right_span = right.span();
+  left_span.ids = right_span.ids = nullptr;
+  right_span.id_offset = 1000;
+  const std::vector<BoxSpan> spans = {left_span, right_span};
+  BoxSet joined = left;
+  for (std::size_t i = 0; i < right.size(); ++i) {
+    const double lo[3] = {right.lo(0, i), right.lo(1, i), right.lo(2, i)};
+    const double hi[3] = {right.hi(0, i), right.hi(1, i), right.hi(2, i)};
+    joined.add(static_cast<uint32_t>(1000 + i), lo, hi);
+  }
+  Broadphase engine(engineConfig(Method::kAuto, 2, 0, 1));
+  EXPECT_EQ(engine.update(BoxFrame(spans)), bruteForcePairs(joined));
+  const BoxSet queries = test_support::randomBoxes(40, 20.0, 3.0, 5);
+  const std::vector<BoxSpan> query_spans = test_support::cutIntoSpans(queries, 15);
+  EXPECT_EQ(engine.query(BoxFrame(query_spans)), bruteForceQuery(queries, joined));
+}
+
+// A frame's id that a scenery box has is refused naming the box, its span and the scenery; the
+// engine goes on with the next frame. A bad scenery is refused and the old one stays.
+TEST(RecordFrames, IdsOfTheSceneryAndBadSceneryAreRefused) {
+  BoxSet scenery, moving;
+  const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  for (uint32_t id = 100; id < 110; ++id) scenery.add(id, lo, hi);
+  for (uint32_t id = 0; id < 20; ++id) moving.add(id, lo, hi);
+  for (int threads : {1, 2}) {
+    Broadphase engine(engineConfig(Method::kAuto, threads, 0, 1));
+    engine.setStaticBoxes(scenery);
+    const PairList good = engine.update(moving);
+    EXPECT_EQ(good.size(), 20u * 19u / 2u + 20u * 10u);
+    BoxSet clashing = moving;
+    clashing.ids[15] = 104;
+    const std::vector<BoxSpan> spans = test_support::cutIntoSpans(clashing, 10);
+    try {
+      engine.update(BoxFrame(spans));
+      ADD_FAILURE() << "an id of the scenery was accepted";
+    } catch (const InvalidBoxes& refusal) {
+      EXPECT_EQ(refusal.error().problem, BoxProblem::kDuplicateId);
+      EXPECT_EQ(refusal.error().index, 15u);
+      EXPECT_EQ(refusal.error().id, 104u);
+      EXPECT_EQ(refusal.error().span, 1u);
+      EXPECT_EQ(refusal.error().earlier_span, ValidationError::kScenery);
+    }
+    EXPECT_EQ(engine.update(moving), good);
+
+    BoxSet bad_scenery = scenery;
+    bad_scenery.hi(0, 2) = std::nan("");
+    EXPECT_THROW(engine.setStaticBoxes(bad_scenery), InvalidBoxes);
+    EXPECT_EQ(engine.staticBoxCount(), scenery.size());
+    EXPECT_EQ(engine.update(moving), good);
+  }
+}
+
+// Boxes with group 0 or mask 0 stay in the frame the engine loads and pair with nothing, on
+// every path (a frame that alternates between having such boxes and not).
+TEST(RecordFrames, BoxesThatPairWithNothingStayAndPairWithNothing) {
+  for (int threads : {1, 2}) {
+    Broadphase engine(engineConfig(Method::kAuto, threads, 0, 1));
+    BoxSet boxes = test_support::randomBoxes(3000, 30.0, 2.0, 8);
+    test_support::addRandomFilters(boxes, 9);
+    for (int frame = 0; frame < 6; ++frame) {
+      for (std::size_t i = frame; i < boxes.size(); i += 7) boxes.groups[i] = frame % 2 ? 0 : 1;
+      boxes.lo(0, 11) += 0.01;
+      boxes.hi(0, 11) += 0.01;
+      ASSERT_EQ(engine.update(boxes), bruteForcePairs(boxes)) << "frame " << frame;
+      std::size_t excluded = 0;
+      for (std::size_t i = 0; i < boxes.size(); ++i)
+        excluded += boxes.group(i) == 0 || boxes.mask(i) == 0;
+      EXPECT_EQ(engine.stats().boxes_filtered_out, excluded);
+    }
+  }
 }
 
 }  // namespace

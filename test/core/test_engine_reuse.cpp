@@ -112,10 +112,7 @@ TEST(EngineReuse, IdsOrderAndFiltersAreChanges) {
       true);
   expectChangeSeen("one box removed", [](BoxSet& ioBoxes) {
     ioBoxes.ids.pop_back();
-    for (int axis = 0; axis < 3; ++axis) {
-      ioBoxes.lo[axis].pop_back();
-      ioBoxes.hi[axis].pop_back();
-    }
+    ioBoxes.bounds.resize(ioBoxes.bounds.size() - kBoundsPerBox);
   });
 }
 

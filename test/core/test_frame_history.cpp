@@ -53,22 +53,6 @@ void loadAndRemember(FrameHistory& ioHistory, const BoxFrame& inFrame, int inThr
   return ::testing::AssertionSuccess();
 }
 
-// inBoxes cut into spans of inSpanBoxes boxes (the last one shorter), over inBoxes' memory.
-std::vector<BoxSpan> cutIntoSpans(const BoxSet& inBoxes, std::size_t inSpanBoxes) {
-  std::vector<BoxSpan> spans;
-  const BoxSpan whole = inBoxes.span();
-  for (std::size_t first = 0; first < inBoxes.size(); first += inSpanBoxes) {
-    BoxSpan span = whole;
-    span.count = std::min(inSpanBoxes, inBoxes.size() - first);
-    span.bounds += kBoundsPerBox * first;
-    span.ids += first;
-    if (span.groups) span.groups += first;
-    if (span.masks) span.masks += first;
-    spans.push_back(span);
-  }
-  return spans;
-}
-
 const std::vector<int> kThreadCounts = {1, 2, 3};
 
 TEST(FrameHistory, FirstFrameThenIdenticalThenMoved) {
@@ -191,10 +175,10 @@ TEST(FrameHistory, SpansLoadAsOneFrame) {
       second.masks[1234] ^= 0x2;
       FrameHistory whole, in_spans;
       loadAndRemember(whole, first, threads);
-      loadAndRemember(in_spans, BoxFrame(cutIntoSpans(first, span_boxes)), threads);
+      loadAndRemember(in_spans, BoxFrame(test_support::cutIntoSpans(first, span_boxes)), threads);
       EXPECT_TRUE(sameBits(first, in_spans.loaded()));
       const FrameDelta expected = loadAccepted(whole, second, threads);
-      const std::vector<BoxSpan> spans = cutIntoSpans(second, span_boxes);
+      const std::vector<BoxSpan> spans = test_support::cutIntoSpans(second, span_boxes);
       const FrameDelta actual = loadAccepted(in_spans, BoxFrame(spans), threads);
       EXPECT_TRUE(sameBits(second, in_spans.loaded()));
       EXPECT_EQ(actual.relation, FrameRelation::kSameIds);
@@ -217,7 +201,7 @@ TEST(FrameHistory, LoadRefusesWithValidatesWordsAndForgets) {
   BoxSet bad = frame;
   bad.lo(1, 700) = bad.hi(1, 700) + 1.0;
   bad.hi(2, 800) = std::nan("");
-  const std::vector<BoxSpan> bad_spans = cutIntoSpans(bad, 300);
+  const std::vector<BoxSpan> bad_spans = test_support::cutIntoSpans(bad, 300);
   history.load(BoxFrame(bad_spans), 2, problem);
   ASSERT_TRUE(problem);
   const auto expected = validate(bad);
@@ -233,7 +217,7 @@ TEST(FrameHistory, LoadRefusesWithValidatesWordsAndForgets) {
   history.remember();
   BoxSet repeated = frame;
   repeated.ids[410] = repeated.ids[3];
-  const std::vector<BoxSpan> repeated_spans = cutIntoSpans(repeated, 300);
+  const std::vector<BoxSpan> repeated_spans = test_support::cutIntoSpans(repeated, 300);
   history.load(BoxFrame(repeated_spans), 1, problem);
   ASSERT_TRUE(problem);
   EXPECT_EQ(problem->problem, BoxProblem::kDuplicateId);

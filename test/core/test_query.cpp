@@ -59,8 +59,8 @@ BoxSet joined(const BoxSet& inFrame, const BoxSet& inScenery) {
   BoxSet world;
   for (const BoxSet* part : {&inFrame, &inScenery}) {
     for (std::size_t i = 0; i < part->size(); ++i) {
-      const double lo[3] = {part->lo[0][i], part->lo[1][i], part->lo[2][i]};
-      const double hi[3] = {part->hi[0][i], part->hi[1][i], part->hi[2][i]};
+      const double lo[3] = {part->lo(0, i), part->lo(1, i), part->lo(2, i)};
+      const double hi[3] = {part->hi(0, i), part->hi(1, i), part->hi(2, i)};
       world.add(part->ids[i], lo, hi, part->group(i), part->mask(i));
     }
   }
@@ -143,14 +143,15 @@ TEST(Query, ScansAndTheFrameIndexGiveTheOracleAnswers) {
   for (uint64_t seed = 1; seed <= 6; ++seed) {
     BoxSet frame = randomBoxes(3000, 100.0, 5.0, seed);
     if (seed % 2 == 0) addRandomFilters(frame, seed);
+    const BoxColumns frame_columns = columnsOf(frame);
     FrameQuery frame_query;
-    frame_query.setFrame(frame);
+    frame_query.setFrame(frame_columns);
     for (int round = 0; round < 6; ++round) {
       BoxSet queries = queryBoxes(20, 100.0, seed * 10 + round);
       if (seed % 2 == 0) addRandomFilters(queries, seed + round);
       const bool was_indexed = frame_query.indexed();
       PairList hits;
-      frame_query.query(queries, 2, hits);
+      frame_query.query(columnsOf(queries), 2, hits);
       PairSortScratch scratch;
       sortPairsByAThenB(hits, scratch);
       QueryHitList answer;
@@ -159,7 +160,7 @@ TEST(Query, ScansAndTheFrameIndexGiveTheOracleAnswers) {
           << "seed " << seed << ", round " << round << (was_indexed ? ", indexed" : ", scanned");
     }
     EXPECT_TRUE(frame_query.indexed()) << "120 query boxes in a frame build its index";
-    frame_query.setFrame(frame);
+    frame_query.setFrame(frame_columns);
     EXPECT_FALSE(frame_query.indexed()) << "a new frame forgets the last frame's index";
   }
 }

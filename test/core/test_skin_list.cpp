@@ -20,18 +20,18 @@ using test_support::TestRandom;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// Keeps the candidates of inBoxes grown by inSkin, as a sweep of the inflated boxes would.
-void keepCandidates(SkinList& ioList, const BoxSet& inBoxes, double inSkin) {
-  const BoxSet& inflated = ioList.inflate(inBoxes, inSkin);
+void keepCandidates(SkinList& ioList, const BoxColumns& inBoxes, double inSkin) {
+  const BoxColumns& inflated = ioList.inflate(inBoxes, inSkin);
   ioList.adopt(inBoxes, bruteForcePairs(inflated));
 }
 
 /// Moves and reshapes every box by less than inReach on each side (infinite bounds stay).
-BoxSet movedWithin(const BoxSet& inBoxes, double inReach, TestRandom& ioRandom) {
-  BoxSet moved = inBoxes;
+BoxColumns movedWithin(const BoxColumns& inBoxes, double inReach, TestRandom& ioRandom) {
+  BoxColumns moved = inBoxes;
   for (std::size_t i = 0; i < moved.size(); ++i) {
     for (int axis = 0; axis < 3; ++axis) {
-      double& low = moved.lo(axis, i);
-      double& high = moved.hi(axis, i);
+      double& low = moved.lo[axis][i];
+      double& high = moved.hi[axis][i];
       const double shift = ioRandom.between(-0.5, 0.5) * inReach;
       const double grow = ioRandom.between(0.0, 0.5) * inReach;
       low += shift - grow;
@@ -43,7 +43,8 @@ BoxSet movedWithin(const BoxSet& inBoxes, double inReach, TestRandom& ioRandom) 
 
 /// Expects gather() and collectGathered() to answer inBoxes with the oracle's pairs for 1 to 4
 /// threads.
-void expectExactForAllThreadCounts(SkinList& ioList, const BoxSet& inBoxes, const char* inLabel) {
+void expectExactForAllThreadCounts(SkinList& ioList, const BoxColumns& inBoxes,
+                                   const char* inLabel) {
   const PairList oracle = bruteForcePairs(inBoxes);
   for (int threads = 1; threads <= 4; ++threads) {
     EXPECT_TRUE(ioList.covers(inBoxes, threads)) << inLabel << ", threads " << threads;
@@ -56,7 +57,7 @@ void expectExactForAllThreadCounts(SkinList& ioList, const BoxSet& inBoxes, cons
 
 TEST(SkinList, MovingFramesMatchOracle) {
   for (uint64_t seed = 1; seed <= 6; ++seed) {
-    BoxSet boxes = test_support::randomBoxes(1500, 40.0, 4.0, seed);
+    BoxColumns boxes = columnsOf(test_support::randomBoxes(1500, 40.0, 4.0, seed));
     if (seed % 2 == 0) test_support::addRandomFilters(boxes, seed);
     if (seed % 3 == 0) boxes = test_support::shuffledSubset(boxes, 0.8, true, seed);  // sparse ids
     const double skin = 0.6;
@@ -72,13 +73,13 @@ TEST(SkinList, MovingFramesMatchOracle) {
 }
 
 TEST(SkinList, BoxThatLeavesItsSkinForcesASweep) {
-  const BoxSet boxes = test_support::randomBoxes(800, 20.0, 3.0, 11);
+  const BoxColumns boxes = columnsOf(test_support::randomBoxes(800, 20.0, 3.0, 11));
   const double skin = 0.5;
   SkinList list;
   keepCandidates(list, boxes, skin);
   for (const std::size_t leaver : {std::size_t{0}, std::size_t{417}, boxes.size() - 1}) {
-    BoxSet frame = boxes;
-    frame.hi(1, leaver) += skin;  // past the margin of skin / 2
+    BoxColumns frame = boxes;
+    frame.hi[1][leaver] += skin;  // past the margin of skin / 2
     for (int threads = 1; threads <= 4; ++threads) {
       EXPECT_FALSE(list.covers(frame, threads));
       EXPECT_FALSE(list.gather(frame, threads)) << "box " << leaver;
@@ -90,20 +91,20 @@ TEST(SkinList, BoxThatLeavesItsSkinForcesASweep) {
 }
 
 TEST(SkinList, ChangedIdsOrFiltersForceASweep) {
-  BoxSet boxes = test_support::randomBoxes(300, 10.0, 2.0, 5);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(300, 10.0, 2.0, 5));
   test_support::addRandomFilters(boxes, 5);
   SkinList list;
   keepCandidates(list, boxes, 0.4);
-  BoxSet reordered = boxes;
+  BoxColumns reordered = boxes;
   std::swap(reordered.ids[3], reordered.ids[4]);
   EXPECT_FALSE(list.gather(reordered, 1));
-  BoxSet regrouped = boxes;
+  BoxColumns regrouped = boxes;
   regrouped.groups[9] ^= 0x4u;
   EXPECT_FALSE(list.gather(regrouped, 1));
-  BoxSet remasked = boxes;
+  BoxColumns remasked = boxes;
   remasked.masks[0] ^= 0x1u;
   EXPECT_FALSE(list.gather(remasked, 2));
-  BoxSet fewer = boxes;
+  BoxColumns fewer = boxes;
   for (auto* column : {&fewer.ids, &fewer.groups, &fewer.masks}) column->pop_back();
   for (int axis = 0; axis < 3; ++axis) {
     fewer.lo[axis].pop_back();
@@ -119,7 +120,7 @@ TEST(SkinList, ChangedIdsOrFiltersForceASweep) {
 // Boxes that touch at zero from both sides, with zeros of either sign swapped between frames:
 // -0.0 == 0.0, so touching pairs stay pairs and no box leaves its skin.
 TEST(SkinList, SignedZerosTouch) {
-  BoxSet boxes;
+  BoxColumns boxes;
   const double left_lo[3] = {-1.0, -1.0, -1.0}, left_hi[3] = {-0.0, 0.0, -0.0};
   const double right_lo[3] = {0.0, -0.0, 0.0}, right_hi[3] = {1.0, 1.0, 1.0};
   const double far_lo[3] = {5.0, 5.0, 5.0}, far_hi[3] = {6.0, 6.0, 6.0};
@@ -129,10 +130,10 @@ TEST(SkinList, SignedZerosTouch) {
   SkinList list;
   keepCandidates(list, boxes, 0.0);  // inflated by one step outward only
   expectExactForAllThreadCounts(list, boxes, "touching at signed zeros");
-  BoxSet flipped = boxes;
+  BoxColumns flipped = boxes;
   for (int axis = 0; axis < 3; ++axis) {
-    flipped.hi(axis, 0) = -flipped.hi(axis, 0);
-    flipped.lo(axis, 1) = -flipped.lo(axis, 1);
+    flipped.hi[axis][0] = -flipped.hi[axis][0];
+    flipped.lo[axis][1] = -flipped.lo[axis][1];
   }
   expectExactForAllThreadCounts(list, flipped, "zeros of the other sign");
   PairList pairs;
@@ -143,10 +144,10 @@ TEST(SkinList, SignedZerosTouch) {
 
 // Planes and slabs that reach infinity on some axes among finite boxes.
 TEST(SkinList, InfiniteBoundsStayInsideAndPair) {
-  BoxSet boxes = test_support::randomBoxes(400, 20.0, 2.0, 23);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(400, 20.0, 2.0, 23));
   for (std::size_t i = 0; i < boxes.size(); i += 37) {
-    boxes.lo(i % 3, i) = -kInfinity;
-    if (i % 2 == 0) boxes.hi((i + 1) % 3, i) = kInfinity;
+    boxes.lo[i % 3][i] = -kInfinity;
+    if (i % 2 == 0) boxes.hi[(i + 1) % 3][i] = kInfinity;
   }
   SkinList list;
   keepCandidates(list, boxes, 0.5);
@@ -157,7 +158,7 @@ TEST(SkinList, InfiniteBoundsStayInsideAndPair) {
 
 TEST(SkinList, FewBoxesAndNoCandidates) {
   for (std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{2}}) {
-    const BoxSet boxes = test_support::randomBoxes(count, 1000.0, 1.0, 3);
+    const BoxColumns boxes = columnsOf(test_support::randomBoxes(count, 1000.0, 1.0, 3));
     SkinList list;
     keepCandidates(list, boxes, 0.1);
     expectExactForAllThreadCounts(list, boxes, "few boxes");
@@ -166,7 +167,7 @@ TEST(SkinList, FewBoxesAndNoCandidates) {
 
 // Many candidates per box (dense, with filters): every thread count gives the same list.
 TEST(SkinList, DenseFramesAgreeAcrossThreadCounts) {
-  BoxSet boxes = test_support::latticeBoxes(2000, 12, 3, 41);
+  BoxColumns boxes = columnsOf(test_support::latticeBoxes(2000, 12, 3, 41));
   test_support::addRandomFilters(boxes, 41);
   SkinList list;
   keepCandidates(list, boxes, 1.0);

@@ -15,24 +15,24 @@ namespace {
 constexpr double kSkin = 0.5;
 
 /// A grown sweep of inBoxes as the engine runs it, with the oracle in the sweep's place.
-PairList growSweepAndKeep(SkinReuse& ioSkin, const BoxSet& inBoxes, FrameReport& ioReport) {
+PairList growSweepAndKeep(SkinReuse& ioSkin, const BoxColumns& inBoxes, FrameReport& ioReport) {
   PairList pairs = bruteForcePairs(ioSkin.grow(inBoxes, kSkin, 2, ioReport));
   ioSkin.keepAndAnswer(inBoxes, 2, ioReport, pairs);
   return pairs;
 }
 
 /// inBoxes with every bound moved by inShift on the x axis.
-BoxSet shiftedX(const BoxSet& inBoxes, double inShift) {
-  BoxSet moved = inBoxes;
+BoxColumns shiftedX(const BoxColumns& inBoxes, double inShift) {
+  BoxColumns moved = inBoxes;
   for (std::size_t i = 0; i < moved.size(); ++i) {
-    moved.lo(0, i) += inShift;
-    moved.hi(0, i) += inShift;
+    moved.lo[0][i] += inShift;
+    moved.hi[0][i] += inShift;
   }
   return moved;
 }
 
 TEST(SkinReuse, KeptCandidatesAnswerExactlyWhileEveryBoxStaysInsideItsSkin) {
-  const BoxSet first = test_support::randomBoxes(3000, 40.0, 1.5, 11);
+  const BoxColumns first = columnsOf(test_support::randomBoxes(3000, 40.0, 1.5, 11));
   SkinReuse skin;
   FrameReport report;
   EXPECT_FALSE(skin.hasCandidates());
@@ -41,18 +41,18 @@ TEST(SkinReuse, KeptCandidatesAnswerExactlyWhileEveryBoxStaysInsideItsSkin) {
   EXPECT_EQ(skin.skin(), kSkin);
   EXPECT_GE(skin.candidates(), bruteForcePairs(first).size());
   // Every box moved by less than skin / 2: covered, and the candidates give the exact pairs.
-  const BoxSet inside = shiftedX(first, 0.2);
+  const BoxColumns inside = shiftedX(first, 0.2);
   ASSERT_TRUE(skin.coversFrame(inside, 2, report));
   PairList pairs;
   skin.answerFromCandidates(2, report, pairs);
   EXPECT_EQ(pairs, bruteForcePairs(inside));
   EXPECT_EQ(report.skin_candidates, skin.candidates());
   // One box beyond its skin: not covered, known before any plan is made.
-  BoxSet outside = inside;
-  outside.hi(1, 7) += 0.3;
+  BoxColumns outside = inside;
+  outside.hi[1][7] += 0.3;
   EXPECT_FALSE(skin.coversFrame(outside, 2, report));
   // Other ids are never covered.
-  BoxSet renamed = inside;
+  BoxColumns renamed = inside;
   renamed.ids[0] += 100000;
   EXPECT_FALSE(skin.coversFrame(renamed, 2, report));
   skin.forget();
@@ -75,7 +75,7 @@ TEST(SkinReuse, MotionIsTheLargestDisplacementOfTheRecentWindow) {
 }
 
 TEST(SkinReuse, LearnsTheSweepFromItsOwnPhasesAndThePassFromThePass) {
-  const BoxSet boxes = test_support::randomBoxes(4000, 40.0, 1.5, 12);
+  const BoxColumns boxes = columnsOf(test_support::randomBoxes(4000, 40.0, 1.5, 12));
   SkinReuse skin;
   FrameReport report;
   report.ms_keys = 1.0;

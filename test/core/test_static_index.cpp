@@ -23,8 +23,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 using Random = test_support::TestRandom;
 
 /// Every overlapping, filter-allowed (query, indexed) pair, by testing all of them.
-PairList bruteForceCross(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexed,
-                         const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+PairList bruteForceCross(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexed,
+                         const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                          const std::vector<uint32_t>& inRemovedIds = {}) {
   PairList pairs;
   for (uint32_t q : inQueryIndexes)
@@ -33,8 +33,8 @@ PairList bruteForceCross(const BoxSet& inBoxes, const std::vector<uint32_t>& inI
         continue;
       bool overlap = true;
       for (int axis = 0; axis < 3; ++axis)
-        overlap = overlap && !(inQueries.lo(axis, q) > inBoxes.hi(axis, s) ||
-                               inBoxes.lo(axis, s) > inQueries.hi(axis, q));
+        overlap = overlap && !(inQueries.lo[axis][q] > inBoxes.hi[axis][s] ||
+                               inBoxes.lo[axis][s] > inQueries.hi[axis][q]);
       const bool allowed = (inQueries.group(q) & inBoxes.mask(s)) != 0 &&
                            (inBoxes.group(s) & inQueries.mask(q)) != 0;
       if (overlap && allowed) pairs.push_back(makeIdPair(inQueries.ids[q], inBoxes.ids[s]));
@@ -108,17 +108,17 @@ void adversarialInterval(Random& ioRandom, double inWorld, double& outLow, doubl
 
 /// inCount boxes with ids inFirstId.., each axis's interval of an adversarial kind with
 /// probability inOddShare, ordinary otherwise; every 7th box repeats an earlier one exactly.
-BoxSet adversarialBoxes(std::size_t inCount, double inWorld, double inOddShare, uint32_t inFirstId,
-                        uint64_t inSeed) {
+BoxColumns adversarialBoxes(std::size_t inCount, double inWorld, double inOddShare,
+                            uint32_t inFirstId, uint64_t inSeed) {
   Random random(inSeed);
-  BoxSet boxes;
+  BoxColumns boxes;
   for (std::size_t i = 0; i < inCount; ++i) {
     double lo[3], hi[3];
     if (i > 0 && i % 7 == 0) {
       const std::size_t copy = random.below(i);
       for (int axis = 0; axis < 3; ++axis) {
-        lo[axis] = boxes.lo(axis, copy);
-        hi[axis] = boxes.hi(axis, copy);
+        lo[axis] = boxes.lo[axis][copy];
+        hi[axis] = boxes.hi[axis][copy];
       }
     } else {
       for (int axis = 0; axis < 3; ++axis) {
@@ -136,7 +136,7 @@ BoxSet adversarialBoxes(std::size_t inCount, double inWorld, double inOddShare, 
 }
 
 /// Random groups and masks from a few bits, so some pairs are filtered out.
-void addFilters(BoxSet& ioBoxes, uint64_t inSeed) {
+void addFilters(BoxColumns& ioBoxes, uint64_t inSeed) {
   Random random(inSeed);
   ioBoxes.groups.resize(ioBoxes.size());
   ioBoxes.masks.resize(ioBoxes.size());
@@ -146,7 +146,7 @@ void addFilters(BoxSet& ioBoxes, uint64_t inSeed) {
   }
 }
 
-std::vector<uint32_t> allIndexes(const BoxSet& inBoxes) {
+std::vector<uint32_t> allIndexes(const BoxColumns& inBoxes) {
   std::vector<uint32_t> indexes(inBoxes.size());
   for (std::size_t i = 0; i < indexes.size(); ++i) indexes[i] = static_cast<uint32_t>(i);
   return indexes;
@@ -154,8 +154,8 @@ std::vector<uint32_t> allIndexes(const BoxSet& inBoxes) {
 
 /// Builds the index on inIndexed of inBoxes and expects the oracle from query() one by one and
 /// from queryAll() with 1, 2 and 3 threads.
-void expectMatches(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexed,
-                   const BoxSet& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+void expectMatches(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexed,
+                   const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
                    const std::string& inLabel) {
   const PairList expected = bruteForceCross(inBoxes, inIndexed, inQueries, inQueryIndexes);
   for (int build_threads : {1, 2}) {
@@ -175,8 +175,8 @@ void expectMatches(const BoxSet& inBoxes, const std::vector<uint32_t>& inIndexed
 
 TEST(StaticIndex, OrdinaryRandomBoxesManySeeds) {
   for (uint64_t seed = 1; seed <= 40; ++seed) {
-    const BoxSet indexed = adversarialBoxes(600, 20.0, 0.0, 0, seed);
-    BoxSet queries = adversarialBoxes(200, 20.0, 0.0, 10000, seed + 1000);
+    const BoxColumns indexed = adversarialBoxes(600, 20.0, 0.0, 0, seed);
+    BoxColumns queries = adversarialBoxes(200, 20.0, 0.0, 10000, seed + 1000);
     expectMatches(indexed, allIndexes(indexed), queries, allIndexes(queries),
                   "seed " + std::to_string(seed));
   }
@@ -185,8 +185,8 @@ TEST(StaticIndex, OrdinaryRandomBoxesManySeeds) {
 TEST(StaticIndex, AdversarialBoxesManySeeds) {
   for (uint64_t seed = 1; seed <= 60; ++seed) {
     const double odd_share = (seed % 4 + 1) * 0.1;
-    BoxSet indexed = adversarialBoxes(500, 8.0, odd_share, 0, seed);
-    BoxSet queries = adversarialBoxes(150, 8.0, odd_share, 5000, seed + 777);
+    BoxColumns indexed = adversarialBoxes(500, 8.0, odd_share, 0, seed);
+    BoxColumns queries = adversarialBoxes(150, 8.0, odd_share, 5000, seed + 777);
     if (seed % 2 == 0) {
       addFilters(indexed, seed);
       addFilters(queries, seed + 1);
@@ -196,10 +196,10 @@ TEST(StaticIndex, AdversarialBoxesManySeeds) {
   }
 }
 
-TEST(StaticIndex, SubsetsOfOneBoxSet) {
+TEST(StaticIndex, SubsetsOfOneBoxColumns) {
   // Index and queries drawn from one set by position, as the engine will use it.
   for (uint64_t seed = 1; seed <= 20; ++seed) {
-    BoxSet boxes = adversarialBoxes(800, 10.0, 0.2, 0, seed);
+    BoxColumns boxes = adversarialBoxes(800, 10.0, 0.2, 0, seed);
     addFilters(boxes, seed);
     Random random(seed);
     std::vector<uint32_t> indexed, moving;
@@ -210,7 +210,7 @@ TEST(StaticIndex, SubsetsOfOneBoxSet) {
 
 TEST(StaticIndex, TouchingLattice) {
   // Unit cubes on an integer lattice: every neighbour touches by a face, edge or corner.
-  BoxSet indexed, queries;
+  BoxColumns indexed, queries;
   uint32_t id = 0;
   for (int x = 0; x < 12; ++x)
     for (int y = 0; y < 12; ++y)
@@ -232,7 +232,7 @@ TEST(StaticIndex, TouchingLattice) {
 }
 
 TEST(StaticIndex, SignedZeroAndUlpGaps) {
-  BoxSet indexed, queries;
+  BoxColumns indexed, queries;
   const double lo_a[3] = {-1.0, -1.0, -1.0}, hi_a[3] = {-0.0, -0.0, -0.0};
   indexed.add(1, lo_a, hi_a);
   const double lo_b[3] = {1.0, 1.0, 1.0}, hi_b[3] = {2.0, 2.0, 2.0};
@@ -257,8 +257,8 @@ TEST(StaticIndex, SignedZeroAndUlpGaps) {
 
 TEST(StaticIndex, InfiniteSlabsAndHugeBoxes) {
   for (uint64_t seed = 1; seed <= 10; ++seed) {
-    BoxSet indexed = adversarialBoxes(400, 50.0, 0.0, 0, seed);
-    BoxSet queries = adversarialBoxes(100, 50.0, 0.0, 1000, seed + 50);
+    BoxColumns indexed = adversarialBoxes(400, 50.0, 0.0, 0, seed);
+    BoxColumns queries = adversarialBoxes(100, 50.0, 0.0, 1000, seed + 50);
     Random random(seed);
     for (uint32_t k = 0; k < 20; ++k) {
       double lo[3], hi[3];
@@ -276,8 +276,8 @@ TEST(StaticIndex, InfiniteSlabsAndHugeBoxes) {
 
 TEST(StaticIndex, DegenerateIndexes) {
   // All points; all identical; all on one plane; one far outlier stretching the grid.
-  BoxSet queries = adversarialBoxes(300, 10.0, 0.3, 100000, 9);
-  BoxSet points, identical, plane, outlier;
+  BoxColumns queries = adversarialBoxes(300, 10.0, 0.3, 100000, 9);
+  BoxColumns points, identical, plane, outlier;
   Random random(3);
   for (uint32_t i = 0; i < 500; ++i) {
     const double p[3] = {std::floor(random.unit() * 10), random.unit() * 10, 2.0};
@@ -291,14 +291,14 @@ TEST(StaticIndex, DegenerateIndexes) {
   }
   const double far_lo[3] = {1e12, 1e12, 1e12}, far_hi[3] = {1e12 + 1, 1e12 + 1, 1e12 + 1};
   outlier.add(500, far_lo, far_hi);
-  for (const BoxSet* indexed : {&points, &identical, &plane, &outlier})
+  for (const BoxColumns* indexed : {&points, &identical, &plane, &outlier})
     expectMatches(*indexed, allIndexes(*indexed), queries, allIndexes(queries), "degenerate");
 }
 
 TEST(StaticIndex, Remove) {
-  BoxSet indexed = adversarialBoxes(700, 10.0, 0.2, 0, 5);
+  BoxColumns indexed = adversarialBoxes(700, 10.0, 0.2, 0, 5);
   addFilters(indexed, 5);
-  const BoxSet queries = adversarialBoxes(200, 10.0, 0.2, 10000, 6);
+  const BoxColumns queries = adversarialBoxes(200, 10.0, 0.2, 10000, 6);
   StaticIndex index;
   index.build(indexed, allIndexes(indexed), 2);
   std::vector<uint32_t> removed;
@@ -322,7 +322,7 @@ TEST(StaticIndex, Remove) {
 }
 
 TEST(StaticIndex, EmptySides) {
-  const BoxSet boxes = adversarialBoxes(100, 10.0, 0.2, 0, 11);
+  const BoxColumns boxes = adversarialBoxes(100, 10.0, 0.2, 0, 11);
   StaticIndex empty;
   empty.build(boxes, {}, 2);
   EXPECT_EQ(empty.size(), 0u);
@@ -338,14 +338,14 @@ TEST(StaticIndex, EmptySides) {
   full.build(boxes, allIndexes(boxes), 2);
   full.queryAll(boxes, {}, 3, pairs);
   EXPECT_TRUE(pairs.empty());
-  BoxSet no_boxes;
+  BoxColumns no_boxes;
   full.queryAll(no_boxes, {}, 1, pairs);
   EXPECT_TRUE(pairs.empty());
 }
 
 TEST(StaticIndex, KeepsItsOwnCopyAndRebuilds) {
-  BoxSet indexed = adversarialBoxes(300, 10.0, 0.2, 0, 21);
-  const BoxSet queries = adversarialBoxes(100, 10.0, 0.2, 1000, 22);
+  BoxColumns indexed = adversarialBoxes(300, 10.0, 0.2, 0, 21);
+  const BoxColumns queries = adversarialBoxes(100, 10.0, 0.2, 1000, 22);
   const PairList expected =
       bruteForceCross(indexed, allIndexes(indexed), queries, allIndexes(queries));
   StaticIndex index;
@@ -359,10 +359,10 @@ TEST(StaticIndex, KeepsItsOwnCopyAndRebuilds) {
 
 TEST(StaticIndex, FilteredOutQueriesAndAppending) {
   // Static boxes that cannot pair with each other (group 0x2, mask 0x1), as in the target scene.
-  BoxSet boxes = adversarialBoxes(500, 10.0, 0.1, 0, 31);
+  BoxColumns boxes = adversarialBoxes(500, 10.0, 0.1, 0, 31);
   boxes.groups.assign(boxes.size(), 0x2u);
   boxes.masks.assign(boxes.size(), 0x1u);
-  BoxSet queries = adversarialBoxes(100, 10.0, 0.1, 1000, 32);
+  BoxColumns queries = adversarialBoxes(100, 10.0, 0.1, 1000, 32);
   addFilters(queries, 33);
   StaticIndex index;
   index.build(boxes, allIndexes(boxes), 2);
@@ -379,7 +379,7 @@ TEST(StaticIndex, UniformSceneHundredThousandStatic) {
   SceneConfig scene;
   scene.n = 101000;
   scene.seed = 4;
-  BoxSet boxes = makeSceneFrame(scene, 0);
+  BoxColumns boxes = columnsOf(makeSceneFrame(scene, 0));
   std::vector<uint32_t> indexed, moving;
   for (uint32_t i = 0; i < boxes.size(); ++i) (i < 100000 ? indexed : moving).push_back(i);
   boxes.groups.assign(boxes.size(), 0x2u);

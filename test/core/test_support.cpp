@@ -68,7 +68,10 @@ BoxSet shuffledSubset(const BoxSet& inBoxes, double inKeep, bool inSparseIds, ui
   return subset;
 }
 
-void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
+namespace {
+
+template <typename Boxes>
+void addRandomFiltersTo(Boxes& ioBoxes, uint64_t inSeed) {
   TestRandom random(inSeed);
   ioBoxes.groups.resize(ioBoxes.size());
   ioBoxes.masks.resize(ioBoxes.size());
@@ -76,6 +79,49 @@ void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
     ioBoxes.groups[i] = 1u << random.below(3);
     ioBoxes.masks[i] = static_cast<uint32_t>(random.below(8));  // 0 collides with nothing
   }
+}
+
+}  // namespace
+
+void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed) {
+  addRandomFiltersTo(ioBoxes, inSeed);
+}
+
+void addRandomFilters(BoxColumns& ioBoxes, uint64_t inSeed) {
+  addRandomFiltersTo(ioBoxes, inSeed);
+}
+
+std::vector<BoxSpan> cutIntoSpans(const BoxSet& inBoxes, std::size_t inSpanBoxes) {
+  std::vector<BoxSpan> spans;
+  const BoxSpan whole = inBoxes.span();
+  for (std::size_t first = 0; first < inBoxes.size(); first += inSpanBoxes) {
+    BoxSpan span = whole;
+    span.count = std::min(inSpanBoxes, inBoxes.size() - first);
+    span.bounds += kBoundsPerBox * first;
+    span.ids += first;
+    if (span.groups) span.groups += first;
+    if (span.masks) span.masks += first;
+    spans.push_back(span);
+  }
+  return spans;
+}
+
+BoxSet recordsOf(const BoxColumns& inBoxes) {
+  BoxSet records;
+  records.reserve(inBoxes.size());
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    const double low[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
+    const double high[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
+    records.add(inBoxes.ids[i], low, high);
+  }
+  records.groups = inBoxes.groups;
+  records.masks = inBoxes.masks;
+  return records;
+}
+
+BoxColumns shuffledSubset(const BoxColumns& inBoxes, double inKeep, bool inSparseIds,
+                          uint64_t inSeed) {
+  return columnsOf(shuffledSubset(recordsOf(inBoxes), inKeep, inSparseIds, inSeed));
 }
 
 SceneConfig movingScene(SceneKind inKind, uint64_t inSeed, std::size_t inCount, double inDensity,

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/box_columns.h"
 #include "core/random.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
@@ -30,6 +31,16 @@ BoxSet latticeBoxes(std::size_t inCount, int inCells, int inMaxEdge, uint64_t in
 BoxSet shuffledSubset(const BoxSet& inBoxes, double inKeep, bool inSparseIds, uint64_t inSeed);
 /// Gives box i a random group and mask (from a few bits, so some pairs are filtered out).
 void addRandomFilters(BoxSet& ioBoxes, uint64_t inSeed);
+
+/// The same helpers on the engine's internal layout, for the tests of its parts.
+BoxColumns shuffledSubset(const BoxColumns& inBoxes, double inKeep, bool inSparseIds,
+                          uint64_t inSeed);
+void addRandomFilters(BoxColumns& ioBoxes, uint64_t inSeed);
+/// inBoxes cut into spans of inSpanBoxes boxes (the last one shorter), over inBoxes' memory:
+/// the frame as several sources would give it.
+std::vector<BoxSpan> cutIntoSpans(const BoxSet& inBoxes, std::size_t inSpanBoxes);
+/// inBoxes as records (the inverse of columnsOf()).
+BoxSet recordsOf(const BoxColumns& inBoxes);
 
 /// A moving scene of the paper's kinds: inCount boxes at density inDensity, inFrames frames.
 SceneConfig movingScene(SceneKind inKind, uint64_t inSeed, std::size_t inCount = 3000,

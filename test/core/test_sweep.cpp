@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/axis_spread.h"
+#include "core/box_columns.h"
 #include "core/key_origin.h"
 #include "core/radix_sort.h"
-#include "core/box_columns.h"
 #include "core/small_frame.h"
 #include "core/sort_keys.h"
 #include "core/sweep.h"

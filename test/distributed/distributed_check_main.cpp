@@ -79,7 +79,7 @@ int holderOf(Distribution inRule, const BoxSet& inAll, std::size_t i, int inRank
       return static_cast<int>((i % ((inRanks + 1) / 2)) * 2);
     case Distribution::kSpatial: {
       // By the sign pattern of x: ranks hold x-bands, infinite boxes the end ones.
-      const double x = inAll.lo[0][i];
+      const double x = inAll.lo(0, i);
       const int band = x < -2 ? 0 : x < 0 ? 1 : x < 2 ? 2 : 3;
       return band % inRanks;
     }
@@ -92,8 +92,8 @@ BoxSet myShare(const BoxSet& inAll, Distribution inRule, int inRank, int inRanks
   BoxSet mine;
   for (std::size_t i = 0; i < inAll.size(); ++i) {
     if (holderOf(inRule, inAll, i, inRanks) != inRank) continue;
-    const double lo[3] = {inAll.lo[0][i], inAll.lo[1][i], inAll.lo[2][i]};
-    const double hi[3] = {inAll.hi[0][i], inAll.hi[1][i], inAll.hi[2][i]};
+    const double lo[3] = {inAll.lo(0, i), inAll.lo(1, i), inAll.lo(2, i)};
+    const double hi[3] = {inAll.hi(0, i), inAll.hi(1, i), inAll.hi(2, i)};
     if (inAll.hasFilters())
       mine.add(inAll.ids[i], lo, hi, inAll.group(i), inAll.mask(i));
     else
@@ -174,8 +174,8 @@ void jitter(BoxSet& ioBoxes, double inStep, SplitMix& ioRandom) {
   for (std::size_t i = 0; i < ioBoxes.size(); ++i) {
     for (int a = 0; a < 3; ++a) {
       const double d = ioRandom.range(-inStep, inStep);
-      ioBoxes.lo[a][i] += d;
-      ioBoxes.hi[a][i] += d;
+      ioBoxes.lo(a, i) += d;
+      ioBoxes.hi(a, i) += d;
     }
   }
 }
@@ -208,8 +208,8 @@ std::vector<Scenario> scenarios() {
                    BoxSet boxes = touchingLattice();
                    if (inFrame == 2) {  // a frame where every box moves by a whole cell in x
                      for (std::size_t i = 0; i < boxes.size(); ++i) {
-                       boxes.lo[0][i] += 1;
-                       boxes.hi[0][i] += 1;
+                       boxes.lo(0, i) += 1;
+                       boxes.hi(0, i) += 1;
                      }
                    }
                    return boxes;  // frames 0, 1, 3: unchanged (nothing re-sent)
@@ -245,8 +245,8 @@ std::vector<Scenario> scenarios() {
                    for (std::size_t k = 0; k < frame.size(); ++k) {
                      const std::size_t i = inFrame == 2 ? frame.size() - 1 - k : k;
                      if ((frame.ids[i] + inFrame) % 7 == 0) continue;
-                     const double lo[3] = {frame.lo[0][i], frame.lo[1][i], frame.lo[2][i]};
-                     const double hi[3] = {frame.hi[0][i], frame.hi[1][i], frame.hi[2][i]};
+                     const double lo[3] = {frame.lo(0, i), frame.lo(1, i), frame.lo(2, i)};
+                     const double hi[3] = {frame.hi(0, i), frame.hi(1, i), frame.hi(2, i)};
                      kept.add(frame.ids[i], lo, hi);
                    }
                    return kept;

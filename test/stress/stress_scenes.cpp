@@ -219,9 +219,11 @@ BoxSet specialValueScene(std::size_t inCount, uint64_t inSeed) {
 
 BoxSet translated(const BoxSet& inBoxes, const double inOffset[3]) {
   BoxSet moved = inBoxes;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (double& value : moved.lo[axis]) value += inOffset[axis];
-    for (double& value : moved.hi[axis]) value += inOffset[axis];
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      moved.lo(axis, i) += inOffset[axis];
+      moved.hi(axis, i) += inOffset[axis];
+    }
   }
   return moved;
 }

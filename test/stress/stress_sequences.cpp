@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/box_columns.h"
 #include "sap_broadphase/core/brute_force.h"
 
 namespace sap_broadphase::stress {
@@ -192,9 +193,9 @@ BoxSet sceneryBoxes(std::size_t inCount, uint64_t inSeed) {
 BoxSet reversedOrder(const BoxSet& inBoxes) {
   BoxSet reversed = inBoxes;
   std::reverse(reversed.ids.begin(), reversed.ids.end());
-  for (int axis = 0; axis < 3; ++axis) {
-    std::reverse(reversed.lo[axis].begin(), reversed.lo[axis].end());
-    std::reverse(reversed.hi[axis].begin(), reversed.hi[axis].end());
+  for (std::size_t i = 0, j = reversed.size(); i + 1 < j; ++i, --j) {
+    double* first = &reversed.bounds[kBoundsPerBox * i];
+    std::swap_ranges(first, first + kBoundsPerBox, &reversed.bounds[kBoundsPerBox * (j - 1)]);
   }
   std::reverse(reversed.groups.begin(), reversed.groups.end());
   std::reverse(reversed.masks.begin(), reversed.masks.end());
@@ -202,40 +203,22 @@ BoxSet reversedOrder(const BoxSet& inBoxes) {
 }
 
 KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes) {
-  BoxSet swept;  // the boxes the engine sweeps: group and mask 0 are dropped first
-  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
-    if (inBoxes.group(i) == 0 || inBoxes.mask(i) == 0) continue;
-    const double low[3] = {inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i]};
-    const double high[3] = {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i]};
-    swept.add(inBoxes.ids[i], low, high);
-  }
+  const BoxColumns swept = columnsOf(inBoxes);
   FrameSpread spread(swept);
   return keyOriginOf(spread, 1);
 }
 
 bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b) {
   for (int axis = 0; axis < 3; ++axis)
-    if (inOrigin.low(axis, inBoxes.lo[axis][a]) > inOrigin.high(axis, inBoxes.hi[axis][b]) ||
-        inOrigin.low(axis, inBoxes.lo[axis][b]) > inOrigin.high(axis, inBoxes.hi[axis][a]))
+    if (inOrigin.low(axis, inBoxes.lo(axis, a)) > inOrigin.high(axis, inBoxes.hi(axis, b)) ||
+        inOrigin.low(axis, inBoxes.lo(axis, b)) > inOrigin.high(axis, inBoxes.hi(axis, a)))
       return false;
   return true;
 }
 
-BoxSet concatenated(const BoxSet& inFirst, const BoxSet& inSecond) {
-  BoxSet both;
-  both.reserve(inFirst.size() + inSecond.size());
-  for (const BoxSet* part : {&inFirst, &inSecond}) {
-    for (std::size_t i = 0; i < part->size(); ++i) {
-      const double low[3] = {part->lo[0][i], part->lo[1][i], part->lo[2][i]};
-      const double high[3] = {part->hi[0][i], part->hi[1][i], part->hi[2][i]};
-      both.add(part->ids[i], low, high, part->group(i), part->mask(i));
-    }
-  }
-  return both;
-}
-
 PairList declaredSceneryOracle(const BoxSet& inScenery, const BoxSet& inMoving) {
-  PairList pairs = bruteForcePairs(concatenated(inScenery, inMoving));
+  const BoxSpan both[2] = {inScenery.span(), inMoving.span()};  // one frame, read where it lies
+  PairList pairs = bruteForcePairs(BoxFrame(both, 2));
   std::vector<uint32_t> scenery_ids = inScenery.ids;
   std::sort(scenery_ids.begin(), scenery_ids.end());
   const auto is_scenery = [&](uint32_t inId) {

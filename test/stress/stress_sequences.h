@@ -86,9 +86,10 @@ class SkipWorld {
 /// The same boxes (ids, bounds, filters) in reverse order.
 BoxSet reversedOrder(const BoxSet& inBoxes);
 
-/// The key space a fresh engine puts a frame's keys in: keyOriginOf() the boxes it sweeps
-/// (group and mask not 0), as SweepAndPrune places its KeyOrigin on a first frame. The
-/// keys-only mode (exact_final_test = false) may add a pair only where these keys overlap.
+/// The key space a fresh engine puts a frame's keys in: keyOriginOf() every box of the frame
+/// (those that pair with nothing are swept too), as SweepAndPrune places its KeyOrigin on a
+/// first frame. The keys-only mode (exact_final_test = false) may add a pair only where these
+/// keys overlap.
 KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes);
 /// True when boxes a and b of inBoxes overlap in inOrigin's keys on all three axes.
 bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b);
@@ -99,8 +100,6 @@ constexpr uint32_t kFirstSceneryId = 1u << 24;
 /// inCount boxes on the lattice of a SkipWorld of inCount boxes, ids from kFirstSceneryId, default
 /// filters (scenery boxes overlap one another: those pairs must never be reported).
 BoxSet sceneryBoxes(std::size_t inCount, uint64_t inSeed);
-/// inFirst's boxes followed by inSecond's (filters kept, defaults where a set has none).
-BoxSet concatenated(const BoxSet& inFirst, const BoxSet& inSecond);
 /// What update(inMoving) must give after setStaticBoxes(inScenery): the oracle's pairs of both
 /// sets together minus the scenery x scenery pairs.
 PairList declaredSceneryOracle(const BoxSet& inScenery, const BoxSet& inMoving);

@@ -37,7 +37,7 @@ TEST(StressDegenerate, ZeroExtentOnSomeAxes) {
   SplitMix64 random(73);
   for (std::size_t i = 0; i < boxes.size(); ++i)
     for (int axis = 0; axis < 3; ++axis)
-      if (random.chance(0.4)) boxes.hi[axis][i] = boxes.lo[axis][i];
+      if (random.chance(0.4)) boxes.hi(axis, i) = boxes.lo(axis, i);
   expectStressMatch(boxes, "lattice, faces and edges of zero extent");
 }
 
@@ -59,8 +59,8 @@ TEST(StressDegenerate, AllOnOnePlane) {
   for (int axis = 0; axis < 3; ++axis) {
     BoxSet boxes = randomBoxes(5000, 100.0, 2.5, 74 + axis);
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-      boxes.lo[axis][i] = 0.0;
-      boxes.hi[axis][i] = 0.0;
+      boxes.lo(axis, i) = 0.0;
+      boxes.hi(axis, i) = 0.0;
     }
     expectStressMatch(boxes, "5000 boxes flat on plane " + std::to_string(axis) + " = 0");
   }
@@ -69,8 +69,8 @@ TEST(StressDegenerate, AllOnOnePlane) {
 TEST(StressDegenerate, AllOnOneLine) {
   BoxSet boxes = randomBoxes(4000, 1000.0, 1.0, 77);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
-    boxes.lo[1][i] = boxes.hi[1][i] = 3.0;
-    boxes.lo[2][i] = boxes.hi[2][i] = -0.0;
+    boxes.lo(1, i) = boxes.hi(1, i) = 3.0;
+    boxes.lo(2, i) = boxes.hi(2, i) = -0.0;
   }
   expectStressMatch(boxes, "4000 segments on one line");
 }

@@ -69,8 +69,8 @@ TEST(StressInfinity, SlabsWithInfiniteThirdAxis) {
   SplitMix64 random(55);
   for (std::size_t i = 0; i < boxes.size(); i += 7) {
     for (int axis = 0; axis < 3; ++axis) {
-      if (random.chance(0.3)) boxes.lo[axis][i] = -kInf;
-      if (random.chance(0.3)) boxes.hi[axis][i] = random.chance(0.5) ? kInf : 1e308;
+      if (random.chance(0.3)) boxes.lo(axis, i) = -kInf;
+      if (random.chance(0.3)) boxes.hi(axis, i) = random.chance(0.5) ? kInf : 1e308;
     }
   }
   expectStressMatch(boxes, "infinite and 1e308 on the slab axis");

@@ -91,9 +91,8 @@ bool sameBits(const BoxSet& inA, const BoxSet& inB) {
     return inX.size() == inY.size() &&
            (inX.empty() || std::memcmp(inX.data(), inY.data(), inX.size() * sizeof inX[0]) == 0);
   };
-  for (int axis = 0; axis < 3; ++axis)
-    if (!same(inA.lo[axis], inB.lo[axis]) || !same(inA.hi[axis], inB.hi[axis])) return false;
-  return same(inA.ids, inB.ids) && same(inA.groups, inB.groups) && same(inA.masks, inB.masks);
+  return same(inA.bounds, inB.bounds) && same(inA.ids, inB.ids) && same(inA.groups, inB.groups) &&
+         same(inA.masks, inB.masks);
 }
 
 // The scenery is replaced before this frame, which repeats the one before it (the script's
