@@ -44,9 +44,7 @@ BoxSpan boxArrayRecords(const BoxArray& inMsg) {
   return records;
 }
 
-std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes) {
-  if (auto shapeError = checkBoxArrayShape(inMsg)) return shapeError;
-  // Empty ids number the boxes 0..n-1: written out, the set holds one id per box.
+void copyBoxArray(const BoxArray& inMsg, BoxSet& outBoxes) {
   outBoxes.ids.resize(inMsg.bounds.size() / 6);
   if (inMsg.ids.empty())
     std::iota(outBoxes.ids.begin(), outBoxes.ids.end(), 0u);
@@ -55,6 +53,11 @@ std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBo
   outBoxes.bounds.assign(inMsg.bounds.begin(), inMsg.bounds.end());
   outBoxes.groups.assign(inMsg.groups.begin(), inMsg.groups.end());
   outBoxes.masks.assign(inMsg.masks.begin(), inMsg.masks.end());
+}
+
+std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes) {
+  if (auto shapeError = checkBoxArrayShape(inMsg)) return shapeError;
+  copyBoxArray(inMsg, outBoxes);
   if (auto error = validate(outBoxes)) return error->message();
   return std::nullopt;
 }

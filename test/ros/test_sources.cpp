@@ -49,10 +49,15 @@ BoxSet withIdOffset(BoxSet inBoxes, uint32_t inOffset) {
   return inBoxes;
 }
 
-/// The union of box sets, as the node merges its sources.
+/// The union of box sets: the world of the node's sources.
 BoxSet unionOf(const std::vector<const BoxSet*>& inParts) {
   BoxSet world;
-  for (const BoxSet* part : inParts) appendBoxes(*part, world);
+  for (const BoxSet* part : inParts) {
+    for (std::size_t i = 0; i < part->size(); ++i) {
+      const double* box = part->bounds.data() + kBoundsPerBox * i;
+      world.add(part->ids[i], box, box + 3, part->group(i), part->mask(i));
+    }
+  }
   return world;
 }
 

@@ -22,6 +22,11 @@ std::optional<std::string> checkBoxArrayShape(const BoxArray& inMsg);
 /// while inMsg is.
 BoxSpan boxArrayRecords(const BoxArray& inMsg);
 
+/// Copies the boxes of a BoxArray whose shape is checked (checkBoxArrayShape) into outBoxes
+/// (replaced; capacity reused) as they are, for the engine to check as it loads them. Empty
+/// `ids` number the boxes 0..n-1.
+void copyBoxArray(const BoxArray& inMsg, BoxSet& outBoxes);
+
 /// Converts a BoxArray into outBoxes (replaced; capacity reused) and validates it fully: shape,
 /// NaN, min > max, duplicate ids. Empty `ids` number the boxes 0..n-1. Returns the reason of a
 /// refusal naming the box, e.g. "box 3 (id 17): min_y (3) > max_y (2)", or nothing.
