@@ -304,6 +304,43 @@ TEST(Sources, DuplicateIdAcrossSourcesRefusedNamingBoth) {
                   .has_value());
 }
 
+TEST(Sources, RefusedFrameLeavesTheSourcesLastAcceptedOne) {
+  BoxSet good;
+  const double lo[3] = {0.2, 0.2, 0.2}, hi[3] = {0.8, 0.8, 0.8};
+  good.add(3500, lo, hi);  // overlaps robot A's box
+  const auto holds = [](const PairArray& inPairs, IdPair inPair) {
+    const PairList pairs = toPairs(inPairs);
+    return std::count(pairs.begin(), pairs.end(), inPair) == 1;
+  };
+  auto republish = [&] { publishBoxes(multi(), "extra", good, "world"); };
+  ASSERT_TRUE(multi()
+                  .waitPairs(
+                      [&](const PairArray& m) {
+                        return holds(m, IdPair{1, 3500});
+                      },
+                      republish)
+                  .has_value());
+  // The next frame of `extra` has min_x > max_x: refused, named, and `extra` stays in the world
+  // with its last accepted frame while the robots' frames keep coming.
+  BoxSet bad = good;
+  bad.lo(0, 0) = 3.0;
+  bad.hi(0, 0) = 2.0;
+  const ros::Time bad_stamp = publishBoxes(multi(), "extra", bad, "world");
+  const auto stats = multi().waitStats(
+      [&](const FrameStats& s) { return s.header.stamp == bad_stamp && s.path == "refused"; });
+  ASSERT_TRUE(stats) << "no refusal of the bad frame";
+  EXPECT_NE(stats->last_refusal.find("'extra' from /"), std::string::npos) << stats->last_refusal;
+  EXPECT_NE(stats->last_refusal.find("box 0 (id 3500): min_x (3) > max_x (2)"), std::string::npos)
+      << stats->last_refusal;
+  EXPECT_TRUE(multi()
+                  .waitPairs([&](const PairArray& m) {
+                    return m.header.stamp > bad_stamp && holds(m, IdPair{1, 2}) &&
+                           holds(m, IdPair{1, 3500});
+                  })
+                  .has_value())
+      << "the robots' frames after the refusal lost the last accepted frame of `extra`";
+}
+
 TEST(Sources, SilentSourcesTimeOut) {
   // The test stops publishing: its two sources time out (~source_timeout 3 s), the robots stay.
   const auto stats =
