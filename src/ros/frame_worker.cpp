@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "checked_callbacks.h"
-#include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
 
