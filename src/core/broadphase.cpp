@@ -21,6 +21,7 @@
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/frame_query.h"
+#include "core/memory_policy.h"
 #include "core/pair_sort.h"
 #include "core/phase_timer.h"
 #include "core/skin_reuse.h"
@@ -30,7 +31,6 @@
 #include "core/thread_choice.h"
 #include "core/tuning.h"
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/core/memory_policy.h"
 
 namespace sap_broadphase {
 

@@ -121,7 +121,10 @@ BoundArrays boundArrays(const RecordBlock& inBlock) {
 // box k - first_box[s] of span s.
 class FrameReader {
  public:
-  explicit FrameReader(const BoxFrame& inFrame) : frame_(inFrame), filtered_(inFrame.hasFilters()) {
+  // ioFirstBoxes: the history's, so that a frame allocates nothing once its span count is seen.
+  FrameReader(const BoxFrame& inFrame, std::vector<std::size_t>& ioFirstBoxes)
+      : frame_(inFrame), filtered_(inFrame.hasFilters()), first_box_(ioFirstBoxes) {
+    first_box_.clear();
     std::size_t first_box = 0;
     for (std::size_t s = 0; s < inFrame.spanCount(); ++s) {
       first_box_.push_back(first_box);
@@ -172,7 +175,7 @@ class FrameReader {
 
   const BoxFrame& frame_;
   const bool filtered_;
-  std::vector<std::size_t> first_box_;
+  std::vector<std::size_t>& first_box_;  // the first frame box of each span
   std::size_t size_ = 0;
 };
 
@@ -250,7 +253,7 @@ FramePass compareAndCopyBlocks(const FrameReader& inFrame, int inThreads, BoxCol
 
 const FrameDelta& FrameHistory::load(const BoxFrame& inFrame, int inThreads,
                                      std::optional<ValidationError>& outProblem) {
-  const FrameReader reader(inFrame);
+  const FrameReader reader(inFrame, span_first_boxes_);
   const bool had_last = valid_;
   delta_ = FrameDelta();
   valid_ = false;  // from here until remember(), last_ is being made this frame

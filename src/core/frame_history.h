@@ -77,7 +77,8 @@ class FrameHistory {
   void describeSameSize(const FramePass& inPass);
 
   BoxColumns last_;
-  bool valid_ = false;  // last_ is the last frame
+  bool valid_ = false;                         // last_ is the last frame
+  std::vector<std::size_t> span_first_boxes_;  // the frame being loaded: where each span starts
   std::vector<uint8_t> unchanged_;
   FrameDelta delta_;
 };

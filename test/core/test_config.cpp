@@ -7,9 +7,9 @@
 #include <set>
 #include <string>
 
+#include "core/memory_policy.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/config.h"
-#include "sap_broadphase/core/memory_policy.h"
 
 namespace sap_broadphase {
 namespace {
