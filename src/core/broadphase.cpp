@@ -68,7 +68,11 @@ struct Broadphase::Impl {
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
   void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
-  int passThreads(int inThreads) const { return passes_threads > 0 ? passes_threads : inThreads; }
+  // The history's passes: as many threads as the last frame's work was learnt to pay on, never
+  // more than this frame may use.
+  int passThreads(int inThreads) const {
+    return passes_threads > 0 ? std::min(passes_threads, inThreads) : inThreads;
+  }
 };
 
 // A box with group 0 or mask 0 passes no filter: the strategies never pair it (each tests
@@ -254,10 +258,9 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 // Everything of a frame after the history has compared (or loaded) it: inBoxes are the boxes
 // that may pair, as the history now holds them.
 void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta,
-                                int inConfiguredThreads) {
-  const int threads = frameThreads(config, inBoxes.size(), inConfiguredThreads);
+                                int inThreads) {
   skin.startFrame(inDelta);
-  FramePlan frame_plan = plan(inBoxes, inDelta, threads);
+  FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
   const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, inBoxes.size());
   FrameSpread spread(inBoxes);  // measured once, by the first part that needs it
   const auto work_start = std::chrono::steady_clock::now();
@@ -270,12 +273,12 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
   }
   // The next frame's passes over every box (memory-bound) run on as many threads as this work
   // is learnt to pay on; probes of the other count do not move them.
-  passes_threads = measured ? thread_choice.preferred(*measured, threads) : 0;
+  passes_threads = measured ? thread_choice.preferred(*measured, inThreads) : 0;
   if (!config.skin) {  // the costs only feed the automatic skin's choice
     PhaseTimer timer(report.ms_plan);
     skin.learn(frame_plan, spread, pairs.size(), report);
   }
-  if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, threads);
+  if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, inThreads);
   history.remember();
   world.setFrame(history.remembered());
   pairs_valid = true;
@@ -287,7 +290,9 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
 const PairList& Broadphase::update(const BoxFrame& inFrame) {
   Impl& impl = *impl_;
   impl.world.clear();  // the history's copy is about to change
-  const int threads = resolveThreadCount(impl.config.threads);
+  // A small frame, loading included, runs on one thread (frame_plan.h, frameThreads).
+  const int threads =
+      frameThreads(impl.config, inFrame.size(), resolveThreadCount(impl.config.threads));
   FrameReport& report = impl.report;
   report = FrameReport();
   {

@@ -276,13 +276,16 @@ std::vector<ConfigField> makeConfigFields() {
        setNumber<&C::axis_swap_threshold>},
       // The one cut-off of method auto. Measured against the one-thread engine with
       // sap_microbench's BM_SmallFrame (uniform scenes, CPU time of one thread): the small
-      // frame stays ahead up to 2^15 boxes at density 0.35 and beyond 2^16 at 0.05 (at 2^14:
-      // 3.3 against 5.3 ms, and 1.6 against 3.9 ms). Against the parallel engine on two threads
-      // with `sap_bench -e skips` (uniform, density 0.2, every frame swept, 2 cores idle): it
-      // leads 2.04x at 2^13, 1.53x at 2^14 and 1.15x at 2^15 and trails from 2^16 (1.07 / 2.19,
-      // 2.66 / 4.07, 6.99 / 8.04, 20.0 / 15.4 ms). Its candidates grow as n^(5/3) on a uniform
-      // scene, the engine's as n, hence a crossover; 2^14 keeps a margin for denser scenes.
-      {"parallel_min_boxes", ConfigFieldType::kInteger, "16384", 0.0, kLargestCount,
+      // frame stays ahead up to 2^15 boxes at density 0.35 and beyond 2^16 at 0.05. Against the
+      // parallel engine on two threads with `sap_bench -e skips` (uniform, density 0.2, every
+      // frame swept, 2 cores idle): it leads 2.04x at 2^13, 1.53x at 2^14 and 1.15x at 2^15
+      // and trails from 2^16. Since the kernel keeps candidates under a skin too, a steady
+      // frame of 2^14 boxes costs it 0.32 ms on one thread against 0.42 ms for the parallel
+      // sweep on two, and a first frame 0.99 against 2.1 ms; with another process on the
+      // second core a two-thread frame of 2^14 boxes waited 30-130 ms for it (the closing
+      // barrier of each OpenMP region), one thread none. 2^15 (where two threads still win
+      // the steady state on an idle machine, 0.50 against 0.68 ms) keeps 2^14 frames on one.
+      {"parallel_min_boxes", ConfigFieldType::kInteger, "32768", 0.0, kLargestCount,
        "an integer >= 0",
        "method auto: frames below this many boxes run on one thread (the small-frame path, or "
        "the sequential sweep under a fixed skin)",

@@ -149,7 +149,7 @@ TEST(ConfigTable, DescribeListsEveryFieldOnce) {
   config.method = Method::kParallel;
   EXPECT_EQ(describeConfig(config),
             "threads 0, method parallel, primary_axis x, secondary_axis y, axis_swapping true, "
-            "axis_swap_threshold 0.25, parallel_min_boxes 16384, third_axis_slabs 0, "
+            "axis_swap_threshold 0.25, parallel_min_boxes 32768, third_axis_slabs 0, "
             "reuse_unchanged_frames true, skin 0.125, exact_final_test true");
 }
 

@@ -64,7 +64,7 @@ struct BroadphaseConfig {
   int secondary_axis = 1;             ///< second sweep axis; must differ from primary_axis
   bool axis_swapping = true;          ///< swap a clustered sweep axis with the unused one (§5)
   double axis_swap_threshold = 0.25;  ///< dispersion D above which an axis is swapped
-  std::size_t parallel_min_boxes = 16384;  ///< kAuto: frames below this many boxes run on one
+  std::size_t parallel_min_boxes = 32768;  ///< kAuto: frames below this many boxes run on one
                                            ///< thread, the small-frame path (or the sequential
                                            ///< sweep under a fixed skin); measured crossover
   int third_axis_slabs = 0;                ///< active lists per slab of the unused axis: 0 = auto,
