@@ -108,8 +108,8 @@ std::string checkConverted(const BoxArray& inMsg) {
   for (std::size_t i = 0; i < count; ++i) {
     if (boxes.ids[i] != (inMsg.ids.empty() ? i : inMsg.ids[i])) return "id changed";
     for (int axis = 0; axis < 3; ++axis)
-      if (!sameBits(boxes.lo[axis][i], inMsg.bounds[6 * i + axis]) ||
-          !sameBits(boxes.hi[axis][i], inMsg.bounds[6 * i + 3 + axis]))
+      if (!sameBits(boxes.lo(axis, i), inMsg.bounds[6 * i + axis]) ||
+          !sameBits(boxes.hi(axis, i), inMsg.bounds[6 * i + 3 + axis]))
         return "bound changed in the conversion";
   }
   BoxArray back;
@@ -154,12 +154,8 @@ std::string checkBoxArrayFromBoxSetBytes(const uint8_t* inData, std::size_t inSi
   if (variant & 0x1) msg.ids = boxes.ids;
   msg.groups = boxes.groups;
   msg.masks = boxes.masks;
-  const std::size_t count = boxes.lo[0].size();
-  for (std::size_t i = 0; i < count; ++i) {
-    for (int axis = 0; axis < 3; ++axis) msg.bounds.push_back(boxes.lo[axis][i]);
-    for (int axis = 0; axis < 3; ++axis)
-      msg.bounds.push_back(i < boxes.hi[axis].size() ? boxes.hi[axis][i] : 0.0);
-  }
+  msg.bounds = boxes.bounds;  // the same records, a short one included
+  const std::size_t count = boxes.bounds.size() / kBoundsPerBox;
   if (variant & 0x2) msg.bounds.resize(msg.bounds.size() - std::min<std::size_t>(1, count));
   return checkConverted(msg);
 }

@@ -1,4 +1,4 @@
-// Input adapters: MarkerArray, vision_msgs and jsk_recognition_msgs boxes into BoxArrays.
+// Input adapters: MarkerArray, vision_msgs and jsk_recognition_msgs boxes into records.
 #include "adapters.h"
 
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <ros/serialization.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include "sources.h"
+#include "sap_broadphase/ros/conversions.h"
 // kVisionBoundingBox3DArrayDefinition, ...: src/ros/adapters_msgs/*.msg, embedded by CMake.
 #include "sap_broadphase_adapters_msgs.h"
 
@@ -305,7 +305,7 @@ SourceAdapter::SourceAdapter(const SourceSpec& inSpec) : spec_(inSpec), ids_(inS
 
 std::optional<std::string> SourceAdapter::convert(const topic_tools::ShapeShifter& inMsg,
                                                   const std::string& inPublisher,
-                                                  BoxArray& outBoxes) {
+                                                  SourceFrame& outFrame) {
   // The node names the source (topic and publisher) in front of these refusals.
   if (auto reason = checkPublishedType(spec_.type, inMsg.getDataType(), inMsg.getMD5Sum()))
     return reason;
@@ -321,35 +321,36 @@ std::optional<std::string> SourceAdapter::convert(const topic_tools::ShapeShifte
     if (spec_.type == InputType::kMarkerArray) {
       visualization_msgs::MarkerArray markers;
       ros::serialization::deserialize(in, markers);
-      return convertMarkers(markers, inPublisher, outBoxes);
+      return convertMarkers(markers, inPublisher, outFrame);
     }
     if (spec_.type == InputType::kBoxArray) {
-      ros::serialization::deserialize(in, outBoxes);
-      return applyOverrides(outBoxes);
+      BoxArray boxes;
+      ros::serialization::deserialize(in, boxes);
+      return convertBoxArray(boxes, outFrame);
     }
   } catch (const ros::Exception& exception) {  // bytes shorter than the type's layout
     return std::string(expected.name) + " that cannot be read: " + exception.what();
   }
-  return convertWire(spec_.type, bytes, outBoxes);
+  return convertWire(spec_.type, bytes, outFrame);
 }
 
 std::optional<std::string> SourceAdapter::convertWire(InputType inType,
                                                       const std::vector<uint8_t>& inData,
-                                                      BoxArray& outBoxes) {
+                                                      SourceFrame& outFrame) {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto reason =
       decodeWireBoxes(inType, inData.data(), static_cast<uint32_t>(inData.size()), decoded_);
-  outBoxes.header = decoded_.header;  // what a refusal names, when the header was read
+  outFrame.header = decoded_.header;  // what a refusal names, when the header was read
   if (reason) return reason;
-  return toBoxArray(decoded_.header, decoded_.boxes, outBoxes);
+  return toRecords(decoded_.header, decoded_.boxes, outFrame);
 }
 
 std::optional<std::string> SourceAdapter::convertMarkers(
     const visualization_msgs::MarkerArray& inMsg, const std::string& inPublisher,
-    BoxArray& outBoxes) {
+    SourceFrame& outFrame) {
   std::lock_guard<std::mutex> lock(mutex_);
   // A refusal names the frame and stamp of the message's first marker.
-  if (!inMsg.markers.empty()) outBoxes.header = inMsg.markers.front().header;
+  if (!inMsg.markers.empty()) outFrame.header = inMsg.markers.front().header;
   // Applied to a copy: a refused message leaves the publisher's markers as they were.
   MarkerSet next = marker_sets_[inPublisher];
   bool stamped = false;
@@ -390,23 +391,20 @@ std::optional<std::string> SourceAdapter::convertMarkers(
     }
     appendMarkerBoxes(marker, boxes);
   }
-  if (auto reason = toBoxArray(next.header, boxes, outBoxes)) return reason;
+  if (auto reason = toRecords(next.header, boxes, outFrame)) return reason;
   marker_sets_[inPublisher] = std::move(next);
   return std::nullopt;
 }
 
-std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inHeader,
-                                                     const std::vector<PosedBox>& inBoxes,
-                                                     BoxArray& outBoxes) {
-  outBoxes.header = inHeader;
+std::optional<std::string> SourceAdapter::toRecords(const std_msgs::Header& inHeader,
+                                                    const std::vector<PosedBox>& inBoxes,
+                                                    SourceFrame& outFrame) {
+  outFrame.header = inHeader;
   for (const PosedBox& box : inBoxes)
     if (auto reason = checkPosedBox(box)) return reason;
-  outBoxes.ids.clear();
-  outBoxes.bounds.clear();
-  outBoxes.groups.clear();
-  outBoxes.masks.clear();
-  outBoxes.ids.reserve(inBoxes.size());
-  outBoxes.bounds.reserve(6 * inBoxes.size());
+  BoxSet& records = outFrame.records;
+  records.clear();
+  records.reserve(inBoxes.size());
   for (const PosedBox& box : inBoxes) {
     std::optional<uint32_t> id;
     if (spec_.marker_ids) {
@@ -421,7 +419,7 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
              std::to_string(kMaxNamesPerSource) + ", and id_offset " +
              std::to_string(spec_.id_offset) + " plus the names must stay below 2^32)";
     }
-    outBoxes.ids.push_back(*id);
+    records.ids.push_back(*id);
     // The box in its own frame; a point's box is widened by an ulp each way so the rounding of
     // point +- size / 2 never shrinks it.
     const double centre[3] = {box.centre.x, box.centre.y, box.centre.z};
@@ -432,8 +430,8 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
         lo = std::nextafter(lo, -kInfinity);
         hi = std::nextafter(hi, kInfinity);
       }
-      one_box_.lo[axis][0] = lo;
-      one_box_.hi[axis][0] = hi;
+      one_box_.lo(axis, 0) = lo;
+      one_box_.hi(axis, 0) = hi;
     }
     geometry_msgs::Transform pose;
     pose.translation.x = box.pose.position.x;
@@ -445,36 +443,24 @@ std::optional<std::string> SourceAdapter::toBoxArray(const std_msgs::Header& inH
     // The one rule of the node for a moved box: the axis-aligned box of its 8 corners, rounded
     // outwards (the tf2 sources use it too).
     transformBoxes(pose, one_box_);
-    for (int axis = 0; axis < 3; ++axis) outBoxes.bounds.push_back(one_box_.lo[axis][0]);
-    for (int axis = 0; axis < 3; ++axis) outBoxes.bounds.push_back(one_box_.hi[axis][0]);
+    records.bounds.insert(records.bounds.end(), one_box_.bounds.begin(), one_box_.bounds.end());
   }
-  applyFilters(outBoxes);
+  applyFilters(records);
   return std::nullopt;
 }
 
-void SourceAdapter::applyFilters(BoxArray& ioBoxes) const {
-  const std::size_t count = ioBoxes.bounds.size() / 6;
-  if (spec_.group) ioBoxes.groups.assign(count, *spec_.group);
-  if (spec_.mask) ioBoxes.masks.assign(count, *spec_.mask);
+void SourceAdapter::applyFilters(BoxSet& ioBoxes) const {
+  if (spec_.group) ioBoxes.groups.assign(ioBoxes.size(), *spec_.group);
+  if (spec_.mask) ioBoxes.masks.assign(ioBoxes.size(), *spec_.mask);
 }
 
-std::optional<std::string> SourceAdapter::applyOverrides(BoxArray& ioBoxes) const {
-  const std::size_t count = ioBoxes.bounds.size() / 6;
-  if (spec_.id_offset != 0) {
-    if (ioBoxes.ids.empty()) {
-      ioBoxes.ids.resize(count);
-      for (std::size_t k = 0; k < count; ++k) ioBoxes.ids[k] = static_cast<uint32_t>(k);
-    }
-    for (std::size_t k = 0; k < ioBoxes.ids.size(); ++k) {
-      const uint64_t id = uint64_t{ioBoxes.ids[k]} + spec_.id_offset;
-      if (id > std::numeric_limits<uint32_t>::max()) {
-        return "box " + std::to_string(k) + " (id " + std::to_string(ioBoxes.ids[k]) +
-               "): id + id_offset " + std::to_string(spec_.id_offset) + " passes 2^32 - 1";
-      }
-      ioBoxes.ids[k] = static_cast<uint32_t>(id);
-    }
-  }
-  applyFilters(ioBoxes);
+std::optional<std::string> SourceAdapter::convertBoxArray(const BoxArray& inBoxes,
+                                                          SourceFrame& outFrame) const {
+  outFrame.header = inBoxes.header;
+  if (auto reason = checkBoxArrayShape(inBoxes)) return reason;
+  copyBoxArray(inBoxes, outFrame.records);
+  outFrame.id_offset = spec_.id_offset;
+  applyFilters(outFrame.records);
   return std::nullopt;
 }
 

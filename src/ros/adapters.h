@@ -1,5 +1,6 @@
 // Input adapters: the box messages robots publish (visualization_msgs/MarkerArray, vision_msgs,
-// jsk_recognition_msgs) turned into the node's BoxArray, one adapter per ~sources entry.
+// jsk_recognition_msgs) turned into records of the node's frames, one adapter per ~sources
+// entry.
 //
 // vision_msgs and jsk_recognition_msgs are not packaged in Debian 12, so the node has no build
 // dependency on them: it subscribes with topic_tools::ShapeShifter, checks the publisher's
@@ -25,6 +26,7 @@
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/core/box_set.h"
 #include "source_spec.h"
+#include "sources.h"
 #include "wire_layout.h"
 
 namespace sap_broadphase {
@@ -107,29 +109,31 @@ class IdTable {
   std::vector<std::pair<uint32_t, std::string>> entries_;
 };
 
-/// Converts the messages of one ~sources entry into BoxArrays. Thread-safe: one mutex per
-/// source (roscpp calls one subscription's callbacks one at a time, in order, which the marker
-/// state relies on).
+/// Converts the messages of one ~sources entry into source frames of records. Thread-safe: one
+/// mutex per source (roscpp calls one subscription's callbacks one at a time, in order, which the
+/// marker state relies on).
 class SourceAdapter {
  public:
   explicit SourceAdapter(const SourceSpec& inSpec);
   const SourceSpec& spec() const { return spec_; }
 
   /// Any message of the topic: checks its type name and MD5 sum against spec().type, decodes
-  /// and converts it into outBoxes (replaced). Returns the refusal, or nothing.
+  /// and converts it into outFrame (header and records replaced). Returns the refusal, or
+  /// nothing; the header is the message's wherever it was read, for the refusal to name.
   std::optional<std::string> convert(const topic_tools::ShapeShifter& inMsg,
-                                     const std::string& inPublisher, BoxArray& outBoxes);
+                                     const std::string& inPublisher, SourceFrame& outFrame);
   /// A MarkerArray of inPublisher: applied to the publisher's marker set (ADD/MODIFY replace a
   /// marker, DELETE removes one, DELETEALL all of them), then the whole set of CUBE and
   /// CUBE_LIST markers is converted. A refused message leaves the set as it was.
   std::optional<std::string> convertMarkers(const visualization_msgs::MarkerArray& inMsg,
-                                            const std::string& inPublisher, BoxArray& outBoxes);
+                                            const std::string& inPublisher, SourceFrame& outFrame);
   /// Serialized bytes of a vision_msgs or jsk message of inType (type already checked).
   std::optional<std::string> convertWire(InputType inType, const std::vector<uint8_t>& inData,
-                                         BoxArray& outBoxes);
-  /// A BoxArray of a source with an id_offset, group or mask: applies them to ioBoxes (ids
-  /// numbered 0..n-1 first when empty). Returns the refusal (an id overflowing uint32).
-  std::optional<std::string> applyOverrides(BoxArray& ioBoxes) const;
+                                         SourceFrame& outFrame);
+  /// A BoxArray of a source with an id_offset, group or mask: its records (ids numbered
+  /// 0..n-1 when it has none) with the spec's group and mask, and the id_offset for the engine
+  /// to add (it refuses an id the offset takes past 2^32 - 1). Returns the refusal of a shape.
+  std::optional<std::string> convertBoxArray(const BoxArray& inBoxes, SourceFrame& outFrame) const;
 
   /// Appends the (id, name) of every named box seen so far; the number of names grows only.
   void appendIdNames(std::vector<uint32_t>& ioIds, std::vector<std::string>& ioNames) const;
@@ -147,12 +151,12 @@ class SourceAdapter {
     std::map<std::pair<std::string, int32_t>, visualization_msgs::Marker> markers;
     std_msgs::Header header;
   };
-  /// Checks and converts inBoxes (in the frame of inHeader) into outBoxes with ids from the
+  /// Checks and converts inBoxes (in the frame of inHeader) into outFrame with ids from the
   /// table and the spec's group and mask (caller holds mutex_).
-  std::optional<std::string> toBoxArray(const std_msgs::Header& inHeader,
-                                        const std::vector<PosedBox>& inBoxes, BoxArray& outBoxes);
+  std::optional<std::string> toRecords(const std_msgs::Header& inHeader,
+                                       const std::vector<PosedBox>& inBoxes, SourceFrame& outFrame);
   /// The spec's group and mask, when given, on every box of ioBoxes.
-  void applyFilters(BoxArray& ioBoxes) const;
+  void applyFilters(BoxSet& ioBoxes) const;
 
   const SourceSpec spec_;
   mutable std::mutex mutex_;

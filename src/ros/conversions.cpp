@@ -3,9 +3,8 @@
 
 #include <cstddef>
 #include <cstring>
+#include <numeric>
 #include <type_traits>
-
-#include "sap_broadphase/core/config.h"
 
 namespace sap_broadphase {
 
@@ -35,8 +34,8 @@ std::optional<std::string> checkBoxArrayShape(const BoxArray& inMsg) {
   return std::nullopt;
 }
 
-InterleavedBoxes boxArrayRecords(const BoxArray& inMsg) {
-  InterleavedBoxes records;
+BoxSpan boxArrayRecords(const BoxArray& inMsg) {
+  BoxSpan records;
   records.count = inMsg.bounds.size() / 6;
   records.bounds = inMsg.bounds.data();
   records.ids = inMsg.ids.empty() ? nullptr : inMsg.ids.data();
@@ -45,10 +44,20 @@ InterleavedBoxes boxArrayRecords(const BoxArray& inMsg) {
   return records;
 }
 
+void copyBoxArray(const BoxArray& inMsg, BoxSet& outBoxes) {
+  outBoxes.ids.resize(inMsg.bounds.size() / 6);
+  if (inMsg.ids.empty())
+    std::iota(outBoxes.ids.begin(), outBoxes.ids.end(), 0u);
+  else
+    outBoxes.ids.assign(inMsg.ids.begin(), inMsg.ids.end());
+  outBoxes.bounds.assign(inMsg.bounds.begin(), inMsg.bounds.end());
+  outBoxes.groups.assign(inMsg.groups.begin(), inMsg.groups.end());
+  outBoxes.masks.assign(inMsg.masks.begin(), inMsg.masks.end());
+}
+
 std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes) {
   if (auto shapeError = checkBoxArrayShape(inMsg)) return shapeError;
-  // A 2^20-box message is 50 MB: the copy into the engine's layout runs on every core.
-  copyInterleaved(boxArrayRecords(inMsg), outBoxes, resolveThreadCount(0));
+  copyBoxArray(inMsg, outBoxes);
   if (auto error = validate(outBoxes)) return error->message();
   return std::nullopt;
 }
@@ -67,17 +76,9 @@ void pairListToPairArray(const PairList& inPairs, const std_msgs::Header& inHead
 }
 
 void boxSetToBoxArray(const BoxSet& inBoxes, const std_msgs::Header& inHeader, BoxArray& outMsg) {
-  const std::size_t count = inBoxes.size();
   outMsg.header = inHeader;
   outMsg.ids.assign(inBoxes.ids.begin(), inBoxes.ids.end());
-  outMsg.bounds.resize(6 * count);
-  for (std::size_t i = 0; i < count; ++i) {
-    double* box = outMsg.bounds.data() + 6 * i;
-    for (int axis = 0; axis < 3; ++axis) {
-      box[axis] = inBoxes.lo[axis][i];
-      box[3 + axis] = inBoxes.hi[axis][i];
-    }
-  }
+  outMsg.bounds.assign(inBoxes.bounds.begin(), inBoxes.bounds.end());  // the same records
   outMsg.groups.assign(inBoxes.groups.begin(), inBoxes.groups.end());
   outMsg.masks.assign(inBoxes.masks.begin(), inBoxes.masks.end());
 }

@@ -74,7 +74,7 @@ bool FrameOutputs::wantsMarkers() const {
   return publish_markers_ && markers_pub_.getNumSubscribers() > 0;
 }
 
-MarkerCounts FrameOutputs::publishMarkers(const BoxSet& inWorld, const PairList& inPairs,
+MarkerCounts FrameOutputs::publishMarkers(const BoxFrame& inWorld, const PairList& inPairs,
                                           const std_msgs::Header& inHeader,
                                           const BoxNames& inNames) {
   if (!wantsMarkers()) return MarkerCounts{};

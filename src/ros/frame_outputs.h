@@ -27,7 +27,7 @@ class FrameOutputs {
   bool wantsMarkers() const;
   /// Publishes the markers of the world and its pairs, with the names of inNames, while someone
   /// listens.
-  MarkerCounts publishMarkers(const BoxSet& inWorld, const PairList& inPairs,
+  MarkerCounts publishMarkers(const BoxFrame& inWorld, const PairList& inPairs,
                               const std_msgs::Header& inHeader, const BoxNames& inNames);
   /// Takes marker settings changed at run time: `markers` advertised or shut down.
   void setMarkers(bool inPublishMarkers, const MarkerOptions& inMarkers);

@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "checked_callbacks.h"
-#include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
 
@@ -61,7 +60,7 @@ void FrameWorker::reconfigure(const NodeParams& inSettings) {
   wake_.notify_one();
 }
 
-QueryHitList FrameWorker::query(const BoxSet& inQueries) const {
+QueryHitList FrameWorker::query(const BoxFrame& inQueries) const {
   std::shared_lock<std::shared_mutex> lock(engine_mutex_);
   return engine_.query(inQueries);
 }
@@ -149,7 +148,7 @@ void FrameWorker::recoverFrom(const std::string& inWhat) {
                  "a frame could not be computed (" + inWhat + "): refused, new engine");
   std::lock_guard<std::shared_mutex> lock(engine_mutex_);
   engine_ = Broadphase(params_.engine);
-  if (static_boxes_.size() > 0) engine_.setStaticBoxes(static_boxes_);
+  if (scenery_) engine_.setStaticBoxes(scenery_->span());
 }
 
 void FrameWorker::applySettings(const NodeParams& inSettings) {
@@ -160,7 +159,7 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
     // the scenery again.
     std::lock_guard<std::shared_mutex> lock(engine_mutex_);
     engine_ = Broadphase(inSettings.engine);
-    if (static_boxes_.size() > 0) engine_.setStaticBoxes(static_boxes_);
+    if (scenery_) engine_.setStaticBoxes(scenery_->span());
     status_.setEngineConfig(inSettings.engine);
   }
   outputs_.setMarkers(inSettings.publish_markers, inSettings.markers);
@@ -172,47 +171,41 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
 }
 
 bool FrameWorker::takeScenery() {
-  BoxArrayConstPtr scenery_msg;
-  ingest_.take(deliveries_, scenery_msg);
-  if (!scenery_msg) return false;
-  BoxSet scenery;
-  if (!ingest_.convertScenery(*scenery_msg, scenery)) return false;
-  static_ids_ = scenery.ids;
-  std::sort(static_ids_.begin(), static_ids_.end());
-  static_ids_.shrink_to_fit();
-  static_frame_ =
-      ingest_.fixedFrame().empty() ? scenery_msg->header.frame_id : ingest_.fixedFrame();
-  if (scenery.size() == 0) static_frame_.clear();  // no scenery: no frame to agree with
-  {
+  BoxArrayConstPtr message;
+  ingest_.take(deliveries_, message);
+  if (!message) return false;
+  auto scenery = std::make_shared<SourceFrame>();
+  scenery->header = message->header;
+  scenery->message = message;
+  // An empty scenery (clearing it) needs no transform.
+  if (scenery->size() > 0 && !ingest_.placeFrame(kStaticSourceName, ros::Time(0), *scenery))
+    return false;
+  try {
     std::lock_guard<std::shared_mutex> lock(engine_mutex_);
-    engine_.setStaticBoxes(scenery);
+    engine_.setStaticBoxes(scenery->span());
+  } catch (const InvalidBoxes& refusal) {  // the scenery in force stays
+    status_.refuse(message->header, scenery->size(),
+                   std::string(kStaticSourceName) + ": " + refusal.error().message());
+    return false;
   }
-  status_.setStaticBoxes(scenery.size());
-  ROS_INFO("sap_broadphase: static_boxes: %zu boxes indexed (frame '%s')", scenery.size(),
-           scenery_msg->header.frame_id.c_str());
-  static_boxes_ = std::move(scenery);
+  static_frame_ = ingest_.fixedFrame().empty() ? message->header.frame_id : ingest_.fixedFrame();
+  if (scenery->size() == 0) static_frame_.clear();  // no scenery: no frame to agree with
+  status_.setStaticBoxes(scenery->size());
+  ROS_INFO("sap_broadphase: static_boxes: %zu boxes indexed (frame '%s')", scenery->size(),
+           message->header.frame_id.c_str());
+  scenery_ = std::move(scenery);
   return true;
 }
 
 bool FrameWorker::takeDeliveries() {
   bool changed = false;
   for (auto& [key, delivery] : deliveries_) {
-    if (ingest_.fixedFrame().empty()) {
-      // No transform to apply: the frame is kept as published, checked where it is read.
-      sources_.storeMessage(key, delivery.msg, delivery.received);
-      changed = true;
+    if (!ingest_.placeFrame(sourceName(key), delivery.frame->header.stamp, *delivery.frame))
       continue;
-    }
-    if (!ingest_.convert(key, *delivery.msg, converted_)) continue;
-    std_msgs::Header header = delivery.msg->header;
-    header.frame_id = ingest_.fixedFrame();  // moved there
-    sources_.store(key, converted_, header, delivery.received);
-    status_.countProcessed();
+    sources_.store(key, std::move(delivery.frame), delivery.received);
     changed = true;
   }
   deliveries_.clear();
-  if (converted_watch_.shouldGiveBack(converted_.size(), converted_.ids.capacity()))
-    shrinkBoxSet(converted_);
   return changed;
 }
 
@@ -227,7 +220,7 @@ void FrameWorker::expireSources() {
   if (!expired.empty() && sources_.size() == 0) {
     // No frame follows until a source comes back: the last one must not stay in the world.
     std::lock_guard<std::shared_mutex> lock(engine_mutex_);
-    engine_.update(BoxSet());
+    engine_.update(BoxFrame());
   }
   for (const auto& [key, frames] : expired) {
     ingest_.forget(key);
@@ -250,57 +243,70 @@ void FrameWorker::expireSources() {
 void FrameWorker::computeFrame() {
   const auto start = std::chrono::steady_clock::now();
   const std::string& fixed_frame = ingest_.fixedFrame();
-  WorldAssembly assembly;
-  const World world =
-      sources_.assemble(static_ids_, fixed_frame.empty() ? static_frame_ : fixed_frame, world_,
-                        assembly, outputs_.wantsMarkers());
-  if (!fixed_frame.empty()) assembly.header.frame_id = fixed_frame;
-  for (const auto* refused_list : {&assembly.refused_frames, &assembly.refusals})
-    for (const RefusedFrame& refused : *refused_list)
-      status_.refuse(refused.header, refused.boxes, refused.reason);
-  for (std::size_t i = 0; i < assembly.frames_accepted; ++i) status_.countProcessed();
-  if (world_watch_.shouldGiveBack(world_.size(), world_.ids.capacity())) shrinkBoxSet(world_);
-  if (assembly.sources_merged == 0) return;
-
+  sources_.assemble(fixed_frame.empty() ? static_frame_ : fixed_frame, world_);
+  for (const LeftOutSource& left_out : world_.left_out) refuseLeftOut(left_out);
   FrameAccount frame;
-  frame.header = assembly.header;
-  frame.boxes = world.size();
-  frame.sources = assembly.sources_merged;
   frame.ms_conversion = millisecondsSince(start);
-  const PairList* pairs = nullptr;
-  if (world.boxes) {
-    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
-    pairs = &engine_.update(*world.boxes);
-  }
-  if (!pairs && !(pairs = updateFromMessage(world))) return;
-  frame.ms_message = outputs_.publishPairs(*pairs, assembly.header);
+  const PairList* pairs = loadWorld();
+  if (!pairs) return;
+  for (const WorldMember& member : world_.members)
+    if (sources_.accept(member.key)) status_.countProcessed();
+  const BoxFrame boxes(spans_);
+  frame.header = world_.header();
+  frame.boxes = boxes.size();
+  frame.sources = world_.members.size();
+  frame.ms_message = outputs_.publishPairs(*pairs, frame.header);
   frame.ms_total = millisecondsSince(start);
-  outputs_.publishEvents(*pairs, assembly.header);
-  if (world.boxes) {  // markers are drawn from boxes; a world that is one message has none
-    const MarkerCounts markers =
-        outputs_.publishMarkers(*world.boxes, *pairs, assembly.header, ingest_.idNames());
-    frame.marker_boxes = markers.drawn;
-    frame.marker_boxes_omitted = markers.colliding_omitted;
-  }
+  outputs_.publishEvents(*pairs, frame.header);
+  // The boxes just loaded, read where the sources keep them.
+  const MarkerCounts markers =
+      outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.idNames());
+  frame.marker_boxes = markers.drawn;
+  frame.marker_boxes_omitted = markers.colliding_omitted;
   status_.frameComputed(frame, engine_.stats());
 }
 
-const PairList* FrameWorker::updateFromMessage(const World& inWorld) {
-  const BoxArray& message = *inWorld.message;
-  try {
-    std::unique_lock<std::shared_mutex> lock(engine_mutex_);
-    const PairList& pairs = engine_.update(boxArrayRecords(message));
-    lock.unlock();
-    if (sources_.accept(inWorld.source)) status_.countProcessed();
-    return &pairs;
-  } catch (const InvalidBoxes& refusal) {
-    // As a frame refused at conversion: counted and named, nothing published, and the source
-    // keeps its last good frame.
-    status_.refuse(message.header, inWorld.size(),
-                   sourceName(inWorld.source) + ": " + refusal.error().message());
-    sources_.refuse(inWorld.source);
-    return nullptr;
+const PairList* FrameWorker::loadWorld() {
+  // Each refusal takes one source back to its last accepted frame or out of the world: the
+  // loop ends after at most two refusals a source.
+  while (!world_.members.empty()) {
+    spans_.clear();
+    for (const WorldMember& member : world_.members) spans_.push_back(member.frame->span());
+    try {
+      std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+      return &engine_.update(BoxFrame(spans_));
+    } catch (const InvalidBoxes& refusal) {
+      refuseMember(refusal.error());
+    }
   }
+  return nullptr;
+}
+
+void FrameWorker::refuseLeftOut(const LeftOutSource& inLeftOut) {
+  const SourceKey& key = inLeftOut.source.key;
+  const SourceFrame& frame = *inLeftOut.source.frame;
+  // The engine never sees a frame left out, yet its sender must learn what is wrong with its
+  // boxes first: the engine's own check names them, as a load would.
+  if (const auto problem = validate(BoxFrame(frame.span()))) {
+    status_.refuse(frame.header, frame.size(), sourceName(key) + ": " + problem->message());
+    sources_.refuse(key);
+    return;
+  }
+  status_.refuse(frame.header, frame.size(), inLeftOut.reason);
+}
+
+void FrameWorker::refuseMember(const ValidationError& inError) {
+  // The one problem of the whole frame rather than of a box, more boxes than the engine takes,
+  // goes to the newest source, as a shared id does.
+  ValidationError error = inError;
+  if (error.problem == BoxProblem::kShape) error.span = world_.members.size() - 1;
+  const std::size_t span = error.span;
+  WorldMember& member = world_.members.at(span);
+  status_.refuse(member.frame->header, member.frame->size(), worldRefusal(error, world_));
+  if (SourceFramePtr fallback = sources_.refuse(member.key))
+    member.frame = std::move(fallback);
+  else
+    world_.members.erase(world_.members.begin() + static_cast<std::ptrdiff_t>(span));
 }
 
 }  // namespace sap_broadphase

@@ -43,7 +43,7 @@ class FrameWorker {
   /// What overlaps inQueries (checked, in the world's frame) in the world: the last frame
   /// computed plus the scenery (Broadphase::query). Any thread; waits at most for the engine
   /// work in progress (a frame, a new scenery or a new engine).
-  QueryHitList query(const BoxSet& inQueries) const;
+  QueryHitList query(const BoxFrame& inQueries) const;
 
  private:
   /// Waits for work, takes it in, computes; until the destructor says stop.
@@ -64,11 +64,18 @@ class FrameWorker {
   void restartClock(const ros::Time& inNow);
   /// Counts and logs an exception (inWhat) that ended a round of the loop; a new engine.
   void recoverFrom(const std::string& inWhat);
-  /// Merges the sources, computes and publishes one frame.
+  /// Hands the sources' frames to the engine, publishes the pairs and the frame's accounts.
   void computeFrame();
-  /// The engine on a world that is one source's frame as published, which the engine checks
-  /// as it reads it: the pairs, or null when the frame was refused.
-  const PairList* updateFromMessage(const World& inWorld);
+  /// The engine on the spans of world_, which it checks as it loads them; a refused source
+  /// falls back on its last accepted frame or leaves, and the world is loaded again. The pairs,
+  /// or null when no source is left.
+  const PairList* loadWorld();
+  /// Counts and names a source the world leaves out for its frame_id: for its boxes first, when
+  /// they are no boxes (the frame then leaves as one the engine refuses), else for its frame.
+  void refuseLeftOut(const LeftOutSource& inLeftOut);
+  /// Counts and names the problem inError of the world's frame, and takes the source that
+  /// holds it back to its last accepted frame, or out of world_ without one.
+  void refuseMember(const ValidationError& inError);
 
   NodeParams params_;  // the settings in force (worker thread only)
   SourceIngest& ingest_;
@@ -89,14 +96,10 @@ class FrameWorker {
   Broadphase engine_;
   SourceSet sources_;
   std::map<SourceKey, Delivery> deliveries_;
-  BoxArrayConstPtr scenery_msg_;      // the scenery waiting for its transform, if any
-  BoxSet static_boxes_;               // the scenery, declared again to a rebuilt engine
-  std::vector<uint32_t> static_ids_;  // sorted ids of the scenery, for the id check
-  std::string static_frame_;          // frame of the scenery without ~fixed_frame
-  BoxSet converted_;                  // conversion buffer, swapped into the sources
-  GiveBackWatch converted_watch_;
-  BoxSet world_;  // union of the sources when there are several
-  GiveBackWatch world_watch_;
+  SourceFramePtr scenery_;      // the scenery, declared again to a rebuilt engine
+  std::string static_frame_;    // frame of the scenery without ~fixed_frame
+  WorldAssembly world_;         // the sources of the frame being computed (worker thread)
+  std::vector<BoxSpan> spans_;  // their boxes as the engine reads them, one span a source
   std::thread thread_;
 };
 

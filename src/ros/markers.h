@@ -51,10 +51,11 @@ using BoxNames = std::unordered_map<uint32_t, std::string>;
 /// LINE_LIST (24 points a box, always present, maybe empty), their faces as a TRIANGLE_LIST
 /// (36 points a box, when any), then, if enabled and not empty, the non-colliding boxes and the
 /// pair links, and, if enabled, the name of each drawn colliding box inNames holds (when given)
-/// as a text above the box. Header (frame and stamp) from inHeader. A pair
-/// may name a box inBoxes does not hold (the scenery of static_boxes): its box in inBoxes is
-/// drawn as colliding, the other is not drawn and has no link.
-MarkerCounts buildMarkers(const BoxSet& inBoxes, const PairList& inPairs,
+/// as a text above the box. Header (frame and stamp) from inHeader. The boxes are those of
+/// inFrame, whatever spans hold them. A pair may name a box inFrame does not hold (the scenery
+/// of static_boxes): its box in inFrame is drawn as colliding, the other is not drawn and has
+/// no link.
+MarkerCounts buildMarkers(const BoxFrame& inFrame, const PairList& inPairs,
                           const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
                           visualization_msgs::MarkerArray& outMarkers,
                           const BoxNames* inNames = nullptr);

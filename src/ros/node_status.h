@@ -23,9 +23,9 @@ struct FrameAccount {
   std_msgs::Header header;
   std::size_t boxes = 0;
   std::size_t sources = 0;
-  double ms_conversion = 0.0;  ///< merging the sources into the world
+  double ms_conversion = 0.0;  ///< gathering the sources' frames into the world's spans
   double ms_message = 0.0;     ///< filling and publishing `pairs`
-  double ms_total = 0.0;       ///< from the merge to `pairs` published
+  double ms_total = 0.0;       ///< from the gathering to `pairs` published
   uint32_t marker_boxes = 0;
   uint32_t marker_boxes_omitted = 0;
 };

@@ -27,15 +27,27 @@ QueryService::~QueryService() {
 }
 
 bool QueryService::onQuery(QueryBoxes::Request& inRequest, QueryBoxes::Response& outResponse) {
-  // The checks and words of a source frame: the shape, then each box (NaN, min > max, a
-  // repeated id), then the frame it can be placed from.
-  std::optional<std::string> refusal = boxArrayToBoxSet(inRequest.boxes, queries_);
-  if (!refusal) refusal = ingest_.placeInFixedFrame(inRequest.boxes.header, queries_);
+  // The checks and words of a source frame: the shape and the frame it can be placed from
+  // here, each box (NaN, min > max, a repeated id) by the engine as it reads the queries.
+  const BoxArray& boxes = inRequest.boxes;
+  std::optional<std::string> refusal = checkBoxArrayShape(boxes);
+  const bool moved = !ingest_.fixedFrame().empty();
+  if (!refusal && moved) {  // moved into ~fixed_frame as records; else read where they lie
+    copyBoxArray(boxes, queries_);
+    refusal = ingest_.placeInFixedFrame(boxes.header, queries_);
+  }
+  QueryHitList hits;
+  if (!refusal) {
+    try {
+      hits = worker_.query(moved ? BoxFrame(queries_) : BoxFrame(boxArrayRecords(boxes)));
+    } catch (const InvalidBoxes& invalid) {
+      refusal = invalid.error().message();
+    }
+  }
   if (refusal) {
     refuse("query boxes: " + *refusal, outResponse);
     return true;  // the call itself succeeded; the answer says why the boxes were refused
   }
-  const QueryHitList hits = worker_.query(queries_);
   outResponse.hits.clear();
   outResponse.hits.reserve(2 * hits.size());
   for (const QueryHit& hit : hits) {

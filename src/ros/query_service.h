@@ -38,7 +38,7 @@ class QueryService {
   SourceIngest& ingest_;
   const FrameWorker& worker_;
   int log_period_;
-  BoxSet queries_;  // conversion buffer (service thread only)
+  BoxSet queries_;  // the query boxes moved into ~fixed_frame (service thread only)
   ros::CallbackQueue queue_;
   ros::ServiceServer service_;
   std::optional<ros::AsyncSpinner> spinner_;

@@ -153,22 +153,20 @@ void SourceIngest::refuseUnhandled(const std::string& inTopic, const std::string
 
 void SourceIngest::onAdaptedMessage(
     SourceAdapter& ioAdapter, const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent) {
-  auto boxes = boost::make_shared<BoxArray>();
-  if (auto reason =
-          ioAdapter.convert(*inEvent.getConstMessage(), inEvent.getPublisherName(), *boxes)) {
+  // The adapter writes records, the frame the engine reads.
+  auto frame = std::make_shared<SourceFrame>();
+  const std::string& publisher = inEvent.getPublisherName();
+  if (auto reason = ioAdapter.convert(*inEvent.getConstMessage(), publisher, *frame)) {
     status_.countReceived();
-    const SourceKey key{ioAdapter.spec().topic, inEvent.getPublisherName(), boxes->header.frame_id};
-    status_.refuse(boxes->header, boxes->bounds.size() / 6, sourceName(key) + ": " + *reason);
+    const SourceKey key{ioAdapter.spec().topic, publisher, frame->header.frame_id};
+    status_.refuse(frame->header, frame->size(), sourceName(key) + ": " + *reason);
     return;
   }
   {
     std::lock_guard<std::mutex> lock(id_names_mutex_);
-    id_names_header_ = boxes->header;
+    id_names_header_ = frame->header;
   }
-  // The BoxArray built, with the connection header (publisher) of the message received.
-  deliver(ioAdapter.spec().topic,
-          ros::MessageEvent<BoxArray const>(boxes, inEvent.getConnectionHeaderPtr(),
-                                            inEvent.getReceiptTime()));
+  deliverFrame(ioAdapter.spec().topic, publisher, std::move(frame));
 }
 
 void SourceIngest::publishIdNames() {
@@ -191,8 +189,9 @@ void SourceIngest::subscribeScenery(ros::NodeHandle& ioNode) {
   using Message = const BoxArrayConstPtr&;
   options.init<BoxArray>("static_boxes", 1, [](Message) {});
   const auto keep = [this](Message inMsg) {
-    if (auto reason =
-            inMsg->bounds.empty() ? std::nullopt : unplaceableFrame(inMsg->header.frame_id)) {
+    std::optional<std::string> reason = checkBoxArrayShape(*inMsg);
+    if (!reason && !inMsg->bounds.empty()) reason = unplaceableFrame(inMsg->header.frame_id);
+    if (reason) {
       status_.refuse(inMsg->header, inMsg->bounds.size() / 6,
                      std::string(kStaticSourceName) + ": " + *reason);
       return;
@@ -228,33 +227,46 @@ void SourceIngest::stop() {
 
 void SourceIngest::deliver(const std::string& inTopic,
                            const ros::MessageEvent<BoxArray const>& inEvent) {
-  status_.countReceived();
   const BoxArrayConstPtr& msg = inEvent.getConstMessage();
-  const SourceKey key{inTopic, inEvent.getPublisherName(), msg->header.frame_id};
-  std::optional<std::string> reason = checkBoxArrayShape(*msg);
-  if (!reason) reason = unplaceableFrame(msg->header.frame_id);
-  if (reason) {
+  if (auto reason = checkBoxArrayShape(*msg)) {
+    status_.countReceived();
+    const SourceKey key{inTopic, inEvent.getPublisherName(), msg->header.frame_id};
     status_.refuse(msg->header, msg->bounds.size() / 6, sourceName(key) + ": " + *reason);
     return;
   }
-  store(key, Delivery{msg, ros::Time::now()});
+  // Kept as published: the engine reads the message's records where they lie.
+  auto frame = std::make_shared<SourceFrame>();
+  frame->header = msg->header;
+  frame->message = msg;
+  deliverFrame(inTopic, inEvent.getPublisherName(), std::move(frame));
 }
 
-void SourceIngest::store(const SourceKey& inKey, const Delivery& inDelivery) {
-  const bool ready =
-      !tf_buffer_ || transformable(inDelivery.msg->header.frame_id, inDelivery.msg->header.stamp);
+void SourceIngest::deliverFrame(const std::string& inTopic, const std::string& inPublisher,
+                                std::shared_ptr<SourceFrame> inFrame) {
+  status_.countReceived();
+  const SourceKey key{inTopic, inPublisher, inFrame->header.frame_id};
+  if (auto reason = unplaceableFrame(inFrame->header.frame_id)) {
+    status_.refuse(inFrame->header, inFrame->size(), sourceName(key) + ": " + *reason);
+    return;
+  }
+  store(key, Delivery{std::move(inFrame), ros::Time::now()});
+}
+
+void SourceIngest::store(const SourceKey& inKey, Delivery inDelivery) {
+  const std_msgs::Header& header = inDelivery.frame->header;
+  const bool ready = !tf_buffer_ || transformable(header.frame_id, header.stamp);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (ready) {
       // A frame of the same source still waiting for its transform is older: it goes.
       if (waiting_.erase(inKey) > 0) status_.countDropped();
       Delivery& slot = pending_[inKey];
-      if (slot.msg) status_.countDropped();  // never started: the newer frame of the source wins
-      slot = inDelivery;
+      if (slot.frame) status_.countDropped();  // never started: the newer frame of the source wins
+      slot = std::move(inDelivery);
     } else {
       Delivery& slot = waiting_[inKey];
-      if (slot.msg) status_.countDropped();
-      slot = inDelivery;
+      if (slot.frame) status_.countDropped();
+      slot = std::move(inDelivery);
       any_waiting_ = true;
     }
   }
@@ -283,14 +295,15 @@ bool SourceIngest::transformable(const std::string& inFrame, const ros::Time& in
 
 void SourceIngest::releaseWaiting(const ros::Time& inNow) {
   for (auto it = waiting_.begin(); it != waiting_.end();) {
-    const auto& [key, delivery] = *it;
-    if (transformable(delivery.msg->header.frame_id, delivery.msg->header.stamp)) {
+    auto& [key, delivery] = *it;
+    const std_msgs::Header& header = delivery.frame->header;
+    if (transformable(header.frame_id, header.stamp)) {
       Delivery& slot = pending_[key];
-      if (slot.msg && slot.msg->header.stamp > delivery.msg->header.stamp) {
+      if (slot.frame && slot.frame->header.stamp > header.stamp) {
         status_.countDropped();  // a newer frame of the source is ready already
       } else {
-        if (slot.msg) status_.countDropped();
-        slot = delivery;
+        if (slot.frame) status_.countDropped();
+        slot = std::move(delivery);
       }
     } else if ((inNow - delivery.received).toSec() > transform_timeout_) {
       status_.skip(sourceName(key) + " skipped: no transform into '" + fixed_frame_ +
@@ -385,34 +398,25 @@ void SourceIngest::restartClock(const ros::Time& inNow) {
     for (auto& [key, delivery] : *deliveries) delivery.received = inNow;
 }
 
-bool SourceIngest::convert(const SourceKey& inKey, const BoxArray& inMsg, BoxSet& outBoxes) {
-  if (auto reason = boxArrayToBoxSet(inMsg, outBoxes)) {
-    status_.refuse(inMsg.header, inMsg.bounds.size() / 6, sourceName(inKey) + ": " + *reason);
-    return false;
+bool SourceIngest::placeFrame(const std::string& inName, const ros::Time& inStamp,
+                              SourceFrame& ioFrame) {
+  if (!tf_buffer_) return true;
+  // Moved here, once a frame received, into records the engine then reads as any others, rather
+  // than by the engine as it loads the frame. Measured at 2^17 boxes on 2 cores: the transform
+  // takes 4.7 ms, the engine's load (copy and check) 1.5 ms of its 3 ms frame, copying the
+  // records 1 to 1.6 ms. The transform's cost is its arithmetic, which the load would not save,
+  // and the engine loads a source's frame again whenever another source delivers: here it is
+  // paid once a frame received, and the engine stays free of transforms.
+  if (ioFrame.message) {
+    copyBoxArray(*ioFrame.message, ioFrame.records);
+    ioFrame.message.reset();
   }
   std::string error;
-  if (tf_buffer_ &&
-      !moveIntoFixedFrame(inMsg.header.frame_id, inMsg.header.stamp, outBoxes, error)) {
-    status_.skip(sourceName(inKey) + " skipped: no transform into '" + fixed_frame_ +
-                 "': " + error);
+  if (!moveIntoFixedFrame(ioFrame.header.frame_id, inStamp, ioFrame.records, error)) {
+    status_.skip(inName + " skipped: no transform into '" + fixed_frame_ + "': " + error);
     return false;
   }
-  return true;
-}
-
-bool SourceIngest::convertScenery(const BoxArray& inMsg, BoxSet& outBoxes) {
-  if (auto reason = boxArrayToBoxSet(inMsg, outBoxes)) {
-    status_.refuse(inMsg.header, inMsg.bounds.size() / 6,
-                   std::string(kStaticSourceName) + ": " + *reason);
-    return false;
-  }
-  std::string error;
-  if (tf_buffer_ && outBoxes.size() > 0 &&
-      !moveIntoFixedFrame(inMsg.header.frame_id, ros::Time(0), outBoxes, error)) {
-    status_.skip(std::string(kStaticSourceName) + " skipped: no transform into '" + fixed_frame_ +
-                 "': " + error);
-    return false;
-  }
+  ioFrame.header.frame_id = fixed_frame_;  // moved there
   return true;
 }
 

@@ -36,9 +36,10 @@ namespace sap_broadphase {
 
 class SourceAdapter;  // adapters.h: a ~sources entry of another type
 
-/// A source frame waiting for the worker: the latest of its source wins.
+/// A source frame waiting for the worker: the latest of its source wins. Its own until the
+/// worker stores it (moving it into ~fixed_frame first, where there is one).
 struct Delivery {
-  BoxArrayConstPtr msg;
+  std::shared_ptr<SourceFrame> frame;
   ros::Time received;  ///< ROS time of arrival: source time-outs follow /clock under sim time
 };
 
@@ -57,10 +58,9 @@ class SourceIngest {
   SourceIngest(const SourceIngest&) = delete;
   SourceIngest& operator=(const SourceIngest&) = delete;
 
-  /// Hands a BoxArray of source topic inTopic to the worker: the shape is checked, the frame
-  /// waits for its transform (with a ~fixed_frame), then replaces any frame of its source the
-  /// worker has not taken yet. Subscriptions of other input types call this with the BoxArray
-  /// they built and the connection header of the message they received.
+  /// Hands a BoxArray of source topic inTopic to the worker as published: the shape is
+  /// checked, the frame waits for its transform (with a ~fixed_frame), then replaces any frame
+  /// of its source the worker has not taken yet.
   void deliver(const std::string& inTopic, const ros::MessageEvent<BoxArray const>& inEvent);
 
   /// Moves the frames ready for the worker (latest per source, transformable) into
@@ -69,12 +69,11 @@ class SourceIngest {
   /// a scenery waits as long as it takes (it is latched: nothing replaces it).
   void take(std::map<SourceKey, Delivery>& outDeliveries, BoxArrayConstPtr& ioScenery);
 
-  /// Converts and validates a source frame into outBoxes, moved into ~fixed_frame with the
-  /// transform at its stamp. False, with the refusal or skip counted, when it cannot join.
-  bool convert(const SourceKey& inKey, const BoxArray& inMsg, BoxSet& outBoxes);
-  /// The same for the latched scenery, placed with the latest transform: scenery stays put, and
-  /// a latched message may be older than tf2's cache.
-  bool convertScenery(const BoxArray& inMsg, BoxSet& outBoxes);
+  /// Moves ioFrame (of the source or scenery named inName) into ~fixed_frame with the transform
+  /// at inStamp (time 0: the latest, for the scenery: it stays put, and a latched message may
+  /// be older than tf2's cache); nothing to do without a ~fixed_frame. False, with the skip
+  /// counted, when tf2 has no such transform.
+  bool placeFrame(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame);
 
   /// Publishes the names of every adapter's ids on ~id_names when some are new since the last
   /// time (worker thread, once per round: a burst of new names costs one message, not one per
@@ -94,7 +93,7 @@ class SourceIngest {
   /// count as received now (their ~transform_timeout starts again).
   void restartClock(const ros::Time& inNow);
 
-  /// Moves checked boxes (a query's) from inHeader's frame into ~fixed_frame with the transform
+  /// Moves boxes (a query's) from inHeader's frame into ~fixed_frame with the transform
   /// at its stamp (0: the latest), as a source frame's; nothing to do without a ~fixed_frame.
   /// The reason when they cannot be placed (an empty frame_id, no transform). Any thread.
   std::optional<std::string> placeInFixedFrame(const std_msgs::Header& inHeader, BoxSet& ioBoxes);
@@ -115,8 +114,12 @@ class SourceIngest {
   void onAdaptedMessage(SourceAdapter& ioAdapter,
                         const ros::MessageEvent<topic_tools::ShapeShifter const>& inEvent);
 
+  /// Counts a frame of inTopic from inPublisher received; refuses it when it cannot be placed
+  /// in ~fixed_frame, else keeps it for the worker.
+  void deliverFrame(const std::string& inTopic, const std::string& inPublisher,
+                    std::shared_ptr<SourceFrame> inFrame);
   /// Keeps a checked frame for the worker, or aside while its transform is missing.
-  void store(const SourceKey& inKey, const Delivery& inDelivery);
+  void store(const SourceKey& inKey, Delivery inDelivery);
   /// Moves the waiting frames that tf2 can now place to pending_, skips those that waited too
   /// long (called with mutex_ held).
   void releaseWaiting(const ros::Time& inNow);

@@ -1,12 +1,11 @@
-// The world of a frame: the latest frame of every source, merged.
+// The world of a frame: the latest frame of every source, one span each.
 #include "sources.h"
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <iterator>
 #include <limits>
-#include <numeric>
+#include <utility>
 
 #include <tf2/LinearMath/Matrix3x3.h>
 #include <tf2/LinearMath/Quaternion.h>
@@ -19,35 +18,9 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-/// Finds an id present in both sorted lists: walks the shorter one and searches the longer one
-/// from where the last search ended, so a small moving frame against 10^6 scenery ids costs
-/// O(small x log large).
-bool firstCommonId(const std::vector<uint32_t>& inA, const std::vector<uint32_t>& inB,
-                   uint32_t& outId) {
-  const std::vector<uint32_t>& small = inA.size() <= inB.size() ? inA : inB;
-  const std::vector<uint32_t>& large = inA.size() <= inB.size() ? inB : inA;
-  auto from = large.begin();
-  for (uint32_t id : small) {
-    from = std::lower_bound(from, large.end(), id);
-    if (from == large.end()) return false;
-    if (*from == id) {
-      outId = id;
-      return true;
-    }
-  }
-  return false;
-}
-
-/// Appends a group or mask array, completing with inDefault the side that has none.
-void appendFilter(const std::vector<uint32_t>& inAdd, std::size_t inAddCount,
-                  std::size_t inWorldCount, uint32_t inDefault, std::vector<uint32_t>& ioWorld) {
-  if (inAdd.empty() && ioWorld.empty()) return;
-  if (ioWorld.empty()) ioWorld.assign(inWorldCount, inDefault);
-  if (inAdd.empty())
-    ioWorld.insert(ioWorld.end(), inAddCount, inDefault);
-  else
-    ioWorld.insert(ioWorld.end(), inAdd.begin(), inAdd.end());
-}
+/// What a refusal of ids shared by two sources advises.
+constexpr const char* kIdRangeAdvice =
+    ": give each source its own id range (e.g. robot k uses ids k << 24 ...)";
 
 }  // namespace
 
@@ -63,8 +36,11 @@ void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes
   const double translation[3] = {inTransform.translation.x, inTransform.translation.y,
                                  inTransform.translation.z};
   for (std::size_t i = 0; i < ioBoxes.size(); ++i) {
-    const double lo[3] = {ioBoxes.lo[0][i], ioBoxes.lo[1][i], ioBoxes.lo[2][i]};
-    const double hi[3] = {ioBoxes.hi[0][i], ioBoxes.hi[1][i], ioBoxes.hi[2][i]};
+    const double lo[3] = {ioBoxes.lo(0, i), ioBoxes.lo(1, i), ioBoxes.lo(2, i)};
+    const double hi[3] = {ioBoxes.hi(0, i), ioBoxes.hi(1, i), ioBoxes.hi(2, i)};
+    // `lo <= hi` fails exactly for a NaN bound or min > max: moved, such a box could pass as
+    // a box (NaN becomes infinite below), so it stays as published and the engine names it.
+    if (!(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2])) continue;
     for (int out = 0; out < 3; ++out) {
       // The extremes over the 8 corners of row `out` of R x + t separate per input axis: each
       // term takes the smaller (larger) of R[out][in] * lo and R[out][in] * hi.
@@ -83,104 +59,68 @@ void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes
       const double slack = 2.0 * DBL_EPSILON * magnitude;
       low = std::isnan(low) ? -kInfinity : std::nextafter(low - slack, -kInfinity);
       high = std::isnan(high) ? kInfinity : std::nextafter(high + slack, kInfinity);
-      ioBoxes.lo[out][i] = low;
-      ioBoxes.hi[out][i] = high;
+      ioBoxes.lo(out, i) = low;
+      ioBoxes.hi(out, i) = high;
     }
   }
 }
 
-void appendBoxes(const BoxSet& inAdd, BoxSet& ioWorld) {
-  const std::size_t world_count = ioWorld.size();
-  appendFilter(inAdd.groups, inAdd.size(), world_count, kDefaultGroup, ioWorld.groups);
-  appendFilter(inAdd.masks, inAdd.size(), world_count, kDefaultMask, ioWorld.masks);
-  ioWorld.ids.insert(ioWorld.ids.end(), inAdd.ids.begin(), inAdd.ids.end());
-  for (int axis = 0; axis < 3; ++axis) {
-    ioWorld.lo[axis].insert(ioWorld.lo[axis].end(), inAdd.lo[axis].begin(), inAdd.lo[axis].end());
-    ioWorld.hi[axis].insert(ioWorld.hi[axis].end(), inAdd.hi[axis].begin(), inAdd.hi[axis].end());
-  }
+BoxSpan SourceFrame::span() const {
+  BoxSpan boxes = message ? boxArrayRecords(*message) : records.span();
+  boxes.id_offset = id_offset;
+  return boxes;
 }
 
-void shrinkBoxSet(BoxSet& ioBoxes) {
-  ioBoxes.ids.shrink_to_fit();
-  for (int axis = 0; axis < 3; ++axis) {
-    ioBoxes.lo[axis].shrink_to_fit();
-    ioBoxes.hi[axis].shrink_to_fit();
-  }
-  ioBoxes.groups.shrink_to_fit();
-  ioBoxes.masks.shrink_to_fit();
+std_msgs::Header WorldAssembly::header() const {
+  std_msgs::Header result;
+  result.frame_id = frame_id;
+  for (const WorldMember& member : members)
+    if (member.frame->header.stamp > result.stamp) result.stamp = member.frame->header.stamp;
+  return result;
 }
 
-void SourceSet::store(const SourceKey& inKey, BoxSet& ioBoxes, const std_msgs::Header& inHeader,
-                      const ros::Time& inReceived) {
+std::string worldRefusal(const ValidationError& inError, const WorldAssembly& inWorld) {
+  const std::string name = sourceName(inWorld.members.at(inError.span).key);
+  if (inError.problem == BoxProblem::kDuplicateId && inError.earlier_span != inError.span) {
+    const std::string other = inError.earlier_span == ValidationError::kScenery
+                                  ? std::string(kStaticSourceName)
+                                  : sourceName(inWorld.members.at(inError.earlier_span).key);
+    return "id " + std::to_string(inError.id) + " of " + name + " is also in " + other +
+           kIdRangeAdvice;
+  }
+  // A problem of the source's own frame: the engine's words, its boxes numbered as the source
+  // numbers them (the engine numbers the boxes of the whole world). Checked alone, the frame
+  // shows the same box first: every box before it passed, and its problem is its own.
+  const auto own = validate(BoxFrame(inWorld.members[inError.span].frame->span()));
+  return name + ": " + (own ? own->message() : inError.message());
+}
+
+void SourceSet::store(const SourceKey& inKey, SourceFramePtr inFrame, const ros::Time& inReceived) {
   auto [it, joined] = sources_.try_emplace(inKey);
   Source& source = it->second;
   if (joined) source.joined = next_join_++;
   ++source.frames;
-  std::swap(source.boxes, ioBoxes);
-  source.header = inHeader;
+  source.latest = std::move(inFrame);
   source.received = inReceived;
-  source.sorted_ids.clear();
-  source.message.reset();
-  source.accepted.reset();
-  source.converted = nullptr;
-  if (source.watch.shouldGiveBack(source.boxes.size(), source.boxes.ids.capacity())) {
-    shrinkBoxSet(source.boxes);
-    source.sorted_ids.shrink_to_fit();
-  }
-}
-
-void SourceSet::storeMessage(const SourceKey& inKey, const BoxArrayConstPtr& inMessage,
-                             const ros::Time& inReceived) {
-  auto [it, joined] = sources_.try_emplace(inKey);
-  Source& source = it->second;
-  if (joined) source.joined = next_join_++;
-  ++source.frames;
-  source.message = inMessage;
-  source.header = inMessage->header;
-  source.received = inReceived;
-  source.sorted_ids.clear();
 }
 
 bool SourceSet::accept(const SourceKey& inKey) {
   const auto it = sources_.find(inKey);
-  if (it == sources_.end() || !it->second.message || it->second.accepted == it->second.message)
-    return false;
-  it->second.accepted = it->second.message;
+  if (it == sources_.end() || it->second.accepted == it->second.latest) return false;
+  it->second.accepted = it->second.latest;
   return true;
 }
 
-void SourceSet::refuse(const SourceKey& inKey) {
+SourceFramePtr SourceSet::refuse(const SourceKey& inKey) {
   const auto it = sources_.find(inKey);
-  if (it != sources_.end() && !fallBack(it->second)) sources_.erase(it);
-}
-
-bool SourceSet::fallBack(Source& ioSource) {
-  if (!ioSource.accepted || ioSource.accepted == ioSource.message) return false;
-  ioSource.message = ioSource.accepted;
-  ioSource.header = ioSource.message->header;
-  ioSource.sorted_ids.clear();
-  return true;
-}
-
-bool SourceSet::convertKept(const SourceKey& inKey, Source& ioSource, WorldAssembly& ioAssembly) {
-  while (ioSource.unconverted()) {
-    const BoxArray& message = *ioSource.message;
-    if (auto reason = boxArrayToBoxSet(message, ioSource.boxes)) {
-      ioSource.converted = nullptr;
-      ioAssembly.refused_frames.push_back(RefusedFrame{message.header, message.bounds.size() / 6,
-                                                       sourceName(inKey) + ": " + *reason});
-      if (!fallBack(ioSource)) return false;
-      continue;
-    }
-    ioSource.converted = ioSource.message.get();
-    if (ioSource.accepted != ioSource.message) {
-      ioSource.accepted = ioSource.message;
-      ++ioAssembly.frames_accepted;
-    }
-    if (ioSource.watch.shouldGiveBack(ioSource.boxes.size(), ioSource.boxes.ids.capacity()))
-      shrinkBoxSet(ioSource.boxes);
+  if (it == sources_.end()) return nullptr;
+  Source& source = it->second;
+  if (!source.accepted || source.accepted == source.latest) {
+    sources_.erase(it);
+    return nullptr;
   }
-  return true;
+  source.latest = source.accepted;
+  return source.latest;
 }
 
 void SourceSet::restartClock(const ros::Time& inNow) {
@@ -202,102 +142,32 @@ std::vector<SourceSet::Expired> SourceSet::expire(
   return expired;
 }
 
-const std::vector<uint32_t>& SourceSet::sortedIds(Source& ioSource) {
-  const bool unconverted = ioSource.unconverted();
-  const std::size_t count =
-      unconverted ? ioSource.message->bounds.size() / 6 : ioSource.boxes.size();
-  if (ioSource.sorted_ids.size() != count) {
-    if (!unconverted) {
-      ioSource.sorted_ids = ioSource.boxes.ids;
-    } else if (ioSource.message->ids.empty()) {  // numbered 0..n-1: already sorted
-      ioSource.sorted_ids.resize(count);
-      std::iota(ioSource.sorted_ids.begin(), ioSource.sorted_ids.end(), 0u);
-    } else {
-      ioSource.sorted_ids = ioSource.message->ids;
-    }
-    std::sort(ioSource.sorted_ids.begin(), ioSource.sorted_ids.end());
-  }
-  return ioSource.sorted_ids;
-}
-
-std::string SourceSet::conflict(const SourceIt& inSource, const std::vector<SourceIt>& inMerged,
-                                const std::vector<uint32_t>& inStaticIds,
-                                const std::string& inWorldFrame,
-                                const std::string& inWorldFrameOwner) {
-  const std::string name = sourceName(inSource->first);
-  const std::string& frame = inSource->second.header.frame_id;
-  if (!inWorldFrame.empty() && frame != inWorldFrame) {
-    return name + " publishes in frame '" + frame + "' but " + inWorldFrameOwner + " in frame '" +
-           inWorldFrame + "': set ~fixed_frame to transform both, or publish in one frame";
-  }
-  // Ids are sorted only once a second source (or scenery) is there to collide with.
-  if (inMerged.empty() && inStaticIds.empty()) return "";
-  const std::vector<uint32_t>& ids = sortedIds(inSource->second);
-  const char* advice = ": give each source its own id range (e.g. robot k uses ids k << 24 ...)";
-  uint32_t id = 0;
-  if (firstCommonId(ids, inStaticIds, id))
-    return "id " + std::to_string(id) + " of " + name + " is also in " + kStaticSourceName + advice;
-  for (const SourceIt& merged : inMerged) {
-    if (firstCommonId(ids, sortedIds(merged->second), id)) {
-      return "id " + std::to_string(id) + " of " + name + " is also in " +
-             sourceName(merged->first) + advice;
-    }
-  }
-  return "";
-}
-
-World SourceSet::assemble(const std::vector<uint32_t>& inStaticIds,
-                          const std::string& inRequiredFrame, BoxSet& outWorld,
-                          WorldAssembly& outAssembly, bool inNeedBoxes) {
-  outAssembly = WorldAssembly();
-  // Kept frames become boxes wherever the world is a BoxSet: a union, or markers to draw.
-  if (inNeedBoxes || sources_.size() > 1) {
-    for (auto it = sources_.begin(); it != sources_.end();)
-      it = convertKept(it->first, it->second, outAssembly) ? std::next(it) : sources_.erase(it);
-  }
-  std::vector<SourceIt> by_join;
+void SourceSet::assemble(const std::string& inRequiredFrame, WorldAssembly& outWorld) const {
+  outWorld.members.clear();
+  outWorld.left_out.clear();
+  std::vector<std::map<SourceKey, Source>::const_iterator> by_join;
   for (auto it = sources_.begin(); it != sources_.end(); ++it) by_join.push_back(it);
-  std::sort(by_join.begin(), by_join.end(), [](const SourceIt& a, const SourceIt& b) {
-    return a->second.joined < b->second.joined;
-  });
-  std::string world_frame = inRequiredFrame;
-  std::string world_frame_owner = kStaticSourceName;
-  std::vector<SourceIt> merged;
-  for (const SourceIt& source : by_join) {
-    std::string reason = conflict(source, merged, inStaticIds, world_frame, world_frame_owner);
-    if (!reason.empty()) {
-      const std::size_t boxes = source->second.unconverted()
-                                    ? source->second.message->bounds.size() / 6
-                                    : source->second.boxes.size();
-      outAssembly.refusals.push_back(RefusedFrame{source->second.header, boxes, std::move(reason)});
+  std::sort(by_join.begin(), by_join.end(),
+            [](const auto& a, const auto& b) { return a->second.joined < b->second.joined; });
+  outWorld.frame_id = inRequiredFrame;
+  std::string frame_owner = kStaticSourceName;
+  for (const auto& source : by_join) {
+    const SourceFrame& frame = *source->second.latest;
+    const std::string name = sourceName(source->first);
+    if (!outWorld.frame_id.empty() && frame.header.frame_id != outWorld.frame_id) {
+      outWorld.left_out.push_back(
+          LeftOutSource{{source->first, source->second.latest},
+                        name + " publishes in frame '" + frame.header.frame_id + "' but " +
+                            frame_owner + " in frame '" + outWorld.frame_id +
+                            "': set ~fixed_frame to transform both, or publish in one frame"});
       continue;
     }
-    if (world_frame.empty()) {
-      world_frame = source->second.header.frame_id;
-      world_frame_owner = sourceName(source->first);
+    if (outWorld.frame_id.empty()) {
+      outWorld.frame_id = frame.header.frame_id;
+      frame_owner = name;
     }
-    if (merged.empty() || source->second.header.stamp > outAssembly.header.stamp)
-      outAssembly.header.stamp = source->second.header.stamp;
-    merged.push_back(source);
+    outWorld.members.push_back(WorldMember{source->first, source->second.latest});
   }
-  outAssembly.header.frame_id = world_frame;
-  outAssembly.sources_merged = merged.size();
-  outWorld.clear();
-  World world;
-  world.boxes = &outWorld;
-  if (merged.size() == 1) {
-    const Source& only = merged[0]->second;
-    if (only.unconverted()) {
-      world.boxes = nullptr;
-      world.message = only.message.get();
-      world.source = merged[0]->first;
-    } else {
-      world.boxes = &only.boxes;
-    }
-    return world;
-  }
-  for (const SourceIt& source : merged) appendBoxes(source->second.boxes, outWorld);
-  return world;
 }
 
 }  // namespace sap_broadphase

@@ -107,10 +107,10 @@ std::vector<OrientedBox> randomOrientedBoxes(std::size_t inCount, uint32_t inSee
 }
 
 /// The adapter's box k contains the exact corners and is no more than a few ulps larger.
-void expectBoundsAround(const BoxArray& inMsg, std::size_t inBox,
+void expectBoundsAround(const SourceFrame& inFrame, std::size_t inBox,
                         const std::array<double, 6>& inExact) {
   for (int axis = 0; axis < 3; ++axis) {
-    const double lo = inMsg.bounds[6 * inBox + axis], hi = inMsg.bounds[6 * inBox + 3 + axis];
+    const double lo = inFrame.records.lo(axis, inBox), hi = inFrame.records.hi(axis, inBox);
     EXPECT_LE(lo, inExact[axis]) << "box " << inBox << " axis " << axis;
     EXPECT_GE(hi, inExact[3 + axis]) << "box " << inBox << " axis " << axis;
     EXPECT_NEAR(lo, inExact[axis], 1e-12) << "box " << inBox << " axis " << axis;
@@ -221,14 +221,14 @@ TEST(AdapterTypes, NamesAreFoundAndUnknownOnesAreNot) {
 TEST(WireDecoders, BoundingBox3DArrayRotatedAndAxisAlignedContainTheirCorners) {
   const std::vector<OrientedBox> boxes = randomOrientedBoxes(40, 11);
   SourceAdapter adapter(SourceSpec{"boxes", InputType::kBoundingBox3DArray, 100, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   ASSERT_FALSE(adapter.convertWire(InputType::kBoundingBox3DArray,
                                    boundingBox3DArray(header("map"), boxes), out));
   EXPECT_EQ(out.header.frame_id, "map");
   EXPECT_EQ(out.header.stamp, ros::Time(7, 5));
-  ASSERT_EQ(out.bounds.size(), 6 * boxes.size());
+  ASSERT_EQ(out.records.bounds.size(), 6 * boxes.size());
   for (std::size_t k = 0; k < boxes.size(); ++k) {
-    EXPECT_EQ(out.ids[k], 100 + k);
+    EXPECT_EQ(out.records.ids[k], 100 + k);
     expectBoundsAround(out, k, boxes[k].aabb());
   }
 }
@@ -236,13 +236,13 @@ TEST(WireDecoders, BoundingBox3DArrayRotatedAndAxisAlignedContainTheirCorners) {
 TEST(WireDecoders, Detection3DArraySkipsHypothesesAndCloud) {
   const std::vector<OrientedBox> boxes = randomOrientedBoxes(9, 12);
   SourceAdapter adapter(SourceSpec{"detections", InputType::kDetection3DArray, 0, 4u, 6u, {}});
-  BoxArray out;
+  SourceFrame out;
   ASSERT_FALSE(adapter.convertWire(InputType::kDetection3DArray,
                                    detection3DArray(header("cam"), boxes, "cam"), out));
-  ASSERT_EQ(out.bounds.size(), 6 * boxes.size());
+  ASSERT_EQ(out.records.bounds.size(), 6 * boxes.size());
   for (std::size_t k = 0; k < boxes.size(); ++k) expectBoundsAround(out, k, boxes[k].aabb());
-  EXPECT_EQ(out.groups, std::vector<uint32_t>(boxes.size(), 4u));
-  EXPECT_EQ(out.masks, std::vector<uint32_t>(boxes.size(), 6u));
+  EXPECT_EQ(out.records.groups, std::vector<uint32_t>(boxes.size(), 4u));
+  EXPECT_EQ(out.records.masks, std::vector<uint32_t>(boxes.size(), 6u));
   std::vector<uint32_t> ids;
   std::vector<std::string> names;
   adapter.appendIdNames(ids, names);
@@ -252,7 +252,7 @@ TEST(WireDecoders, Detection3DArraySkipsHypothesesAndCloud) {
 
 TEST(WireDecoders, Detection3DInAnotherFrameIsRefused) {
   SourceAdapter adapter(SourceSpec{"detections", InputType::kDetection3DArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   const auto reason =
       adapter.convertWire(InputType::kDetection3DArray,
                           detection3DArray(header("cam"), randomOrientedBoxes(2, 1), "lidar"), out);
@@ -264,16 +264,16 @@ TEST(WireDecoders, Detection3DInAnotherFrameIsRefused) {
 TEST(WireDecoders, JskLabelsNameBoxesStably) {
   const std::vector<OrientedBox> boxes = randomOrientedBoxes(4, 13);
   SourceAdapter adapter(SourceSpec{"jsk", InputType::kJskBoundingBoxArray, 500, {}, {}, {}});
-  BoxArray first, second;
+  SourceFrame first, second;
   ASSERT_FALSE(adapter.convertWire(InputType::kJskBoundingBoxArray,
                                    jskBoundingBoxArray(header("map"), boxes, {9, 3, 9, 0}), first));
-  EXPECT_EQ(first.ids, (std::vector<uint32_t>{500, 501, 502, 503}));
+  EXPECT_EQ(first.records.ids, (std::vector<uint32_t>{500, 501, 502, 503}));
   for (std::size_t k = 0; k < boxes.size(); ++k) expectBoundsAround(first, k, boxes[k].aabb());
   // The same labels in another order keep their ids; a new label gets the next one.
   ASSERT_FALSE(adapter.convertWire(
       InputType::kJskBoundingBoxArray,
       jskBoundingBoxArray(header("map"), {boxes[0], boxes[1], boxes[2]}, {0, 7, 3}), second));
-  EXPECT_EQ(second.ids, (std::vector<uint32_t>{503, 504, 501}));
+  EXPECT_EQ(second.records.ids, (std::vector<uint32_t>{503, 504, 501}));
   std::vector<uint32_t> ids;
   std::vector<std::string> names;
   adapter.appendIdNames(ids, names);
@@ -363,10 +363,10 @@ TEST(ShapeShifterCheck, TheTypeNameAndMd5MustMatch) {
   const std::vector<OrientedBox> boxes = randomOrientedBoxes(2, 3);
   const std::vector<uint8_t> bytes = boundingBox3DArray(header("map"), boxes);
   SourceAdapter adapter(SourceSpec{"boxes", InputType::kBoundingBox3DArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   const InputTypeInfo& info = inputTypeInfo(InputType::kBoundingBox3DArray);
   EXPECT_FALSE(adapter.convert(shapeShifter(info.name, info.md5, bytes), "/robot", out));
-  EXPECT_EQ(out.bounds.size(), 12u);
+  EXPECT_EQ(out.records.bounds.size(), 12u);
 
   // vision_msgs 2 names the centre `origin`... any other definition has another MD5 sum.
   const auto other_md5 = adapter.convert(
@@ -399,12 +399,12 @@ TEST(ShapeShifterCheck, MarkerArrayAndBoxArrayAreInstantiated) {
   WireWriter wire;
   wire.put(markers);
   SourceAdapter adapter(SourceSpec{"markers", InputType::kMarkerArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   const InputTypeInfo& info = inputTypeInfo(InputType::kMarkerArray);
   ASSERT_FALSE(adapter.convert(shapeShifter(info.name, info.md5, wire.bytes), "/robot", out));
-  ASSERT_EQ(out.bounds.size(), 6u);
-  EXPECT_NEAR(out.bounds[0], -1.0, 1e-12);
-  EXPECT_NEAR(out.bounds[5], 1.0, 1e-12);
+  ASSERT_EQ(out.records.bounds.size(), 6u);
+  EXPECT_NEAR(out.records.bounds[0], -1.0, 1e-12);
+  EXPECT_NEAR(out.records.bounds[5], 1.0, 1e-12);
   std::vector<uint8_t> truncated = wire.bytes;
   truncated.resize(truncated.size() - 10);
   const auto unreadable =
@@ -423,9 +423,12 @@ TEST(ShapeShifterCheck, MarkerArrayAndBoxArrayAreInstantiated) {
   const InputTypeInfo& box_info = inputTypeInfo(InputType::kBoxArray);
   ASSERT_FALSE(
       offset.convert(shapeShifter(box_info.name, box_info.md5, box_wire.bytes), "/robot", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{10, 11}));
-  EXPECT_EQ(out.masks, (std::vector<uint32_t>{3, 3}));
-  EXPECT_TRUE(out.groups.empty());
+  // Numbered 0..n-1; the engine adds the id_offset as it reads the span.
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(out.span().idOf(0), 10u);
+  EXPECT_EQ(out.span().idOf(1), 11u);
+  EXPECT_EQ(out.records.masks, (std::vector<uint32_t>{3, 3}));
+  EXPECT_TRUE(out.records.groups.empty());
 }
 
 visualization_msgs::Marker cube(const char* inNs, int32_t inId, double inX, const char* inFrame) {
@@ -460,9 +463,9 @@ TEST(MarkerAdapter, CubeListPointsAreCubesUnderThePose) {
   visualization_msgs::MarkerArray msg;
   msg.markers = {list};
   SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   ASSERT_FALSE(adapter.convertMarkers(msg, "/a", out));
-  ASSERT_EQ(out.bounds.size(), 12u);
+  ASSERT_EQ(out.records.bounds.size(), 12u);
   // Point (3, 0, 0), scale (1, 2, 4), turned a quarter about z, then moved by (10, 0, 0).
   expectBoundsAround(out, 0, {9.0, -0.5, -2.0, 11.0, 0.5, 2.0});
   expectBoundsAround(out, 1, {9.0, 2.5, -2.0, 11.0, 3.5, 2.0});
@@ -484,11 +487,11 @@ TEST(MarkerAdapter, IdsMarkerGivesTheMarkersOwnIdPlusTheOffset) {
   EXPECT_EQ(describeSourceSpec(specs[0]),
             "m (visualization_msgs/MarkerArray, id_offset 1000, ids marker)");
   SourceAdapter adapter(specs[0]);
-  BoxArray out;
+  SourceFrame out;
   visualization_msgs::MarkerArray msg;
   msg.markers = {cube("a", 7, 0.0, "map"), cube("a", 3, 5.0, "map")};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r1", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1003, 1007}));  // the set in (ns, id) order
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{1003, 1007}));  // the set in (ns, id) order
   std::vector<uint32_t> ids;
   std::vector<std::string> names;
   adapter.appendIdNames(ids, names);
@@ -518,54 +521,54 @@ TEST(MarkerAdapter, IdsMarkerGivesTheMarkersOwnIdPlusTheOffset) {
 
 TEST(MarkerAdapter, DeleteAndDeleteAllChangeThePublishersSet) {
   SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 1000, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   visualization_msgs::MarkerArray msg;
   msg.markers = {cube("a", 1, 0.0, "map"), cube("a", 2, 5.0, "map"), cube("b", 1, 9.0, "map")};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r1", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1000, 1001, 1002}));
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{1000, 1001, 1002}));
 
   // The set is kept: a message with one changed marker still gives all three.
   msg.markers = {cube("a", 2, 6.0, "map")};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r1", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1000, 1001, 1002}));
-  EXPECT_NEAR(out.bounds[6], 5.5, 1e-12);
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{1000, 1001, 1002}));
+  EXPECT_NEAR(out.records.bounds[6], 5.5, 1e-12);
 
   msg.markers = {action(visualization_msgs::Marker::DELETE, "a", 1)};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r1", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1001, 1002}));
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{1001, 1002}));
 
   // Another publisher has its own set.
   msg.markers = {cube("a", 1, 0.0, "map")};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r2", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1000}));
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{1000}));
 
   // DELETEALL, then an ADD in the same message: only the ADD is left.
   msg.markers = {action(visualization_msgs::Marker::DELETEALL), cube("c", 0, 1.0, "map")};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r1", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1003}));
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{1003}));
   msg.markers = {action(visualization_msgs::Marker::DELETEALL)};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r1", out));
-  EXPECT_TRUE(out.ids.empty());
+  EXPECT_TRUE(out.records.ids.empty());
   EXPECT_EQ(out.header.frame_id, "map");  // an emptied set stays in its frame
 }
 
 TEST(MarkerAdapter, OtherMarkerTypesGiveNoBoxAndReplaceACube) {
   SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   visualization_msgs::MarkerArray msg;
   visualization_msgs::Marker sphere = cube("s", 1, 0.0, "map");
   sphere.type = visualization_msgs::Marker::SPHERE;
   msg.markers = {cube("s", 1, 0.0, "map"), cube("t", 1, 0.0, "map")};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r", out));
-  EXPECT_EQ(out.ids.size(), 2u);
+  EXPECT_EQ(out.records.ids.size(), 2u);
   msg.markers = {sphere};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{1}));
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{1}));
 }
 
 TEST(MarkerAdapter, ARefusedMessageLeavesTheSetAsItWas) {
   SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   visualization_msgs::MarkerArray msg;
   msg.markers = {cube("a", 1, 0.0, "map")};
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r", out));
@@ -584,13 +587,13 @@ TEST(MarkerAdapter, ARefusedMessageLeavesTheSetAsItWas) {
   EXPECT_EQ(out.header.frame_id, "map") << "the refusal names the marker's frame";
   msg.markers.clear();
   ASSERT_FALSE(adapter.convertMarkers(msg, "/r", out));
-  EXPECT_EQ(out.ids, (std::vector<uint32_t>{0}));  // a/1 still there
+  EXPECT_EQ(out.records.ids, (std::vector<uint32_t>{0}));  // a/1 still there
 }
 
 TEST(MarkerAdapter, DepartedPublishersAreForgotten) {
   // Publishers coming and going: each leaves its marker set until its source times out.
   SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   visualization_msgs::MarkerArray msg;
   msg.markers = {cube("a", 1, 0.0, "map")};
   for (int k = 0; k < 50; ++k)
@@ -601,12 +604,12 @@ TEST(MarkerAdapter, DepartedPublishersAreForgotten) {
   // Back after its time-out, a publisher starts from an empty set: its old cube is gone.
   msg.markers.clear();
   ASSERT_FALSE(adapter.convertMarkers(msg, "/robot_0", out));
-  EXPECT_TRUE(out.ids.empty());
+  EXPECT_TRUE(out.records.ids.empty());
 }
 
 TEST(MarkerAdapter, NamesPastTheCapAreRefusedSayingSo) {
   SourceAdapter adapter(SourceSpec{"m", InputType::kMarkerArray, 0, {}, {}, {}});
-  BoxArray out;
+  SourceFrame out;
   visualization_msgs::MarkerArray msg;
   msg.markers = {cube("a", 0, 0.0, "map")};
   msg.markers[0].type = visualization_msgs::Marker::CUBE_LIST;
@@ -645,16 +648,24 @@ TEST(Validation, NaNNegativeSizeAndBadQuaternionsNameTheBox) {
   EXPECT_FALSE(checkPosedBox(infinite_size));
 }
 
-TEST(Overrides, IdOffsetOverflowIsRefused) {
+TEST(Overrides, IdOffsetOverflowIsRefusedByTheEngine) {
   SourceAdapter adapter(SourceSpec{"b", InputType::kBoxArray, 4294967290u, {}, {}, {}});
   BoxArray boxes;
   boxes.bounds.assign(12, 0.0);
   boxes.ids = {1, 5};
-  EXPECT_FALSE(adapter.applyOverrides(boxes));
-  EXPECT_EQ(boxes.ids, (std::vector<uint32_t>{4294967291u, 4294967295u}));
+  SourceFrame frame;
+  ASSERT_FALSE(adapter.convertBoxArray(boxes, frame));
+  EXPECT_FALSE(validate(BoxFrame(frame.span())));
+  EXPECT_EQ(frame.span().idOf(1), 4294967295u);
   boxes.ids = {1, 6};
-  EXPECT_EQ(adapter.applyOverrides(boxes).value_or(""),
-            "box 1 (id 6): id + id_offset 4294967290 passes 2^32 - 1");
+  ASSERT_FALSE(adapter.convertBoxArray(boxes, frame));
+  const auto error = validate(BoxFrame(frame.span()));
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->index, 1u);
+  EXPECT_EQ(error->problem, BoxProblem::kIdOverflow) << error->message();
+  // A shape the records cannot take is the adapter's to refuse.
+  boxes.ids = {1};
+  EXPECT_EQ(adapter.convertBoxArray(boxes, frame).value_or("").rfind("ids has 1 entries", 0), 0u);
 }
 
 XmlRpc::XmlRpcValue entry(const std::string& inTopic) {

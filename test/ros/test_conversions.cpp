@@ -23,8 +23,8 @@ TEST(Conversions, EmptyIdsNumberTheBoxes) {
   ASSERT_EQ(boxes.size(), 2u);
   EXPECT_EQ(boxes.ids[0], 0u);
   EXPECT_EQ(boxes.ids[1], 1u);
-  EXPECT_EQ(boxes.lo[2][1], 1.0);
-  EXPECT_EQ(boxes.hi[0][0], 1.0);
+  EXPECT_EQ(boxes.lo(2, 1), 1.0);
+  EXPECT_EQ(boxes.hi(0, 0), 1.0);
   EXPECT_FALSE(boxes.hasFilters());
 }
 
@@ -37,22 +37,22 @@ TEST(Conversions, RoundTripKeepsEverything) {
   EXPECT_EQ(back.ids, original.ids);
   EXPECT_EQ(back.groups, original.groups);
   EXPECT_EQ(back.masks, original.masks);
-  for (int axis = 0; axis < 3; ++axis) {
-    EXPECT_EQ(back.lo[axis], original.lo[axis]);
-    EXPECT_EQ(back.hi[axis], original.hi[axis]);
-  }
+  EXPECT_EQ(back.bounds, original.bounds);
 }
 
-TEST(Conversions, MissingMasksOrGroupsGetDefaults) {
+TEST(Conversions, MissingMasksOrGroupsAreTheDefaults) {
   BoxArray msg = twoBoxes();
   msg.groups = {2u, 4u};
   BoxSet boxes;
   ASSERT_FALSE(boxArrayToBoxSet(msg, boxes));
-  EXPECT_EQ(boxes.masks, std::vector<uint32_t>(2, kDefaultMask));
+  EXPECT_EQ(boxes.groups, (std::vector<uint32_t>{2u, 4u}));
+  EXPECT_EQ(boxes.mask(0), kDefaultMask);
+  EXPECT_EQ(boxes.mask(1), kDefaultMask);
   msg = twoBoxes();
   msg.masks = {2u, 4u};
   ASSERT_FALSE(boxArrayToBoxSet(msg, boxes));
-  EXPECT_EQ(boxes.groups, std::vector<uint32_t>(2, kDefaultGroup));
+  EXPECT_EQ(boxes.group(0), kDefaultGroup);
+  EXPECT_EQ(boxes.group(1), kDefaultGroup);
 }
 
 TEST(Conversions, ShapeErrorsNameTheArray) {

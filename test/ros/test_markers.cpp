@@ -22,6 +22,36 @@ const Marker* findNamespace(const visualization_msgs::MarkerArray& inMarkers, co
   return nullptr;
 }
 
+// The node draws the spans it hands the engine, one a source: boxes are found by their ids in
+// the frame (a span's id_offset included), whatever span holds them.
+TEST(Markers, BoxesOfSeveralSpansFoundByTheirFrameIds) {
+  const double a_lo[3] = {0, 0, 0}, a_hi[3] = {1, 1, 1};
+  const double b_lo[3] = {0.5, 0.5, 0.5}, b_hi[3] = {2, 2, 2};
+  const double far_lo[3] = {10, 10, 10}, far_hi[3] = {11, 11, 11};
+  BoxSet first, second;
+  first.add(0, far_lo, far_hi);
+  first.add(1, a_lo, a_hi);
+  second.add(1, b_lo, b_hi);  // id 1001 in the frame
+  std::vector<BoxSpan> spans = {first.span(), second.span()};
+  spans[1].id_offset = 1000;
+  visualization_msgs::MarkerArray markers;
+  MarkerOptions options;
+  options.show_pair_links = true;
+  const MarkerCounts counts =
+      buildMarkers(BoxFrame(spans), {{1, 1001}}, std_msgs::Header(), options, markers);
+  EXPECT_EQ(counts.drawn, 2u);
+  const Marker* colliding = findNamespace(markers, kCollidingNamespace);
+  ASSERT_TRUE(colliding);
+  ASSERT_EQ(colliding->points.size(), 48u);
+  EXPECT_EQ(colliding->points[0].x, 0.0) << "box 1 of the first span";
+  EXPECT_EQ(colliding->points[24 + 1].x, 2.0) << "box 0 of the second span";
+  const Marker* links = findNamespace(markers, kPairLinkNamespace);
+  ASSERT_TRUE(links);
+  ASSERT_EQ(links->points.size(), 2u);
+  EXPECT_EQ(links->points[0].x, 0.5);
+  EXPECT_EQ(links->points[1].x, 1.25);
+}
+
 TEST(Markers, DeleteAllFirstThenCollidingWireframes) {
   const BoxSet boxes = test::touchingGrid(2, 100);  // 8 cubes, all touching each other
   std_msgs::Header header;
@@ -158,12 +188,12 @@ TEST(Markers, NamesAboveNamedCollidingBoxesOnly) {
   const std::size_t index = std::find(boxes.ids.begin(), boxes.ids.end(), 103u) - boxes.ids.begin();
   const Marker* load = texts[0]->text == names.at(103) ? texts[0] : texts[1];
   ASSERT_EQ(load->text, names.at(103));
-  EXPECT_DOUBLE_EQ(load->pose.position.x, 0.5 * (boxes.lo[0][index] + boxes.hi[0][index]));
-  EXPECT_DOUBLE_EQ(load->pose.position.y, 0.5 * (boxes.lo[1][index] + boxes.hi[1][index]));
-  EXPECT_GT(load->pose.position.z, boxes.hi[2][index]) << "above the box";
+  EXPECT_DOUBLE_EQ(load->pose.position.x, 0.5 * (boxes.lo(0, index) + boxes.hi(0, index)));
+  EXPECT_DOUBLE_EQ(load->pose.position.y, 0.5 * (boxes.lo(1, index) + boxes.hi(1, index)));
+  EXPECT_GT(load->pose.position.z, boxes.hi(2, index)) << "above the box";
   EXPECT_GT(load->scale.z, 0.0);
   EXPECT_LT(load->scale.z, 1.0) << "smaller than the unit cube it names";
-  EXPECT_LT(load->pose.position.z - 0.5 * load->scale.z, boxes.hi[2][index] + load->scale.z)
+  EXPECT_LT(load->pose.position.z - 0.5 * load->scale.z, boxes.hi(2, index) + load->scale.z)
       << "just above the box, not floating away";
 
   options.show_names = false;

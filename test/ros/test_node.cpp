@@ -208,7 +208,7 @@ void expectWireframes(const visualization_msgs::Marker& inMarker, const BoxSet& 
     for (std::size_t i = 0; i < inBoxes.size() && !found; ++i) {
       found = true;
       for (int axis = 0; axis < 3; ++axis)
-        found = found && lo[axis] == inBoxes.lo[axis][i] && hi[axis] == inBoxes.hi[axis][i];
+        found = found && lo[axis] == inBoxes.lo(axis, i) && hi[axis] == inBoxes.hi(axis, i);
     }
     EXPECT_TRUE(found) << "wireframe " << box << " matches no box";
   }

@@ -49,10 +49,15 @@ BoxSet withIdOffset(BoxSet inBoxes, uint32_t inOffset) {
   return inBoxes;
 }
 
-/// The union of box sets, as the node merges its sources.
+/// The union of box sets: the world of the node's sources.
 BoxSet unionOf(const std::vector<const BoxSet*>& inParts) {
   BoxSet world;
-  for (const BoxSet* part : inParts) appendBoxes(*part, world);
+  for (const BoxSet* part : inParts) {
+    for (std::size_t i = 0; i < part->size(); ++i) {
+      const double* box = part->bounds.data() + kBoundsPerBox * i;
+      world.add(part->ids[i], box, box + 3, part->group(i), part->mask(i));
+    }
+  }
   return world;
 }
 
@@ -299,6 +304,43 @@ TEST(Sources, DuplicateIdAcrossSourcesRefusedNamingBoth) {
                   .has_value());
 }
 
+TEST(Sources, RefusedFrameLeavesTheSourcesLastAcceptedOne) {
+  BoxSet good;
+  const double lo[3] = {0.2, 0.2, 0.2}, hi[3] = {0.8, 0.8, 0.8};
+  good.add(3500, lo, hi);  // overlaps robot A's box
+  const auto holds = [](const PairArray& inPairs, IdPair inPair) {
+    const PairList pairs = toPairs(inPairs);
+    return std::count(pairs.begin(), pairs.end(), inPair) == 1;
+  };
+  auto republish = [&] { publishBoxes(multi(), "extra", good, "world"); };
+  ASSERT_TRUE(multi()
+                  .waitPairs(
+                      [&](const PairArray& m) {
+                        return holds(m, IdPair{1, 3500});
+                      },
+                      republish)
+                  .has_value());
+  // The next frame of `extra` has min_x > max_x: refused, named, and `extra` stays in the world
+  // with its last accepted frame while the robots' frames keep coming.
+  BoxSet bad = good;
+  bad.lo(0, 0) = 3.0;
+  bad.hi(0, 0) = 2.0;
+  const ros::Time bad_stamp = publishBoxes(multi(), "extra", bad, "world");
+  const auto stats = multi().waitStats(
+      [&](const FrameStats& s) { return s.header.stamp == bad_stamp && s.path == "refused"; });
+  ASSERT_TRUE(stats) << "no refusal of the bad frame";
+  EXPECT_NE(stats->last_refusal.find("'extra' from /"), std::string::npos) << stats->last_refusal;
+  EXPECT_NE(stats->last_refusal.find("box 0 (id 3500): min_x (3) > max_x (2)"), std::string::npos)
+      << stats->last_refusal;
+  EXPECT_TRUE(multi()
+                  .waitPairs([&](const PairArray& m) {
+                    return m.header.stamp > bad_stamp && holds(m, IdPair{1, 2}) &&
+                           holds(m, IdPair{1, 3500});
+                  })
+                  .has_value())
+      << "the robots' frames after the refusal lost the last accepted frame of `extra`";
+}
+
 TEST(Sources, SilentSourcesTimeOut) {
   // The test stops publishing: its two sources time out (~source_timeout 3 s), the robots stay.
   const auto stats =
@@ -335,7 +377,7 @@ TEST(Frames, StaticTranslationIntoTheFixedFrame) {
   const BoxSet boxes = randomBoxes(500, 0.8, true, 201);
   const ros::Time stamp = ros::Time::now();
   const BoxSet moved = inMap(boxes, "robot_a", stamp);
-  EXPECT_NEAR(moved.lo[0][0], boxes.lo[0][0] + 10.0, 1e-12);
+  EXPECT_NEAR(moved.lo(0, 0), boxes.lo(0, 0) + 10.0, 1e-12);
   const auto pairs = tfProbe().waitStampedAlone(
       stamp, [&] { publishBoxes(tfProbe(), "boxes", boxes, "robot_a", stamp); });
   ASSERT_TRUE(pairs);
@@ -382,7 +424,7 @@ TEST(Frames, MovingTransformInterpolatedAtTheStamp) {
   };
   republish();
   const BoxSet moved = inMap(boxes, "robot_b", middle);
-  EXPECT_NEAR(moved.lo[0][0], boxes.lo[0][0] + 2.0, 1e-12) << "halfway between x = 0 and x = 4";
+  EXPECT_NEAR(moved.lo(0, 0), boxes.lo(0, 0) + 2.0, 1e-12) << "halfway between x = 0 and x = 4";
   const auto pairs = tfProbe().waitStampedAlone(middle, republish);
   ASSERT_TRUE(pairs);
   EXPECT_EQ(toPairs(*pairs), bruteForcePairs(moved));
@@ -491,8 +533,8 @@ TEST(PairEventsTopic, SetDifferenceOfConsecutiveFrames) {
     }
     previous = current;
     for (std::size_t i = 0; i < moving.size(); ++i) {  // everything drifts along +x
-      moving.lo[0][i] += 0.05 * (i % 7);
-      moving.hi[0][i] += 0.05 * (i % 7);
+      moving.lo(0, i) += 0.05 * (i % 7);
+      moving.hi(0, i) += 0.05 * (i % 7);
     }
   }
 }

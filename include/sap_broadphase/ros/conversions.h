@@ -20,7 +20,12 @@ std::optional<std::string> checkBoxArrayShape(const BoxArray& inMsg);
 /// The boxes of a BoxArray whose shape is checked (checkBoxArrayShape), read where they lie:
 /// Broadphase::update() takes them without a copy into a BoxSet and checks them itself. Valid
 /// while inMsg is.
-InterleavedBoxes boxArrayRecords(const BoxArray& inMsg);
+BoxSpan boxArrayRecords(const BoxArray& inMsg);
+
+/// Copies the boxes of a BoxArray whose shape is checked (checkBoxArrayShape) into outBoxes
+/// (replaced; capacity reused) as they are, for the engine to check as it loads them. Empty
+/// `ids` number the boxes 0..n-1.
+void copyBoxArray(const BoxArray& inMsg, BoxSet& outBoxes);
 
 /// Converts a BoxArray into outBoxes (replaced; capacity reused) and validates it fully: shape,
 /// NaN, min > max, duplicate ids. Empty `ids` number the boxes 0..n-1. Returns the reason of a
