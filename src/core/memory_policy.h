@@ -1,7 +1,6 @@
-// When buffers sized for a burst of large frames are given back: the one rule of the engine
-// and of the ROS node. A process that runs for days must not keep the memory of one frame of
-// 2^21 boxes; an occasional large frame among small ones must not make every buffer be
-// allocated again.
+// When buffers sized for a burst of large frames are given back: the engine's one rule. A process
+// that runs for days must not keep the memory of one frame of 2^21 boxes; an occasional large frame
+// among small ones must not make every buffer be allocated again.
 #pragma once
 
 #include <cstddef>
