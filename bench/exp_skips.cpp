@@ -337,7 +337,7 @@ void unchangedRows(const Options& inOptions, Table& ioTable) {
 
 // The small-frame path (small_frame.h) against the sweep on one thread (Algorithm 1) and on
 // every thread (Algorithms 2-4), every frame swept (no skin, no reuse): where each crossover
-// of Method::kAuto lies (isSmallFrame). The note says which path the default takes.
+// of Method::kAuto lies (takesSmallFrameKernel). The note says which path the default takes.
 void smallFrameRows(const Options& inOptions, Table& ioTable) {
   const int frames = inOptions.framesOr(30, 5);
   for (std::size_t n : {256u, 1024u, 2048u, 4096u, 8192u, 16384u, 32768u, 65536u}) {
@@ -375,7 +375,8 @@ void smallFrameRows(const Options& inOptions, Table& ioTable) {
       const int threads = method == sap_broadphase::Method::kParallel
                               ? sap_broadphase::resolveThreadCount(inOptions.threads)
                               : 1;
-      const bool takes_small = sap_broadphase::isSmallFrame(sap_broadphase::BroadphaseConfig(), n);
+      const bool takes_small =
+          sap_broadphase::takesSmallFrameKernel(sap_broadphase::BroadphaseConfig(), n, threads);
       addRow(ioTable, "small frame", "uniform n=" + fmtSize(n) + ", d=0.2",
              "small-frame path vs " + path + " sweep", small_ms, ms, "small",
              matches && small_matches, "-",

@@ -130,15 +130,14 @@ double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts
   return 0.0;
 }
 
-bool isSmallFrame(const BroadphaseConfig& inConfig, std::size_t inBoxes) {
-  return inBoxes < inConfig.parallel_min_boxes;
+bool takesSmallFrameKernel(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads) {
+  const bool skin_fixed = inConfig.skin && *inConfig.skin > 0.0;
+  return inConfig.method == Method::kAuto && !skin_fixed &&
+         (inBoxes < inConfig.parallel_min_boxes || inThreads == 1);
 }
 
 int frameThreads(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads) {
-  const bool skin_fixed = inConfig.skin && *inConfig.skin > 0.0;
-  const bool small =
-      inConfig.method == Method::kAuto && !skin_fixed && isSmallFrame(inConfig, inBoxes);
-  return small ? 1 : inThreads;
+  return takesSmallFrameKernel(inConfig, inBoxes, inThreads) ? 1 : inThreads;
 }
 
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
@@ -180,7 +179,7 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     plan.skin_choice = skin_fixed ? SkinChoice::kFixed : SkinChoice::kKept;
     return plan;
   }
-  if (config.method == Method::kAuto && !skin_fixed && isSmallFrame(config, inInputs.boxes)) {
+  if (takesSmallFrameKernel(config, inInputs.boxes, inInputs.threads)) {
     // The small-frame kernel, on one thread (a frame of one work unit); grown by the automatic
     // skin when its cycle pays, as a sweep is: what the paper's coherence (§4.2) is to the
     // sweep, the kept candidates are to the kernel, which keeps nothing of its own.

@@ -190,6 +190,35 @@ TEST(FramePlan, SweepPathFollowsMethodSizeAndThreads) {
   EXPECT_EQ(planFrame(inputs).threads, 1);
 }
 
+// The small-frame kernel answers frames below the cut-off on any thread count, and every frame
+// of Method::kAuto on one thread (where it beats the sequential sweep at every size); with
+// several threads a large frame is swept in parallel, and a fixed skin or another method keeps
+// the sweep.
+TEST(FramePlan, TheKernelAnswersSmallFramesAndEveryFrameOnOneThread) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);  // 100000 boxes
+  inputs.delta.relation = FrameRelation::kFirst;
+  inputs.threads = 1;
+  FramePlan plan = planFrame(inputs);
+  EXPECT_EQ(plan.path, FramePath::kSmallFrame);
+  EXPECT_EQ(plan.threads, 1);
+  EXPECT_EQ(frameThreads(config, inputs.boxes, 1), 1);
+  inputs.threads = 2;
+  EXPECT_EQ(planFrame(inputs).path, FramePath::kParallel);
+  EXPECT_EQ(frameThreads(config, inputs.boxes, 2), 2);
+  inputs.boxes = config.parallel_min_boxes - 1;
+  EXPECT_EQ(planFrame(inputs).path, FramePath::kSmallFrame);
+  EXPECT_EQ(frameThreads(config, inputs.boxes, 2), 1);
+  inputs.boxes = 100000;
+  inputs.threads = 1;
+  config.method = Method::kSequential;
+  EXPECT_EQ(planFrame(inputs).path, FramePath::kSequential);
+  config.method = Method::kAuto;
+  config.skin = 0.5;
+  EXPECT_EQ(planFrame(inputs).path, FramePath::kSequential);
+  EXPECT_EQ(planFrame(inputs).sweep_skin, 0.5);
+}
+
 TEST(FramePlan, SkinGrowsWithMotionWhileItPays) {
   const SkinCosts costs = uniformCosts();
   SkinChoice choice;
