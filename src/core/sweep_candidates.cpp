@@ -90,7 +90,7 @@ void countAndCollectCrossing(const uint32_t* inOrder, uint32_t inObjects, int in
   std::size_t begin = 0, end = 0;
   sliceBounds(inObjects, inSlice, inSlices, begin, end);
   const std::size_t words = (std::size_t{inObjects} + 63) / 64;
-  uint64_t* crossing = &ioWork.slice_objects[words * inSlice];
+  uint64_t* crossing = ioWork.slice_objects.data() + words * inSlice;
   std::fill(crossing, crossing + words, uint64_t{0});
   uint32_t lows = 0;
   for (std::size_t k = begin; k < end; ++k) {
@@ -114,7 +114,7 @@ void rankLeavingBoxes(const uint32_t* inOrder, uint32_t inObjects, int inSlice, 
   std::size_t begin = 0, end = 0;
   sliceBounds(inObjects, inSlice, inSlices, begin, end);
   const std::size_t words = (std::size_t{inObjects} + 63) / 64;
-  const uint64_t* crossing = &inWork.slice_objects[words * inSlice];
+  const uint64_t* crossing = inWork.slice_objects.data() + words * inSlice;
   uint32_t next_rank = inWork.lows_before[inSlice];
   for (std::size_t k = begin; k < end; ++k) {
     const uint32_t endpoint = inOrder[k];
@@ -189,7 +189,7 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
       std::size_t begin = 0, end = 0;
       sliceBounds(inObjects, slice, slices, begin, end);
       sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice],
-                          &ioWork.slice_objects[words * slice], active, outRanges);
+                          ioWork.slice_objects.data() + words * slice, active, outRanges);
       active.clear();  // leave the tree empty for the next frame
     }
   }
