@@ -19,6 +19,7 @@ sap_add_gtest(test_core
   test/core/test_pair_set.cpp
   test/core/test_slab_grid.cpp
   test/core/test_config_sources.cpp
+  test/core/test_events.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp
 )

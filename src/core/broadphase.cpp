@@ -18,6 +18,7 @@
 #include <string>
 
 #include "core/assert.h"
+#include "core/contact_events.h"
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/frame_query.h"
@@ -57,6 +58,7 @@ struct Broadphase::Impl {
     PairList merged;         // the strategy's and the scenery's pairs, merged
   } buffers;
   GiveBackWatch give_back;
+  ContactEventTracker events;  // began and ended pairs of the last frame
 
   std::optional<ValidationError> sceneryIdConflict(const BoxColumns& inBoxes,
                                                    const BoxFrame& inFrame) const;
@@ -68,6 +70,7 @@ struct Broadphase::Impl {
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
   void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
+  void forgetFrames();
   // The history's passes: as many threads as the last frame's work was learnt to pay on, never
   // more than this frame may use.
   int passThreads(int inThreads) const {
@@ -243,6 +246,7 @@ void Broadphase::Impl::giveBackMemoryAfterBursts(std::size_t inBoxes) {
   skin.releaseMemory();   // the next grown sweep keeps candidates of the frame's size again
   world.releaseMemory();  // the next frame's query index, if one is asked for, sizes itself
   pairs.shrink_to_fit();
+  events.releaseMemory();
   buffers = Buffers();
 }
 
@@ -263,6 +267,8 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
   FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
   const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, inBoxes.size());
   FrameSpread spread(inBoxes);  // measured once, by the first part that needs it
+  const bool reused = frame_plan.path == FramePath::kReused;
+  if (!reused) events.keepLastList(pairs);  // the strategy writes the buffer of the list before
   const auto work_start = std::chrono::steady_clock::now();
   execute(frame_plan, spread);
   if (measured) {
@@ -278,7 +284,13 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
     PhaseTimer timer(report.ms_plan);
     skin.learn(frame_plan, spread, pairs.size(), report);
   }
-  if (frame_plan.path != FramePath::kReused) addSceneryPairs(inBoxes, inThreads);
+  if (!reused) addSceneryPairs(inBoxes, inThreads);
+  if (reused) {
+    events.sameListAsLast();
+  } else {
+    PhaseTimer timer(report.ms_output);
+    events.compare(pairs);
+  }
   history.remember();
   world.setFrame(history.remembered());
   pairs_valid = true;
@@ -295,6 +307,7 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
       frameThreads(impl.config, inFrame.size(), resolveThreadCount(impl.config.threads));
   FrameReport& report = impl.report;
   report = FrameReport();
+  impl.events.startFrame();
   {
     PhaseTimer total(report.ms_total);
     std::optional<ValidationError> problem;
@@ -305,7 +318,9 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
     const BoxColumns& boxes = impl.history.loaded();
     if (!problem && !delta.sameIds()) problem = impl.sceneryIdConflict(boxes, inFrame);
     if (problem) {
-      reset();  // the kept state described a frame the caller has since replaced
+      // The kept state described a frame the caller has since replaced; the last pairs stay
+      // the events' reference (events()).
+      impl.forgetFrames();
       throw InvalidBoxes(std::move(*problem));
     }
     report.boxes = boxes.size();
@@ -323,11 +338,20 @@ const BroadphaseConfig& Broadphase::config() const {
   return impl_->config;
 }
 
+const ContactEvents& Broadphase::events() const {
+  return impl_->events.events();
+}
+
+void Broadphase::Impl::forgetFrames() {
+  sweep.forgetCoherence();
+  history.forget();
+  skin.forget();
+  pairs_valid = false;
+}
+
 void Broadphase::reset() {
-  impl_->sweep.forgetCoherence();
-  impl_->history.forget();
-  impl_->skin.forget();
-  impl_->pairs_valid = false;
+  impl_->forgetFrames();
+  impl_->events.forget();
 }
 
 void Broadphase::setStaticBoxes(const BoxFrame& inStaticBoxes) {

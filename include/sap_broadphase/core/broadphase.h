@@ -31,6 +31,12 @@ struct QueryHit {
 /// The answers of one Broadphase::query(), sorted by (query, world), none twice.
 using QueryHitList = std::vector<QueryHit>;
 
+/// The pairs that began and the pairs that ended at the last update(), each sorted as a PairList.
+struct ContactEvents {
+  PairList began;
+  PairList ended;
+};
+
 /// The stateful broad phase: keeps partition bounds B and the sweep axes across frames, owns
 /// every buffer (no allocation per frame once sizes are stable). Not thread-safe: one frame at
 /// a time per instance; between frames, query() may run on other threads (see there).
@@ -47,8 +53,19 @@ class Broadphase {
   /// every frame anyway, to know what moved), and checked on the way: a NaN bound, min > max,
   /// a repeated id (across spans too), an id that does not fit 32 bits or too many boxes throw
   /// InvalidBoxes naming the lowest bad box as validate() does; the engine is then as after
-  /// reset(). The frame's memory is read only during the call.
+  /// reset(), except for events() (see there). The frame's memory is read only during the call.
   const PairList& update(const BoxFrame& inFrame);
+  /// What changed between the pair lists of the last two update()s: `began` holds the pairs of
+  /// the last list absent from the one before, `ended` those of the one before absent from the
+  /// last, both canonical (as update()'s list). The first update() after construction or
+  /// reset() has every pair begin and none end. An update() that threw reports no events, and
+  /// the next update() that returns compares with the last list returned before it (a refused
+  /// frame does not end and restart every contact). Scenery changed by setStaticBoxes() or
+  /// clearStaticBoxes() shows at the next update(): its pairs with the old scenery end, those with
+  /// the new one begin. A frame that reuses the last list (nothing moved) has none. Found by one
+  /// merge of the two sorted lists (the last one is kept by swapping buffers, not copied); valid
+  /// until the next update() or reset().
+  const ContactEvents& events() const;
   /// Declares scenery: boxes that stay put until replaced, checked as update() checks a frame
   /// (a bad box throws InvalidBoxes and the scenery is unchanged). They are
   /// indexed once, here; every later update() reports the pairs among its boxes and between
@@ -85,7 +102,8 @@ class Broadphase {
   const FrameReport& stats() const;
   /// The configuration in force (axes change when swapped).
   const BroadphaseConfig& config() const;
-  /// Forgets temporal state (partition bounds); the next frame starts as a first frame.
+  /// Forgets temporal state (partition bounds, the last pair list of events()); the next frame
+  /// starts as a first frame, its events have every pair begin.
   void reset();
 
  private:

@@ -77,7 +77,7 @@ struct FrameReport {
   double ms_skin = 0.0;        ///< skin reuse: growing the boxes, keeping the grown sweep's
                                ///< candidates, testing the kept candidates
   double ms_static = 0.0;      ///< queries of the declared scenery's index
-  double ms_output = 0.0;      ///< ids and canonical pair order
+  double ms_output = 0.0;      ///< ids, canonical pair order and contact events
   double ms_total = 0.0;
 };
 

@@ -1,0 +1,43 @@
+// Contact events: the pairs that began and ended between two consecutive canonical pair lists,
+// found by one linear merge of the two, and the state that keeps the last list without copying it.
+#pragma once
+
+#include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/pair_set.h"
+
+namespace sap_broadphase {
+
+/// Writes into outEvents the pairs of inNow absent from inLast (began) and those of inLast absent
+/// from inNow (ended), both canonical as the inputs must be: one pass over the two lists,
+/// equal stretches compared a block at a time. Reuses outEvents' buffers.
+void diffPairLists(const PairList& inLast, const PairList& inNow, ContactEvents& outEvents);
+
+/// The events of a Broadphase across frames. The last frame's list is the engine's own pair
+/// list: before a frame's strategy writes that list, keepLastList() takes it by swapping buffers
+/// (the strategy then writes into the buffer of the frame before, already sized), so a steady
+/// frame neither copies nor allocates.
+class ContactEventTracker {
+ public:
+  /// A frame begins: its events are none until it completes (a frame that throws reports none).
+  void startFrame();
+  /// Takes the last frame's list out of ioPairs (a swap); ioPairs keeps a buffer to write into.
+  void keepLastList(PairList& ioPairs);
+  /// The frame's list is complete: its events are the difference from the kept last list (from
+  /// nothing on a first frame), and it becomes the last list.
+  void compare(const PairList& inPairs);
+  /// The frame's list is the last one, untouched (a reused frame): no events.
+  void sameListAsLast();
+  /// The next frame is a first frame: every pair begins. The events of the last frame go too.
+  void forget();
+  /// Gives back the spare buffer (the list before the last one) after a burst of large frames.
+  void releaseMemory();
+  const ContactEvents& events() const { return events_; }
+
+ private:
+  PairList last_;            // between keepLastList() and compare(): the last frame's list
+  ContactEvents events_;     // the last frame's
+  bool has_last_ = false;    // a frame completed since construction or forget()
+  bool frame_open_ = false;  // keepLastList() without its compare(): that frame threw
+};
+
+}  // namespace sap_broadphase
