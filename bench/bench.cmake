@@ -30,6 +30,7 @@ add_executable(sap_bench
   ${SAP_BENCH_DIR}/exp_busy.cpp
   ${SAP_BENCH_DIR}/peer_runs.cpp
   ${SAP_BENCH_DIR}/exp_query.cpp
+  ${SAP_BENCH_DIR}/exp_events.cpp
   ${SAP_BENCH_DIR}/bench_memory.cpp
   ${SAP_BENCH_DIR}/peers/peer_registry.cpp
   ${SAP_BENCH_DIR}/peers/peer_grid.cpp

@@ -23,6 +23,7 @@ void runDistributed(const Options& inOptions);
 void runSizes(const Options& inOptions);
 void runBusy(const Options& inOptions);
 void runQuery(const Options& inOptions);
+void runEvents(const Options& inOptions);
 
 /// One experiment: its name on the command line, a line of description, its function.
 struct Experiment {

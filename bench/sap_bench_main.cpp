@@ -42,6 +42,9 @@ const std::vector<Experiment>& allExperiments() {
        runBusy},
       {"query", "Box queries: 1, 100, 10 000 boxes against 2^20, beside FCL's dynamic tree",
        runQuery},
+      {"events",
+       "Contact events in a steady frame, 2^17 and 2^20: the merge against set_difference",
+       runEvents},
   };
   return kExperiments;
 }

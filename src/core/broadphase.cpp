@@ -5,8 +5,9 @@
 //         one strategy:
 //            reuse | kept candidates | sweep (grown by a skin or plain) | small frame | brute
 //         -> learn the costs -> the declared scenery's pairs sorted on their own and merged
-//            into the strategy's canonical list -> remember the frame, give back memory a
-//            burst of large frames left behind
+//            into the strategy's canonical list -> the contact events: one merge with the
+//            last list -> remember the frame, give back memory a burst of large frames left
+//            behind
 #include "sap_broadphase/core/broadphase.h"
 
 #include <algorithm>
