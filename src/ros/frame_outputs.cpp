@@ -17,17 +17,21 @@ namespace sap_broadphase {
 
 namespace {
 
-/// Appends the pairs of inFrom that are not in inWithout (both canonical) as consecutive ids.
-void appendDifference(const PairList& inFrom, const PairList& inWithout,
-                      std::vector<uint32_t>& outIds) {
-  PairList difference;
-  std::set_difference(inFrom.begin(), inFrom.end(), inWithout.begin(), inWithout.end(),
-                      std::back_inserter(difference));
-  outIds.reserve(2 * difference.size());
-  for (const IdPair& pair : difference) {
+/// Appends inPairs (canonical) to outIds as consecutive ids, as PairArray lays them out.
+void appendPairs(const PairList& inPairs, std::vector<uint32_t>& outIds) {
+  outIds.reserve(outIds.size() + 2 * inPairs.size());
+  for (const IdPair& pair : inPairs) {
     outIds.push_back(pair.a);
     outIds.push_back(pair.b);
   }
+}
+
+/// The pairs of inFrom that are not in inWithout (both canonical).
+PairList difference(const PairList& inFrom, const PairList& inWithout) {
+  PairList difference;
+  std::set_difference(inFrom.begin(), inFrom.end(), inWithout.begin(), inWithout.end(),
+                      std::back_inserter(difference));
+  return difference;
 }
 
 }  // namespace
@@ -51,23 +55,46 @@ double FrameOutputs::publishPairs(const PairList& inPairs, const std_msgs::Heade
       .count();
 }
 
-void FrameOutputs::publishEvents(const PairList& inPairs, const std_msgs::Header& inHeader) {
+void FrameOutputs::publishEvents(const ContactEvents& inEvents, const PairList& inPairs,
+                                 const std_msgs::Header& inHeader) {
   if (events_pub_.getNumSubscribers() == 0) {
-    // Nobody listens: no copy of the pairs is kept; the next listener's first message reports
-    // every pair of its first frame as began.
-    previous_pairs_valid_ = false;
-    PairList().swap(previous_pairs_);
+    // Nobody listens: nothing kept; the next listener's first message reports every pair of
+    // its first frame as began.
+    last_published_ = nullptr;
+    holding_ = false;
+    PairList().swap(held_pairs_);
     return;
   }
   auto events = boost::make_shared<PairEvents>();
   events->header = inHeader;
-  static const PairList kNone;
-  const PairList& previous = previous_pairs_valid_ ? previous_pairs_ : kNone;
-  appendDifference(inPairs, previous, events->began);
-  appendDifference(previous, inPairs, events->ended);
+  if (holding_) {
+    // The engine's events start from a list never published: the difference from the held
+    // copy instead (after a source dropout or a new engine only).
+    appendPairs(difference(inPairs, held_pairs_), events->began);
+    appendPairs(difference(held_pairs_, inPairs), events->ended);
+    holding_ = false;
+    PairList().swap(held_pairs_);
+  } else if (last_published_) {
+    appendPairs(inEvents.began, events->began);
+    appendPairs(inEvents.ended, events->ended);
+  } else {
+    appendPairs(inPairs, events->began);
+  }
   events_pub_.publish(events);
-  previous_pairs_.assign(inPairs.begin(), inPairs.end());
-  previous_pairs_valid_ = true;
+  last_published_ = &inPairs;
+}
+
+void FrameOutputs::holdLastPairs() {
+  if (!last_published_ || holding_) return;  // nobody listens, or already held
+  held_pairs_ = *last_published_;
+  holding_ = true;
+  last_published_ = nullptr;  // the engine's list is about to change or go
+}
+
+void FrameOutputs::restartEvents() {
+  last_published_ = nullptr;
+  holding_ = false;
+  PairList().swap(held_pairs_);
 }
 
 bool FrameOutputs::wantsMarkers() const {

@@ -1,6 +1,6 @@
 // FrameOutputs: what a computed frame publishes besides its stats: `pairs`, `pair_events` (the
-// difference from the previous frame, kept only while someone listens) and `markers` (built
-// only while someone subscribes).
+// engine's contact events, published only while someone listens) and `markers` (built only
+// while someone subscribes).
 #pragma once
 
 #include <ros/ros.h>
@@ -8,6 +8,7 @@
 
 #include "markers.h"
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -21,8 +22,18 @@ class FrameOutputs {
 
   /// Publishes `pairs` and returns the milliseconds spent filling and sending the message.
   double publishPairs(const PairList& inPairs, const std_msgs::Header& inHeader);
-  /// Publishes what changed since the previous frame, while someone listens.
-  void publishEvents(const PairList& inPairs, const std_msgs::Header& inHeader);
+  /// Publishes what changed since the previous published frame, while someone listens:
+  /// inEvents and inPairs are Broadphase::events() and the list of the update() just published.
+  /// The first message after nobody listened reports every pair of its frame as began.
+  void publishEvents(const ContactEvents& inEvents, const PairList& inPairs,
+                     const std_msgs::Header& inHeader);
+  /// Call before the engine runs an update() whose pairs are not published or is replaced (its
+  /// events then no longer start from the last published list): keeps a copy of that list, so
+  /// that the next message still tells what changed since it.
+  void holdLastPairs();
+  /// The engine failed and was replaced before holdLastPairs() could run: the next message
+  /// reports every pair of its frame as began, as to a new listener.
+  void restartEvents();
   /// True when markers are on and somebody subscribes to them (a frame then needs its boxes).
   bool wantsMarkers() const;
   /// Publishes the markers of the world and its pairs, with the names of inNames, while someone
@@ -39,8 +50,11 @@ class FrameOutputs {
   ros::Publisher markers_pub_;
   bool publish_markers_;
   MarkerOptions markers_;
-  PairList previous_pairs_;  // for pair_events, kept while someone listens
-  bool previous_pairs_valid_ = false;
+  // The engine's list last published with its events (valid until the engine's next update()),
+  // while someone listens.
+  const PairList* last_published_ = nullptr;
+  PairList held_pairs_;  // a copy of it across an update() not published (holdLastPairs)
+  bool holding_ = false;
 };
 
 }  // namespace sap_broadphase

@@ -146,6 +146,7 @@ void FrameWorker::recoverFrom(const std::string& inWhat) {
   // engine's temporal state half updated: the next frame starts on a new engine.
   status_.refuse(std_msgs::Header(), 0,
                  "a frame could not be computed (" + inWhat + "): refused, new engine");
+  outputs_.restartEvents();  // the last published pairs may have gone with the failure
   std::lock_guard<std::shared_mutex> lock(engine_mutex_);
   engine_ = Broadphase(params_.engine);
   if (scenery_) engine_.setStaticBoxes(scenery_->span());
@@ -157,6 +158,7 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
     // The engine takes its configuration once, at construction; the new one starts without
     // temporal state (partition bounds, kept candidates, the last frame) and must be told
     // the scenery again.
+    outputs_.holdLastPairs();  // pair_events still tells what changed since the last frame
     std::lock_guard<std::shared_mutex> lock(engine_mutex_);
     engine_ = Broadphase(inSettings.engine);
     if (scenery_) engine_.setStaticBoxes(scenery_->span());
@@ -219,6 +221,7 @@ void FrameWorker::expireSources() {
   const std::vector<SourceSet::Expired> expired = sources_.expire(ros::Time::now(), timeout_of);
   if (!expired.empty() && sources_.size() == 0) {
     // No frame follows until a source comes back: the last one must not stay in the world.
+    outputs_.holdLastPairs();  // this update is not published: its events are not the node's
     std::lock_guard<std::shared_mutex> lock(engine_mutex_);
     engine_.update(BoxFrame());
   }
@@ -257,7 +260,7 @@ void FrameWorker::computeFrame() {
   frame.sources = world_.members.size();
   frame.ms_message = outputs_.publishPairs(*pairs, frame.header);
   frame.ms_total = millisecondsSince(start);
-  outputs_.publishEvents(*pairs, frame.header);
+  outputs_.publishEvents(engine_.events(), *pairs, frame.header);
   // The boxes just loaded, read where the sources keep them.
   const MarkerCounts markers =
       outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.idNames());

@@ -541,6 +541,60 @@ TEST(PairEventsTopic, SetDifferenceOfConsecutiveFrames) {
 
 // ---- ~rate: frames at a fixed rate from what the sources hold ----
 
+// Every source of the `tf` node drops out (~source_timeout 1 s): the node empties its world
+// without publishing a frame, yet the next frame's events are still what changed since the
+// last frame published, not every pair begun again.
+TEST(PairEventsTopic, AfterEverySourceDroppedOutTheLastPublishedFrameIsTheReference) {
+  Probe& probe = tfProbe();
+  ros::NodeHandle node;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::string timed_out;  // the tf node's "sources timed out", as /diagnostics last said
+  ros::Subscriber diagnostics = node.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& inMsg) {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& status : inMsg->status) {
+          if (status.name != "tf/sap_broadphase: broadphase") continue;
+          for (const auto& pair : status.values)
+            if (pair.key == "sources timed out") timed_out = pair.value;
+        }
+        changed.notify_all();
+      });
+  BoxSet boxes = randomBoxes(500, 0.8, false, 341);
+  const ros::Time first_stamp = ros::Time::now();
+  const auto republish = [&] { publishBoxes(probe, "boxes", boxes, "map", first_stamp); };
+  const auto first_stats = probe.waitStats(
+      [&](const FrameStats& s) {
+        return s.header.stamp == first_stamp && s.sources == 1 && s.path != "refused";
+      },
+      republish);
+  ASSERT_TRUE(first_stats) << "the first frame was never computed alone";
+  const auto first = probe.waitStamped(first_stamp);
+  ASSERT_TRUE(first);
+  const PairList before = toPairs(*first);
+  const uint64_t dropped_out = first_stats->sources_timed_out + 1;
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    ASSERT_TRUE(changed.wait_for(
+        lock, std::chrono::duration<double>(kWait),
+        [&] { return !timed_out.empty() && std::stoull(timed_out) >= dropped_out; }))
+        << "the source never timed out: " << timed_out;
+  }
+  for (std::size_t i = 0; i < boxes.size(); i += 3) {  // a third of the boxes drift along +x
+    boxes.lo(0, i) += 0.3;
+    boxes.hi(0, i) += 0.3;
+  }
+  const ros::Time stamp = publishBoxes(probe, "boxes", boxes, "map");
+  const auto pairs = probe.waitStamped(stamp);
+  ASSERT_TRUE(pairs);
+  const PairList after = toPairs(*pairs);
+  ASSERT_FALSE(difference(after, difference(after, before)).empty()) << "no pair lasted";
+  const auto events = probe.waitEvents(stamp);
+  ASSERT_TRUE(events);
+  EXPECT_EQ(flatToPairs(events->began), difference(after, before));
+  EXPECT_EQ(flatToPairs(events->ended), difference(before, after));
+}
+
 TEST(MarkersWithScenery, SubscribedWhileMovingBoxesOverlapTheScenery) {
   // rviz (any subscriber to `markers`) while the engine pairs moving boxes with scenery boxes,
   // whose ids the world of moving boxes does not hold.
