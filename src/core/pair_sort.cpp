@@ -44,7 +44,7 @@ void forEachPair(const std::vector<PairChunks>& inParts, Visit&& inVisit) {
 // each run of equal a sorted by b.
 template <typename Pairs>
 void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
-                std::vector<uint32_t>& ioOffsets, PairList& outSorted) {
+                Buffer<uint32_t>& ioOffsets, PairList& outSorted) {
   resizeDiscarding(ioOffsets, std::size_t{inLargestA} + 2);
   std::fill(ioOffsets.begin(), ioOffsets.end(), 0);
   forEachPair(inPairs, [&](const IdPair& inPair) { ++ioOffsets[inPair.a + 1]; });
@@ -67,7 +67,7 @@ void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
 // the last part's row ends each run of a. Same result as bucketSort: the layout is part 0's
 // pairs of a, then part 1's, ..., and every run is then sorted by b.
 void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal,
-                     uint32_t inLargestA, int inThreads, std::vector<uint32_t>& ioOffsets,
+                     uint32_t inLargestA, int inThreads, Buffer<uint32_t>& ioOffsets,
                      PairList& outSorted) {
   const std::size_t parts = inParts.size();
   const std::size_t row = std::size_t{inLargestA} + 1;
@@ -138,7 +138,7 @@ bool denseEnough(uint32_t inLargestA, std::size_t inCount) {
 // skipped.
 void radixSort(PairList& ioPairs, PairSortScratch& ioScratch) {
   const std::size_t count = ioPairs.size();
-  std::vector<uint32_t>& histogram = ioScratch.offsets;
+  Buffer<uint32_t>& histogram = ioScratch.offsets;
   histogram.resize(kDigitValues);
   resizeDiscarding(ioScratch.pairs, count);
   PairList* source = &ioPairs;
