@@ -32,14 +32,17 @@
 #include "core/sweep_and_prune.h"
 #include "core/thread_choice.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 #include "sap_broadphase/core/brute_force.h"
 
 namespace sap_broadphase {
 
 struct Broadphase::Impl {
-  explicit Impl(const BroadphaseConfig& inConfig) : config(inConfig), sweep(inConfig) {}
+  explicit Impl(const BroadphaseConfig& inConfig)
+      : config(inConfig), runner(resolveThreadCount(inConfig.threads)), sweep(inConfig) {}
 
   const BroadphaseConfig config;  // as the user set it
+  mutable WorkRunner runner;      // the engine's workers: every parallel pass (work_units.h)
   FrameReport report;
   FrameHistory history;        // the last frame, and what changed since
   SweepAndPrune sweep;         // the paper's sweep, with its partition bounds and axes
@@ -302,6 +305,7 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
 
 const PairList& Broadphase::update(const BoxFrame& inFrame) {
   Impl& impl = *impl_;
+  const RunnerScope scope(impl.runner);
   impl.world.clear();  // the history's copy is about to change
   // A small frame, loading included, runs on one thread (frame_plan.h, frameThreads).
   const int threads =
@@ -356,6 +360,7 @@ void Broadphase::reset() {
 }
 
 void Broadphase::setStaticBoxes(const BoxFrame& inStaticBoxes) {
+  const RunnerScope scope(impl_->runner);
   BoxColumns scenery;
   copyFrame(inStaticBoxes, scenery, resolveThreadCount(impl_->config.threads));
   if (auto problem = checkColumns(scenery, inStaticBoxes)) throw InvalidBoxes(std::move(*problem));
@@ -379,6 +384,7 @@ std::size_t Broadphase::staticBoxCount() const {
 }
 
 QueryHitList Broadphase::query(const BoxFrame& inQueries) const {
+  const RunnerScope scope(impl_->runner);  // a concurrent query finds it busy: runs inline
   const int threads = resolveThreadCount(impl_->config.threads);
   BoxColumns queries;  // a query's own: queries may run concurrently
   copyFrame(inQueries, queries, threads);

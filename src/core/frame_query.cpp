@@ -1,13 +1,12 @@
 #include "core/frame_query.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <numeric>
 #include <vector>
 
 #include "core/pair_sort.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 #include "sap_broadphase/core/config.h"  // resolveThreadCount
 
 namespace sap_broadphase {
@@ -67,26 +66,24 @@ void FrameQuery::scan(const BoxColumns& inQueries, int inThreads, PairList& outH
   const int threads = static_cast<int>(
       std::min<std::size_t>(resolveThreadCount(inThreads),
                             std::max<std::size_t>(1, boxes / tuning::kMinScannedBoxesPerThread)));
-  std::vector<PairList> parts(threads);
-#pragma omp parallel num_threads(threads)
-  {
-    PairList& hits = parts[omp_get_thread_num()];
-#pragma omp for schedule(static)
-    for (std::size_t block = 0; block < blocks; ++block) {
-      const std::size_t begin = block * tuning::kQueryScanBlock;
-      const std::size_t end = std::min(boxes, begin + tuning::kQueryScanBlock);
-      for (std::size_t q = 0; q < inQueries.size(); ++q) {
-        const double query_low = inQueries.lo[0][q];
-        const double query_high = inQueries.hi[0][q];
-        for (std::size_t i = begin; i < end; ++i) {
-          if (frame.lo[0][i] > query_high || query_low > frame.hi[0][i]) continue;
-          if (boxesOverlap(inQueries, q, frame, i) &&
-              groupsMayPair(inQueries.group(q), inQueries.mask(q), frame.group(i), frame.mask(i)))
-            hits.push_back(IdPair{inQueries.ids[q], frame.ids[i]});
-        }
+  // A block a unit, each block's hits in its own part, the parts joined in block order: the
+  // same hits in the same order on any thread count.
+  std::vector<PairList> parts(blocks);
+  runUnits(blocks, threads, [&](std::size_t inBlock) {
+    PairList& hits = parts[inBlock];
+    const std::size_t begin = inBlock * tuning::kQueryScanBlock;
+    const std::size_t end = std::min(boxes, begin + tuning::kQueryScanBlock);
+    for (std::size_t q = 0; q < inQueries.size(); ++q) {
+      const double query_low = inQueries.lo[0][q];
+      const double query_high = inQueries.hi[0][q];
+      for (std::size_t i = begin; i < end; ++i) {
+        if (frame.lo[0][i] > query_high || query_low > frame.hi[0][i]) continue;
+        if (boxesOverlap(inQueries, q, frame, i) &&
+            groupsMayPair(inQueries.group(q), inQueries.mask(q), frame.group(i), frame.mask(i)))
+          hits.push_back(IdPair{inQueries.ids[q], frame.ids[i]});
       }
     }
-  }
+  });
   for (const PairList& part : parts) outHits.insert(outHits.end(), part.begin(), part.end());
 }
 

@@ -44,7 +44,7 @@ void forEachPair(const std::vector<PairChunks>& inParts, Visit&& inVisit) {
 // each run of equal a sorted by b.
 template <typename Pairs>
 void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
-                std::vector<uint32_t>& ioOffsets, PairList& outSorted) {
+                Buffer<uint32_t>& ioOffsets, PairList& outSorted) {
   resizeDiscarding(ioOffsets, std::size_t{inLargestA} + 2);
   std::fill(ioOffsets.begin(), ioOffsets.end(), 0);
   forEachPair(inPairs, [&](const IdPair& inPair) { ++ioOffsets[inPair.a + 1]; });
@@ -67,7 +67,7 @@ void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
 // the last part's row ends each run of a. Same result as bucketSort: the layout is part 0's
 // pairs of a, then part 1's, ..., and every run is then sorted by b.
 void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal,
-                     uint32_t inLargestA, int inThreads, std::vector<uint32_t>& ioOffsets,
+                     uint32_t inLargestA, int inThreads, Buffer<uint32_t>& ioOffsets,
                      PairList& outSorted) {
   const std::size_t parts = inParts.size();
   const std::size_t row = std::size_t{inLargestA} + 1;
@@ -79,59 +79,48 @@ void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal
   // claimed dynamically (work_units.h).
   const int ranges = unitsForThreads(inThreads);
   std::vector<uint32_t> range_base(ranges + 1, 0);  // pairs before each range of a
-  auto rangeBegin = [&](int inRange) { return row * inRange / ranges; };
-#pragma omp parallel num_threads(openTeam(std::max <std::size_t>(parts, ranges), inThreads))
-  {
-#pragma omp for schedule(dynamic, 1)
-    for (std::size_t part = 0; part < parts; ++part) {
-      uint32_t* counts = offsets + part * row;
-      std::fill(counts, counts + row, 0u);
-      inParts[part].forEach([&](const IdPair& inPair) { ++counts[inPair.a]; });
-    }
-#pragma omp for schedule(dynamic, 1)
-    for (int range = 0; range < ranges; ++range) {
-      uint32_t in_range = 0;
-      for (std::size_t part = 0; part < parts; ++part)
-        for (std::size_t a = rangeBegin(range); a < rangeBegin(range + 1); ++a)
-          in_range += offsets[part * row + a];
-      range_base[range + 1] = in_range;
-    }
-#pragma omp single
-    {
-      for (int range = 0; range < ranges; ++range) range_base[range + 1] += range_base[range];
-      SAP_ASSERT(range_base[ranges] == inTotal, "the ranges of a miss some pairs");
-    }
-#pragma omp for schedule(dynamic, 1)
-    for (int range = 0; range < ranges; ++range) {
-      uint32_t next = range_base[range];
-      for (std::size_t a = rangeBegin(range); a < rangeBegin(range + 1); ++a) {
-        for (std::size_t part = 0; part < parts; ++part) {
-          uint32_t& slot = offsets[part * row + a];
-          const uint32_t count = slot;
-          slot = next;
-          next += count;
-        }
+  auto rangeBegin = [&](std::size_t inRange) { return row * inRange / ranges; };
+  runUnits(parts, inThreads, [&](std::size_t inPart) {
+    uint32_t* counts = offsets + inPart * row;
+    std::fill(counts, counts + row, 0u);
+    inParts[inPart].forEach([&](const IdPair& inPair) { ++counts[inPair.a]; });
+  });
+  runUnits(ranges, inThreads, [&](std::size_t inRange) {
+    uint32_t in_range = 0;
+    for (std::size_t part = 0; part < parts; ++part)
+      for (std::size_t a = rangeBegin(inRange); a < rangeBegin(inRange + 1); ++a)
+        in_range += offsets[part * row + a];
+    range_base[inRange + 1] = in_range;
+  });
+  for (int range = 0; range < ranges; ++range) range_base[range + 1] += range_base[range];
+  SAP_ASSERT(range_base[ranges] == inTotal, "the ranges of a miss some pairs");
+  runUnits(ranges, inThreads, [&](std::size_t inRange) {
+    uint32_t next = range_base[inRange];
+    for (std::size_t a = rangeBegin(inRange); a < rangeBegin(inRange + 1); ++a) {
+      for (std::size_t part = 0; part < parts; ++part) {
+        uint32_t& slot = offsets[part * row + a];
+        const uint32_t count = slot;
+        slot = next;
+        next += count;
       }
     }
-#pragma omp for schedule(dynamic, 1)
-    for (std::size_t part = 0; part < parts; ++part) {
-      uint32_t* next_slot = offsets + part * row;
-      inParts[part].forEach([&](const IdPair& inPair) { sorted[next_slot[inPair.a]++] = inPair; });
+  });
+  runUnits(parts, inThreads, [&](std::size_t inPart) {
+    uint32_t* next_slot = offsets + inPart * row;
+    inParts[inPart].forEach([&](const IdPair& inPair) { sorted[next_slot[inPair.a]++] = inPair; });
+  });
+  const uint32_t* run_end = offsets + (parts - 1) * row;
+  constexpr std::size_t kRunChunk = tuning::kPairRunChunk;
+  runUnits((row + kRunChunk - 1) / kRunChunk, inThreads, [&](std::size_t inChunk) {
+    const std::size_t first = inChunk * kRunChunk;
+    const std::size_t last = std::min(row, first + kRunChunk);
+    uint32_t begin = first == 0 ? 0 : run_end[first - 1];
+    for (std::size_t a = first; a < last; ++a) {
+      const uint32_t end = run_end[a];
+      if (end - begin > 1) sortByB(sorted + begin, sorted + end);
+      begin = end;
     }
-    const uint32_t* run_end = offsets + (parts - 1) * row;
-    constexpr std::size_t kRunChunk = tuning::kPairRunChunk;
-#pragma omp for schedule(dynamic, 1)
-    for (std::size_t chunk = 0; chunk < (row + kRunChunk - 1) / kRunChunk; ++chunk) {
-      const std::size_t first = chunk * kRunChunk;
-      const std::size_t last = std::min(row, first + kRunChunk);
-      uint32_t begin = first == 0 ? 0 : run_end[first - 1];
-      for (std::size_t a = first; a < last; ++a) {
-        const uint32_t end = run_end[a];
-        if (end - begin > 1) sortByB(sorted + begin, sorted + end);
-        begin = end;
-      }
-    }
-  }
+  });
 }
 
 template <typename Pairs>
@@ -149,7 +138,7 @@ bool denseEnough(uint32_t inLargestA, std::size_t inCount) {
 // skipped.
 void radixSort(PairList& ioPairs, PairSortScratch& ioScratch) {
   const std::size_t count = ioPairs.size();
-  std::vector<uint32_t>& histogram = ioScratch.offsets;
+  Buffer<uint32_t>& histogram = ioScratch.offsets;
   histogram.resize(kDigitValues);
   resizeDiscarding(ioScratch.pairs, count);
   PairList* source = &ioPairs;
@@ -211,11 +200,15 @@ void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPai
   for (const PairChunks& part : inParts) total += part.size();
   const int threads =
       static_cast<int>(std::min<std::size_t>(std::max(1, inThreads), inParts.size()));
+  // The largest a of each part, then of all: the same for any thread count.
+  std::vector<uint32_t> largest_of_part(inParts.size(), 0);
+  runUnits(inParts.size(), inThreads, [&](std::size_t inPart) {
+    uint32_t largest = 0;
+    inParts[inPart].forEach([&](const IdPair& inPair) { largest = std::max(largest, inPair.a); });
+    largest_of_part[inPart] = largest;
+  });
   uint32_t largest_a = 0;
-  const int team = openTeam(inParts.size(), inThreads);
-#pragma omp parallel for num_threads(team) reduction(max : largest_a) schedule(dynamic, 1)
-  for (std::size_t part = 0; part < inParts.size(); ++part)
-    inParts[part].forEach([&](const IdPair& inPair) { largest_a = std::max(largest_a, inPair.a); });
+  for (uint32_t largest : largest_of_part) largest_a = std::max(largest_a, largest);
   if (denseEnough(largest_a, total)) {
     if (threads > 1 && total >= tuning::kParallelMergePairs)
       bucketSortParts(inParts, total, largest_a, threads, ioScratch.offsets, outPairs);

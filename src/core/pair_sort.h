@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/buffers.h"
 #include "core/tuning.h"
 #include "sap_broadphase/core/pair_set.h"
 
@@ -54,7 +55,7 @@ class PairChunks {
 /// Buffers reused by sortPairsCanonical between calls.
 struct PairSortScratch {
   PairList pairs;
-  std::vector<uint32_t> offsets;
+  Buffer<uint32_t> offsets;  // every sort fills what it reads: growing it zeroes nothing
 };
 
 /// Sorts pairs by (a, b), whatever the order within a pair (box queries' (query id, world id)

@@ -199,47 +199,42 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
   auto share = [](uint64_t inTotal, int inUnit, int inUnits) {
     return static_cast<uint32_t>(inTotal * inUnit / inUnits);
   };
-#pragma omp parallel num_threads(openTeam(units, inThreads))
-  {
-    uint8_t* partition_of = partition_of_.data();
-    // The prefix table, a share a unit (65536 entries, a serial part otherwise).
-#pragma omp for schedule(dynamic, 1)
-    for (int unit = 0; unit < units; ++unit)
-      fillPrefixTable(bounds, bound_count, share(kPrefixCount, unit, units),
-                      share(kPrefixCount, unit + 1, units), prefix_table_.data());
-#pragma omp for schedule(dynamic, 1)
+  uint8_t* partition_of = partition_of_.data();
+  // The prefix table, a share a unit (65536 entries, a serial part otherwise).
+  runUnits(units, inThreads, [&](std::size_t inUnit) {
+    const int unit = static_cast<int>(inUnit);
+    fillPrefixTable(bounds, bound_count, share(kPrefixCount, unit, units),
+                    share(kPrefixCount, unit + 1, units), prefix_table_.data());
+  });
+  runUnits(units, inThreads, [&](std::size_t inUnit) {
+    const int unit = static_cast<int>(inUnit);
+    uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
+    const uint32_t end = share(inCount, unit + 1, units);
+    for (uint32_t k = share(inCount, unit, units); k < end; ++k) {
+      const uint32_t key = static_cast<uint32_t>(inPacked[k] >> 32);
+      partition_of[k] = lookupPartition(key, prefix_table_.data(), bounds, bound_count);
+      ++unit_counts[partition_of[k]];
+    }
+  });
+  std::size_t offset = 0;
+  for (int p = 0; p < partitions; ++p) {
+    partition_begin_[p] = offset;
     for (int unit = 0; unit < units; ++unit) {
-      uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
-      const uint32_t end = share(inCount, unit + 1, units);
-      for (uint32_t k = share(inCount, unit, units); k < end; ++k) {
-        const uint32_t key = static_cast<uint32_t>(inPacked[k] >> 32);
-        partition_of[k] = lookupPartition(key, prefix_table_.data(), bounds, bound_count);
-        ++unit_counts[partition_of[k]];
-      }
+      uint32_t& slot = counts_[static_cast<std::size_t>(unit) * stride + p];
+      const uint32_t size = slot;
+      slot = static_cast<uint32_t>(offset);
+      offset += size;
     }
-#pragma omp single
-    {
-      std::size_t offset = 0;
-      for (int p = 0; p < partitions; ++p) {
-        partition_begin_[p] = offset;
-        for (int unit = 0; unit < units; ++unit) {
-          uint32_t& slot = counts_[static_cast<std::size_t>(unit) * stride + p];
-          const uint32_t size = slot;
-          slot = static_cast<uint32_t>(offset);
-          offset += size;
-        }
-        partition_size_[p] = static_cast<uint32_t>(offset - partition_begin_[p]);
-      }
-      partition_begin_[partitions] = offset;
-    }
-#pragma omp for schedule(dynamic, 1) nowait
-    for (int unit = 0; unit < units; ++unit) {
-      uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
-      const uint32_t end = share(inCount, unit + 1, units);
-      for (uint32_t k = share(inCount, unit, units); k < end; ++k)
-        outScattered[unit_counts[partition_of[k]]++] = inPacked[k];
-    }
+    partition_size_[p] = static_cast<uint32_t>(offset - partition_begin_[p]);
   }
+  partition_begin_[partitions] = offset;
+  runUnits(units, inThreads, [&](std::size_t inUnit) {
+    const int unit = static_cast<int>(inUnit);
+    uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
+    const uint32_t end = share(inCount, unit + 1, units);
+    for (uint32_t k = share(inCount, unit, units); k < end; ++k)
+      outScattered[unit_counts[partition_of[k]]++] = inPacked[k];
+  });
 }
 
 // Algorithm 2, lines 4-5: the partitions are independent and handed out dynamically. Keys at
@@ -250,11 +245,10 @@ void PartitionedSorter::sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* io
   const int partitions = static_cast<int>(partition_size_.size());
   const std::size_t sample_step = inCount / partitions;
   bound_samples_.assign(partitions - 1, 0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(openTeam(partitions, inThreads))
-  for (int p = 0; p < partitions; ++p) {
-    const std::size_t begin = partition_begin_[p];
-    const std::size_t size = partition_size_[p];
-    if (size == 0) continue;
+  runUnits(partitions, inThreads, [&](std::size_t inPartition) {
+    const std::size_t begin = partition_begin_[inPartition];
+    const std::size_t size = partition_size_[inPartition];
+    if (size == 0) return;
     const uint64_t* sorted = radixSortPacked(&ioItems[begin], &ioScratch[begin], size);
     for (std::size_t k = 0; k < size; ++k) outIndex[begin + k] = static_cast<uint32_t>(sorted[k]);
     for (std::size_t sample = 1; sample < static_cast<std::size_t>(partitions); ++sample) {
@@ -262,7 +256,7 @@ void PartitionedSorter::sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* io
       if (position >= begin && position < begin + size)
         bound_samples_[sample - 1] = static_cast<uint32_t>(sorted[position - begin] >> 32);
     }
-  }
+  });
 }
 
 // Eq. (1): D = sum_p |x_p - mu| / (2n), with mu the ideal partition size.

@@ -1,7 +1,5 @@
 #include "core/skin_list.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -312,7 +310,7 @@ bool SkinList::gatherInside(const BoxColumns& inBoxes, int inThreads) {
   const uint32_t scratch = spatial_count_;
   std::atomic<bool> inside{true};
   runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
-    const int thread = omp_get_thread_num();  // its scratch record (0 when run inline)
+    const int thread = currentWorker();  // its scratch record (0 when run inline)
     bool mine = inside.load(std::memory_order_relaxed);
     for (std::size_t block = inBegin; mine && block < inEnd; block += kBlock) {
       const std::size_t block_end = std::min(inEnd, block + kBlock);
@@ -346,8 +344,8 @@ void SkinList::testSpatialCandidates(int inThreads) {
   verdict_rows_ = teamForUnits(units.count(), inThreads);
   std::fill(verdicts_.begin(), verdicts_.begin() + words * verdict_rows_, 0);
   runOverItems(units, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
-    // Each team thread sets bits in its own row (row 0 when run inline); copyHits merges them.
-    uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(omp_get_thread_num());
+    // Each worker sets bits in its own row (row 0 when run inline); copyHits merges them.
+    uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(currentWorker());
     const auto end = static_cast<std::ptrdiff_t>(inEnd);
     for (auto k = static_cast<std::ptrdiff_t>(inBegin); k < end; ++k) {
       // Partners lie ahead of the first box, mostly in lines no candidate has read yet, and
@@ -370,34 +368,28 @@ void SkinList::copyHits(int inThreads, PairList& outPairs) {
   const int shares = unitsForThreads(inThreads);
   std::vector<std::size_t> share_start(static_cast<std::size_t>(shares) + 1, 0);
   uint64_t* merged = verdicts_.data();  // the first row receives the others'
-#pragma omp parallel num_threads(openTeam(shares, inThreads))
-  {
-#pragma omp for schedule(dynamic, 1)
-    for (int share = 0; share < shares; ++share) {
-      std::size_t hits = 0;
-      for (std::size_t word = shareBegin(words, share, shares);
-           word < shareBegin(words, share + 1, shares); ++word) {
-        for (int row = 1; row < verdict_rows_; ++row) merged[word] |= merged[words * row + word];
-        hits += static_cast<std::size_t>(__builtin_popcountll(merged[word]));
-      }
-      share_start[share + 1] = hits;
+  runUnits(shares, inThreads, [&](std::size_t inShare) {
+    const int share = static_cast<int>(inShare);
+    std::size_t hits = 0;
+    for (std::size_t word = shareBegin(words, share, shares);
+         word < shareBegin(words, share + 1, shares); ++word) {
+      for (int row = 1; row < verdict_rows_; ++row) merged[word] |= merged[words * row + word];
+      hits += static_cast<std::size_t>(__builtin_popcountll(merged[word]));
     }
-#pragma omp single
-    {
-      for (int share = 0; share < shares; ++share) share_start[share + 1] += share_start[share];
-      resizeDiscarding(outPairs, share_start[shares]);
+    share_start[share + 1] = hits;
+  });
+  for (int share = 0; share < shares; ++share) share_start[share + 1] += share_start[share];
+  resizeDiscarding(outPairs, share_start[shares]);
+  runUnits(shares, inThreads, [&](std::size_t inShare) {
+    const int share = static_cast<int>(inShare);
+    IdPair* out = outPairs.data() + share_start[share];
+    for (std::size_t word = shareBegin(words, share, shares);
+         word < shareBegin(words, share + 1, shares); ++word) {
+      const IdPair* candidates = canonical_pairs_.data() + 64 * word;
+      for (uint64_t bits = merged[word]; bits != 0; bits &= bits - 1)
+        *out++ = candidates[__builtin_ctzll(bits)];
     }
-#pragma omp for schedule(dynamic, 1) nowait
-    for (int share = 0; share < shares; ++share) {
-      IdPair* out = outPairs.data() + share_start[share];
-      for (std::size_t word = shareBegin(words, share, shares);
-           word < shareBegin(words, share + 1, shares); ++word) {
-        const IdPair* candidates = canonical_pairs_.data() + 64 * word;
-        for (uint64_t bits = merged[word]; bits != 0; bits &= bits - 1)
-          *out++ = candidates[__builtin_ctzll(bits)];
-      }
-    }
-  }
+  });
 }
 
 }  // namespace sap_broadphase

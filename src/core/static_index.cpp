@@ -2,6 +2,7 @@
 
 #include "core/assert.h"
 #include "core/axis_spread.h"
+#include "core/buffers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -124,20 +125,21 @@ void StaticIndex::placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32
   const std::size_t count = inIndexes.size();
   constexpr uint64_t kLarge = std::numeric_limits<uint64_t>::max();
   // Each box's home cell (the cell of its low corner), or kLarge.
-  std::vector<uint64_t> home(count);
-#pragma omp parallel for num_threads(inThreads)
-  for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t i = inIndexes[k];
-    uint64_t covered = 1;
-    uint32_t low[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = cellOf(axis, inBoxes.lo[axis][i]);
-      covered *= cellOf(axis, inBoxes.hi[axis][i]) - low[axis] + 1;
+  Buffer<uint64_t> home(count);
+  runOverItems(WorkUnits{count}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) {
+      const uint32_t i = inIndexes[k];
+      uint64_t covered = 1;
+      uint32_t low[3];
+      for (int axis = 0; axis < 3; ++axis) {
+        low[axis] = cellOf(axis, inBoxes.lo[axis][i]);
+        covered *= cellOf(axis, inBoxes.hi[axis][i]) - low[axis] + 1;
+      }
+      home[k] = covered > tuning::kMaxCellsPerBox
+                    ? kLarge
+                    : (uint64_t{low[2]} * dims_[1] + low[1]) * dims_[0] + low[0];
     }
-    home[k] = covered > tuning::kMaxCellsPerBox
-                  ? kLarge
-                  : (uint64_t{low[2]} * dims_[1] + low[1]) * dims_[0] + low[0];
-  }
+  });
   // Counting sort by home cell: boxes of one cell sit together in slots_ (cache locality).
   const uint64_t cells = cellsOf(dims_);
   std::vector<std::size_t> next_slot(cells + 1, 0);
@@ -152,26 +154,37 @@ void StaticIndex::placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32
 
   slots_.resize(count);
   slot_ids_.resize(count);
-  uint32_t any_group = 0;
-  uint32_t any_mask = 0;
-#pragma omp parallel for num_threads(inThreads) reduction(| : any_group, any_mask)
-  for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t i = inIndexes[k];
-    Slot& slot = slots_[slot_of[k]];
-    slot.low_cells = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-      slot.lo[axis] = inBoxes.lo[axis][i];
-      slot.hi[axis] = inBoxes.hi[axis][i];
-      slot.low_cells |= uint64_t{cellOf(axis, slot.lo[axis])} << (kCellBits * axis);
-    }
-    slot.group = inBoxes.group(i);
-    slot.mask = inBoxes.mask(i);
-    slot_ids_[slot_of[k]] = inBoxes.ids[i];
-    any_group |= slot.group;
-    any_mask |= slot.mask;
-  }
-  any_group_ = any_group;
-  any_mask_ = any_mask;
+  struct Filters {
+    uint32_t any_group = 0;
+    uint32_t any_mask = 0;
+  };
+  const Filters filters = reduceOverItems(
+      WorkUnits{count}, inThreads, Filters{},
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        Filters unit;
+        for (std::size_t k = inBegin; k < inEnd; ++k) {
+          const uint32_t i = inIndexes[k];
+          Slot& slot = slots_[slot_of[k]];
+          slot.low_cells = 0;
+          for (int axis = 0; axis < 3; ++axis) {
+            slot.lo[axis] = inBoxes.lo[axis][i];
+            slot.hi[axis] = inBoxes.hi[axis][i];
+            slot.low_cells |= uint64_t{cellOf(axis, slot.lo[axis])} << (kCellBits * axis);
+          }
+          slot.group = inBoxes.group(i);
+          slot.mask = inBoxes.mask(i);
+          slot_ids_[slot_of[k]] = inBoxes.ids[i];
+          unit.any_group |= slot.group;
+          unit.any_mask |= slot.mask;
+        }
+        return unit;
+      },
+      [](Filters& ioAll, const Filters& inUnit) {
+        ioAll.any_group |= inUnit.any_group;
+        ioAll.any_mask |= inUnit.any_mask;
+      });
+  any_group_ = filters.any_group;
+  any_mask_ = filters.any_mask;
   removed_.assign(count, 0);
   live_count_ = count;
 }

@@ -32,7 +32,7 @@ void SweepAndPrune::forgetCoherence() {
 
 void SweepAndPrune::releaseBuffers() {
   Buffer<uint64_t>().swap(endpoint_words_);
-  std::vector<uint32_t>().swap(sweep_order_);
+  Buffer<uint32_t>().swap(sweep_order_);
   ranges_ = CandidateRanges();
   Buffer<RankedKeys>().swap(ranked_keys_);
   Buffer<RankedFilter>().swap(ranked_filters_);

@@ -62,7 +62,7 @@ class SweepAndPrune {
   // 4n words: packed (key, index) items and the sort's scratch while sorting, then the
   // secondary stream (2 words per endpoint) while pairing.
   Buffer<uint64_t> endpoint_words_;
-  std::vector<uint32_t> sweep_order_;  // 2n endpoint indexes: primary order, then secondary
+  Buffer<uint32_t> sweep_order_;  // 2n endpoint indexes: primary order, then secondary
   CandidateRanges ranges_;
   Buffer<RankedKeys> ranked_keys_;
   Buffer<RankedFilter> ranked_filters_;

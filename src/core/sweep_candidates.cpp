@@ -171,28 +171,25 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
   ioWork.slice_start.resize(slices);
   ioWork.lows_before.assign(slices + 1, 0);
   RankRange* ranges = outRanges.of_object.data();
-#pragma omp parallel num_threads(openTeam(slices, inThreads))
-  {
-#pragma omp for schedule(dynamic, 1)
-    for (int slice = 0; slice < slices; ++slice)
-      countAndCollectCrossing(inPrimaryOrder, inObjects, slice, slices, ioWork);
-#pragma omp single
-    for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-#pragma omp for schedule(dynamic, 1)
-    for (int slice = 0; slice < slices; ++slice)
-      rankLeavingBoxes(inPrimaryOrder, inObjects, slice, slices, ioWork, ranges);
-#pragma omp for schedule(dynamic, 1) nowait
-    for (int slice = 0; slice < slices; ++slice) {
-      SuccTree& active = ioWork.slice_start[slice];
-      seedActiveFromEarlierSlices(inObjects, slice, ioWork, ranges, active);
-      // Lines 16-23, with the ranks of the boxes that start in the slice.
-      std::size_t begin = 0, end = 0;
-      sliceBounds(inObjects, slice, slices, begin, end);
-      sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice],
-                          ioWork.slice_objects.data() + words * slice, active, outRanges);
-      active.clear();  // leave the tree empty for the next frame
-    }
-  }
+  runUnits(slices, inThreads, [&](std::size_t inSlice) {
+    countAndCollectCrossing(inPrimaryOrder, inObjects, static_cast<int>(inSlice), slices, ioWork);
+  });
+  for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
+  runUnits(slices, inThreads, [&](std::size_t inSlice) {
+    rankLeavingBoxes(inPrimaryOrder, inObjects, static_cast<int>(inSlice), slices, ioWork, ranges);
+  });
+  runUnits(slices, inThreads, [&](std::size_t inSlice) {
+    const int slice = static_cast<int>(inSlice);
+    SuccTree& active = ioWork.slice_start[slice];
+    seedActiveFromEarlierSlices(inObjects, slice, ioWork, ranges, active);
+    // Lines 16-23, with the ranks of the boxes that start in the slice.
+    std::size_t begin = 0, end = 0;
+    sliceBounds(inObjects, slice, slices, begin, end);
+    sweepCandidateSlice(inPrimaryOrder, inObjects, begin, end, ioWork.lows_before[slice],
+                        ioWork.slice_objects.data() + words * slice, active, outRanges);
+    active.clear();  // leave the tree empty for the next frame
+  });
+
   SAP_ASSERT(ioWork.lows_before[slices] == inObjects, "the slices' lows do not add up to n");
   SAP_ASSERT(rangesAreConsistent(outRanges, inObjects), "candidate ranges not L <= R < U <= n");
 }

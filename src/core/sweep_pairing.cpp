@@ -1,6 +1,5 @@
 // Pairing on the secondary axis: Algorithm 1 (lines 15-23) and Algorithm 4, with one active
 // list per third-axis slab (slab_grid.h).
-#include <omp.h>
 
 #include <algorithm>
 #include <numeric>
@@ -348,59 +347,54 @@ void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
   const std::size_t stride = counterStride(partitions);
   counts.assign(std::size_t(inSlices) * stride, 0);
   ioWork.partition_work.assign(partitions, 0);
-#pragma omp parallel num_threads(openTeam(inSlices, inThreads))
-  {
+  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+    const int slice = static_cast<int>(inSlice);
     uint32_t first = 0, last = 0;
-#pragma omp for schedule(dynamic, 1)
+    std::size_t begin = 0, end = 0;
+    sliceOf(inInput.objects, slice, inSlices, begin, end);
+    // Entry counts at [0, partitions), work at [partitions, 2 * partitions).
+    std::size_t* my_counts = &counts[std::size_t(slice) * stride];
+    std::size_t* my_work = my_counts + partitions;
+    for (std::size_t k = begin; k < end; ++k) {
+      const Endpoint endpoint = endpointOfStream(stream, k);
+      partitionsOf(endpoint, inSplit, first, last);
+      ++my_counts[first];
+      for (uint32_t p = first + 1; p <= last; ++p) ++my_counts[p];  // rare: ranges are short
+      // A low endpoint's candidate ranks, charged to the partition where its range starts.
+      my_work[first] += (endpoint.high - endpoint.low) & ~highMask(endpoint.rank_and_kind);
+    }
+  });
+  std::size_t offset = 0;
+  for (uint32_t p = 0; p < partitions; ++p) {
+    const std::size_t partition_begin = offset;
+    std::size_t work = 0;
     for (int slice = 0; slice < inSlices; ++slice) {
-      std::size_t begin = 0, end = 0;
-      sliceOf(inInput.objects, slice, inSlices, begin, end);
-      // Entry counts at [0, partitions), work at [partitions, 2 * partitions).
-      std::size_t* my_counts = &counts[std::size_t(slice) * stride];
-      std::size_t* my_work = my_counts + partitions;
-      for (std::size_t k = begin; k < end; ++k) {
-        const Endpoint endpoint = endpointOfStream(stream, k);
-        partitionsOf(endpoint, inSplit, first, last);
-        ++my_counts[first];
-        for (uint32_t p = first + 1; p <= last; ++p) ++my_counts[p];  // rare: ranges are short
-        // A low endpoint's candidate ranks, charged to the partition where its range starts.
-        my_work[first] += (endpoint.high - endpoint.low) & ~highMask(endpoint.rank_and_kind);
-      }
+      std::size_t& slot = counts[std::size_t(slice) * stride + p];
+      const std::size_t size = slot;
+      ioWork.segment_begin[std::size_t(p) * inSlices + slice] = offset;
+      slot = offset;
+      offset += size;
+      work += counts[std::size_t(slice) * stride + partitions + p];
     }
-#pragma omp single
-    {
-      std::size_t offset = 0;
-      for (uint32_t p = 0; p < partitions; ++p) {
-        const std::size_t partition_begin = offset;
-        std::size_t work = 0;
-        for (int slice = 0; slice < inSlices; ++slice) {
-          std::size_t& slot = counts[std::size_t(slice) * stride + p];
-          const std::size_t size = slot;
-          ioWork.segment_begin[std::size_t(p) * inSlices + slice] = offset;
-          slot = offset;
-          offset += size;
-          work += counts[std::size_t(slice) * stride + partitions + p];
-        }
-        ioWork.partition_work[p] = work + (offset - partition_begin);
-      }
-      resizeDiscarding(ioWork.partition_entries, offset);
-    }
-    uint64_t* out = ioWork.partition_entries.data();
-#pragma omp for schedule(dynamic, 1) nowait
-    for (int slice = 0; slice < inSlices; ++slice) {
-      std::size_t begin = 0, end = 0;
-      sliceOf(inInput.objects, slice, inSlices, begin, end);
-      std::size_t* my_counts = &counts[std::size_t(slice) * stride];
-      for (std::size_t k = begin; k < end; ++k) {
-        const Endpoint endpoint = endpointOfStream(stream, k);
-        partitionsOf(endpoint, inSplit, first, last);
-        for (uint32_t p = first; p <= last; ++p)
-          out[my_counts[p]++] = entryFor(endpoint, p, inSplit);
-      }
-      for (uint32_t p = 0; p < partitions; ++p)
-        ioWork.segment_end[std::size_t(p) * inSlices + slice] = my_counts[p];
-    }
+    ioWork.partition_work[p] = work + (offset - partition_begin);
   }
+  resizeDiscarding(ioWork.partition_entries, offset);
+  uint64_t* out = ioWork.partition_entries.data();
+  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+    const int slice = static_cast<int>(inSlice);
+    uint32_t first = 0, last = 0;
+    std::size_t begin = 0, end = 0;
+    sliceOf(inInput.objects, slice, inSlices, begin, end);
+    std::size_t* my_counts = &counts[std::size_t(slice) * stride];
+    for (std::size_t k = begin; k < end; ++k) {
+      const Endpoint endpoint = endpointOfStream(stream, k);
+      partitionsOf(endpoint, inSplit, first, last);
+      for (uint32_t p = first; p <= last; ++p) out[my_counts[p]++] = entryFor(endpoint, p, inSplit);
+    }
+    for (uint32_t p = 0; p < partitions; ++p)
+      ioWork.segment_end[std::size_t(p) * inSlices + slice] = my_counts[p];
+  });
+
   SAP_ASSERT(segmentsArePacked(ioWork, partitions, inSlices),
              "the counted scatter left a gap or an overlap between segments");
 }
@@ -474,14 +468,13 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThre
   resizeDiscarding(ioWork.partition_entries, offset);
   const std::size_t stride = counterStride(inSplit.count);
   ioWork.scatter_counts.assign(std::size_t(inSlices) * stride, 0);
-  bool fits = true;
-#pragma omp parallel for num_threads(openTeam(inSlices, inThreads)) schedule(dynamic, 1) \
-    reduction(&& : fits)
-  for (int slice = 0; slice < inSlices; ++slice) {
+  std::vector<uint8_t> slice_fits(static_cast<std::size_t>(inSlices), 1);
+  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+    const int slice = static_cast<int>(inSlice);
     std::size_t* cursor = &ioWork.scatter_counts[std::size_t(slice) * stride];
-    fits = scatterSliceIntoRoom(inInput, slice, inSlices, inSplit, cursor, ioWork) && fits;
-  }
-  return fits;
+    slice_fits[inSlice] = scatterSliceIntoRoom(inInput, slice, inSlices, inSplit, cursor, ioWork);
+  });
+  return std::all_of(slice_fits.begin(), slice_fits.end(), [](uint8_t inFits) { return inFits; });
 }
 
 // Copies each endpoint of the secondary order to the entry segments of the partitions it
@@ -639,15 +632,12 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   prepareTrees(ioWork.pairing, 0, threads * slab_count, split.size());
   outPairsPerThread.resize(threads);
   for (PairChunks& pairs : outPairsPerThread) pairs.clear();  // a smaller team leaves some
-#pragma omp parallel num_threads(openTeam(split.count, threads))
-  {
-    const int thread = omp_get_thread_num();
-    SuccTree* trees = &ioWork.pairing[std::size_t(thread) * slab_count];
-    PairChunks& pairs = outPairsPerThread[thread];
-#pragma omp for schedule(dynamic, 1)
-    for (uint32_t k = 0; k < split.count; ++k)
-      sweepPartition(inInput, ioWork, split, slices, ioWork.partition_order[k], trees, pairs);
-  }
+  // Each worker sweeps its partitions with its own trees into its own pair list.
+  runUnitsOnWorkers(split.count, threads, [&](std::size_t inK, int inWorker) {
+    SuccTree* trees = &ioWork.pairing[std::size_t(inWorker) * slab_count];
+    PairChunks& pairs = outPairsPerThread[inWorker];
+    sweepPartition(inInput, ioWork, split, slices, ioWork.partition_order[inK], trees, pairs);
+  });
 }
 
 }  // namespace sap_broadphase

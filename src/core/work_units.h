@@ -1,25 +1,41 @@
 // The one way the engine's passes over the boxes run on several threads: the items are cut into
-// units of a fixed size, more units than threads on large frames, and the units are claimed one
-// at a time by whichever thread of the team is free, the calling thread among them.
+// units, and the units are claimed one at a time, from one shared counter, by whichever worker
+// of the runner is free, the calling thread among them.
 //
-// Why units rather than one slice per thread: a thread the operating system has descheduled
-// (another process holds its core) claims nothing while it is away, so the others do its share
-// instead of waiting for it to come back and do it; a static slice would stall the whole frame
-// for that long. The region's closing barrier still waits for every team thread to arrive, so
-// what bounds such a stall is the time until a descheduled thread runs at all (to find no unit
-// left), not the work it was given: hence the second rule, that a pass of one unit opens no
-// parallel region. A frame of up to kUnitBoxes boxes never waits for another core, whatever
-// the configured thread count and OMP_WAIT_POLICY.
+// Why units claimed from a counter, and why the caller waits only for claimed units: a worker
+// that the operating system has descheduled (another process holds its core) claims nothing
+// while it is away, so the others do its share, and the caller returns as soon as every unit
+// is done, without waiting for that worker to come back. An OpenMP region cannot give this: its
+// closing barrier waits for every team thread, even one that claimed nothing, and under
+// OMP_WAIT_POLICY=passive or on a busy machine that thread may not run for a scheduler tick.
+// So the runner opens one OpenMP region for its whole life (OpenMP stays the thread provider,
+// a long-lived team parked between passes) and hands passes to its threads itself: a pass is
+// published in one atomic word (units, workers allowed, next unit to claim), a worker claims
+// with a compare-and-swap on that word, and the caller counts finished units. A worker that
+// wakes after the last unit was claimed finds nothing to claim and parks again; a worker that
+// wakes during a later pass claims that pass's units, which is as good.
 //
-// Why one runner over OpenMP rather than tasks or a schedule clause at each loop: every pass
-// then has the same unit rule, the same one-unit shortcut and a results order that does not
-// depend on the threads (per-unit results, combined in unit order), and the regions it opens
-// can be counted (parallelRegionsOpened) so tests can check that a small frame opens none.
+// Why one runner rather than a schedule clause at each loop: every pass has the same unit rule,
+// the same one-unit shortcut (a pass of one unit, or on one thread, runs inline) and a results
+// order that does not depend on the threads (per-unit results, combined in unit order); and the
+// passes handed to workers can be counted (parallelRegionsOpened) so tests can check that a
+// small frame hands none out.
+//
+// Which runner a pass uses: the engine installs its own for the duration of its calls
+// (RunnerScope); a pass started elsewhere (a test calling a kernel, a tool) uses a runner
+// shared by the process, one per thread count. A runner serves one caller at a time: a second
+// caller that finds it busy runs its pass inline, on its own thread.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace sap_broadphase {
@@ -44,38 +60,116 @@ struct WorkUnits {
 /// thread's share.
 constexpr int kUnitsPerThread = 4;
 
-/// Threads a pass of inUnits units runs on when inThreads are allowed: never more than units.
+/// Workers a pass of inUnits units may use when inThreads are allowed: never more than units.
 int teamForUnits(std::size_t inUnits, int inThreads);
 
 /// Units of a pass cut by its thread count: kUnitsPerThread a thread, one on one thread.
 int unitsForThreads(int inThreads);
 
-/// The team of a region of several phases (barriers between them) whose loops hand out inUnits
-/// units with `omp for schedule(dynamic, 1)`; counted as opened when above one thread.
+/// The team of an OpenMP region of several phases opened outside the runner (skin_list.cpp's
+/// kept-candidate merge, not yet a runner pass), counted as opened when above one thread. Its
+/// closing barrier waits for every team thread: new passes go through the runner instead.
 int openTeam(std::size_t inUnits, int inThreads);
 
-/// Multi-thread parallel regions the runner has opened in this process (tests: a small frame
-/// opens none).
+/// Passes the runners of this process have handed to their workers (tests: a small frame
+/// hands out none).
 uint64_t parallelRegionsOpened();
 
+/// A team of worker threads, parked between passes, that runs passes of units. Worker 0 is the
+/// caller of run(); workers 1..threads()-1 are the threads of one OpenMP region held open by a
+/// thread the runner owns (their omp_get_thread_num() is their worker index). The threads start
+/// with the first pass handed out, so a runner that only ever runs inline costs no thread.
+class WorkRunner {
+ public:
+  /// A runner of inThreads workers in all, the caller included (1: every pass inline).
+  explicit WorkRunner(int inThreads);
+  ~WorkRunner();
+  WorkRunner(const WorkRunner&) = delete;
+  WorkRunner& operator=(const WorkRunner&) = delete;
+
+  int threads() const { return threads_; }
+
+  /// Runs inBody(unit, worker) for every unit in [0, inUnits) on up to inTeam workers (worker
+  /// in [0, min(inTeam, threads()))), each unit exactly once; returns when every unit has run.
+  /// inBody must only write what its unit, or its worker, owns. An exception thrown by a unit
+  /// is rethrown here once every claimed unit has finished (the remaining units still run).
+  template <class Body>
+  void run(std::size_t inUnits, int inTeam, Body&& inBody) {
+    using Function = std::remove_reference_t<Body>;
+    auto call = [](void* inContext, std::size_t inUnit, int inWorker) {
+      (*static_cast<Function*>(inContext))(inUnit, inWorker);
+    };
+    runErased(inUnits, inTeam, call, const_cast<void*>(static_cast<const void*>(&inBody)));
+  }
+
+ private:
+  using UnitFunction = void (*)(void*, std::size_t, int);
+  void runErased(std::size_t inUnits, int inTeam, UnitFunction inFunction, void* inContext);
+  void runPass(std::size_t inUnits, int inTeam, UnitFunction inFunction, void* inContext);
+  void startTeam();
+  void workerLoop(int inWorker);
+  uint64_t claimAndRun(int inWorker);
+  bool waitForNewPass(uint64_t inSeen);
+
+  const int threads_;
+  // The pass: epoch (16 bits) | workers allowed (8) | units (20) | next unit to claim (20).
+  std::atomic<uint64_t> pass_{0};
+  std::atomic<UnitFunction> function_{nullptr};  // the pass's unit, stable while it has units
+  std::atomic<void*> context_{nullptr};
+  std::atomic<std::size_t> finished_{0};  // units of the pass that have run
+  std::atomic<bool> stopping_{false};
+  std::atomic<int> sleepers_{0};
+  std::mutex park_mutex_;
+  std::condition_variable park_;
+  std::mutex error_mutex_;
+  std::exception_ptr error_;
+  std::atomic<bool> busy_{false};  // one caller at a time; a second runs its pass inline
+  std::thread host_;               // holds the OpenMP region of workers 1..threads_-1
+};
+
 namespace detail {
-void countParallelRegion();
+/// True on a thread running a unit of a pass: a pass it starts runs inline.
+bool runningAUnit();
 }  // namespace detail
 
-/// Runs inBody(unit) for every unit in [0, inUnits), claimed dynamically by up to inThreads
-/// threads, the calling thread among them; one unit or one thread runs inline (no region).
-/// inBody must only write what its unit owns.
+/// The worker index of the calling thread in the pass whose unit it runs (its scratch row),
+/// 0 outside a pass and on a pass run inline.
+int currentWorker();
+
+/// The runner a pass started on this thread uses: the one a RunnerScope installed, else the
+/// process's shared runner of inThreads workers.
+WorkRunner& currentRunner(int inThreads);
+
+/// Installs inRunner as this thread's runner for the scope's life (the engine, for each call).
+class RunnerScope {
+ public:
+  explicit RunnerScope(WorkRunner& inRunner);
+  ~RunnerScope();
+  RunnerScope(const RunnerScope&) = delete;
+  RunnerScope& operator=(const RunnerScope&) = delete;
+
+ private:
+  WorkRunner* previous_;
+};
+
+/// Runs inBody(unit, worker) for every unit in [0, inUnits) on up to inThreads workers of this
+/// thread's runner (worker < inThreads); one unit or one thread runs inline, as the calling
+/// thread's worker (currentWorker(): 0 unless inside a unit).
 template <class Body>
-void runUnits(std::size_t inUnits, int inThreads, Body&& inBody) {
+void runUnitsOnWorkers(std::size_t inUnits, int inThreads, Body&& inBody) {
   const int team = teamForUnits(inUnits, inThreads);
-  if (team <= 1) {
-    for (std::size_t unit = 0; unit < inUnits; ++unit) inBody(unit);
+  if (team <= 1 || detail::runningAUnit()) {
+    const int worker = currentWorker();
+    for (std::size_t unit = 0; unit < inUnits; ++unit) inBody(unit, worker);
     return;
   }
-  detail::countParallelRegion();
-  const auto units = static_cast<std::ptrdiff_t>(inUnits);
-#pragma omp parallel for num_threads(team) schedule(dynamic, 1)
-  for (std::ptrdiff_t unit = 0; unit < units; ++unit) inBody(static_cast<std::size_t>(unit));
+  currentRunner(inThreads).run(inUnits, team, inBody);
+}
+
+/// runUnitsOnWorkers for bodies that do not need their worker: inBody(unit).
+template <class Body>
+void runUnits(std::size_t inUnits, int inThreads, Body&& inBody) {
+  runUnitsOnWorkers(inUnits, inThreads, [&](std::size_t inUnit, int) { inBody(inUnit); });
 }
 
 /// runUnits over the units of inUnits, inBody(begin, end) on each unit's item range.

@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "core/pair_sort.h"
+#include "core/work_units.h"
 #include "slab_cuts.h"
 
 namespace sap_broadphase::distributed {
@@ -238,11 +239,13 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
   const std::size_t n = inBoxes.size();
   first_slab.resize(n);
   last_slab.resize(n);
-#pragma omp parallel for schedule(static) num_threads(resolveThreadCount(config.engine.threads))
-  for (std::size_t i = 0; i < n; ++i) {
-    first_slab[i] = slabOf(inBoxes.lo(axis, i));
-    last_slab[i] = slabOf(inBoxes.hi(axis, i));
-  }
+  runOverItems(WorkUnits{n}, resolveThreadCount(config.engine.threads),
+               [&](std::size_t inBegin, std::size_t inEnd) {
+                 for (std::size_t i = inBegin; i < inEnd; ++i) {
+                   first_slab[i] = slabOf(inBoxes.lo(axis, i));
+                   last_slab[i] = slabOf(inBoxes.hi(axis, i));
+                 }
+               });
 
   // Which own box was which last frame: the same ids in the same order (a simulation's usual
   // frame) match by index; ids in increasing order (bodies kept sorted, some joining or

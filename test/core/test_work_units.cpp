@@ -2,10 +2,15 @@
 // do not depend on the threads, a pass of one unit opens no parallel region, and a frame small
 // enough for one unit per pass never waits for a second thread, whatever the configured count.
 #include <gtest/gtest.h>
+#include <pthread.h>
+#include <signal.h>
+#include <time.h>
 
 #include <atomic>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/axis_spread.h"
@@ -118,6 +123,129 @@ TEST(WorkUnits, SmallFramesOpenNoParallelRegion) {
   const uint64_t before = parallelRegionsOpened();
   engine.update(test_support::randomBoxes(8 * kUnitBoxes, 1000.0, 3.0, 3));
   EXPECT_GT(parallelRegionsOpened(), before);
+}
+
+// Simulates a worker that another process's thread has taken the core from: a signal handler
+// that holds the thread it interrupts until released (only lock-free atomics and nanosleep,
+// which are async-signal-safe, inside it).
+std::atomic<bool> held_thread_entered{false};
+std::atomic<bool> release_held_thread{false};
+
+void holdThread(int) {
+  held_thread_entered.store(true);
+  const timespec pause{0, 100000};
+  while (!release_held_thread.load()) nanosleep(&pause, nullptr);
+}
+
+// The caller of a pass waits for the units claimed, never for a worker that claimed none: with
+// worker 1 held (as if descheduled), a pass of many units completes on the caller alone. An
+// OpenMP region's closing barrier would wait for the held thread: this test would hang.
+TEST(WorkRunner, NeverWaitsForAWorkerThatClaimedNothing) {
+  WorkRunner runner(2);
+  // Rendezvous: unit 0 (whoever claims it first) waits until the other worker holds unit 1, so
+  // worker 1 has surely run a unit and said which thread it is.
+  std::atomic<int> claimed{0};
+  std::atomic<bool> have_worker_thread{false};
+  pthread_t worker_thread{};
+  runner.run(2, 2, [&](std::size_t, int inWorker) {
+    if (inWorker == 1) {
+      worker_thread = pthread_self();
+      have_worker_thread.store(true);
+    }
+    claimed.fetch_add(1);
+    while (claimed.load() < 2) std::this_thread::yield();
+  });
+  ASSERT_TRUE(have_worker_thread.load());
+
+  struct sigaction action {};
+  action.sa_handler = holdThread;
+  sigemptyset(&action.sa_mask);
+  struct sigaction previous {};
+  ASSERT_EQ(sigaction(SIGUSR1, &action, &previous), 0);
+  release_held_thread.store(false);
+  held_thread_entered.store(false);
+  ASSERT_EQ(pthread_kill(worker_thread, SIGUSR1), 0);
+  while (!held_thread_entered.load()) std::this_thread::yield();
+
+  constexpr std::size_t kUnits = 1000;
+  std::vector<std::atomic<int>> runs(kUnits);
+  std::atomic<int> by_held_worker{0};
+  runner.run(kUnits, 2, [&](std::size_t inUnit, int inWorker) {
+    runs[inUnit].fetch_add(1);
+    if (inWorker != 0) by_held_worker.fetch_add(1);
+  });
+  for (std::size_t unit = 0; unit < kUnits; ++unit) ASSERT_EQ(runs[unit].load(), 1) << unit;
+  EXPECT_EQ(by_held_worker.load(), 0) << "a held worker ran a unit";
+
+  release_held_thread.store(true);
+  // Once back, the worker takes part in passes again and every unit still runs once.
+  std::vector<std::atomic<int>> again(kUnits);
+  runner.run(kUnits, 2, [&](std::size_t inUnit, int) { again[inUnit].fetch_add(1); });
+  for (std::size_t unit = 0; unit < kUnits; ++unit) ASSERT_EQ(again[unit].load(), 1) << unit;
+  ASSERT_EQ(sigaction(SIGUSR1, &previous, nullptr), 0);
+}
+
+TEST(WorkRunner, WorkersStayWithinTheTeamAndTheRunner) {
+  WorkRunner runner(3);
+  for (int team = 1; team <= 5; ++team) {
+    std::atomic<int> highest{0};
+    std::atomic<int> units_run{0};
+    runner.run(64, team, [&](std::size_t, int inWorker) {
+      int seen = highest.load();
+      while (inWorker > seen && !highest.compare_exchange_weak(seen, inWorker)) {
+      }
+      units_run.fetch_add(1);
+    });
+    EXPECT_EQ(units_run.load(), 64) << "team " << team;
+    EXPECT_LT(highest.load(), std::min(team, runner.threads())) << "team " << team;
+  }
+}
+
+TEST(WorkRunner, AUnitsExceptionReachesTheCallerAfterEveryUnitRan) {
+  WorkRunner runner(2);
+  std::atomic<int> units_run{0};
+  EXPECT_THROW(runner.run(16, 2,
+                          [&](std::size_t inUnit, int) {
+                            units_run.fetch_add(1);
+                            if (inUnit == 5) throw std::runtime_error("unit 5");
+                          }),
+               std::runtime_error);
+  EXPECT_EQ(units_run.load(), 16);
+  std::atomic<int> after{0};
+  runner.run(16, 2, [&](std::size_t, int) { after.fetch_add(1); });
+  EXPECT_EQ(after.load(), 16);
+}
+
+// A pass started inside a unit runs inline on the unit's thread (no second team, no deadlock
+// on the runner the outer pass holds).
+TEST(WorkRunner, APassInsideAUnitRunsInline) {
+  WorkRunner runner(2);
+  const RunnerScope scope(runner);
+  std::vector<std::atomic<int>> runs(8 * 8);
+  runner.run(8, 2, [&](std::size_t inOuter, int) {
+    runUnits(8, 2, [&](std::size_t inInner) { runs[inOuter * 8 + inInner].fetch_add(1); });
+  });
+  for (std::size_t k = 0; k < runs.size(); ++k) ASSERT_EQ(runs[k].load(), 1) << k;
+}
+
+// Engines on several threads at once, each with its own runner (and its workers' own scratch):
+// every one's pairs equal the oracle's.
+TEST(WorkRunner, EnginesOnSeveralThreadsAtOnceStayExact) {
+  const BoxSet boxes = test_support::randomBoxes(20000, 1000.0, 3.0, 21);
+  const PairList expected = bruteForcePairs(boxes);
+  std::vector<std::thread> callers;
+  std::atomic<int> exact{0};
+  for (int caller = 0; caller < 3; ++caller) {
+    callers.emplace_back([&] {
+      BroadphaseConfig config;
+      config.threads = 2;
+      config.method = Method::kParallel;
+      Broadphase engine(config);
+      if (test_support::samePairs(expected, engine.update(boxes))) exact.fetch_add(1);
+    });
+  }
+  for (std::thread& caller : callers) caller.join();
+  EXPECT_EQ(exact.load(), 3);
 }
 
 }  // namespace
