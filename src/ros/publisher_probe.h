@@ -4,8 +4,12 @@
 // publisher of another never locks the others out (with MD5 "*", roscpp fixes a topic's MD5 sum
 // to its first publisher's). roscpp refuses the others at connection time without telling the
 // subscriber; the probe asks each publisher the master lists, as a subscriber would (XML-RPC
-// requestTopic, then a TCPROS connection header with MD5 "*"), reads the type and MD5 sum of its
-// answer and closes. Publishers of another definition are refused by name.
+// requestTopic, then a TCPROS connection header), for a type and MD5 sum no publisher has: the
+// publisher refuses that connection, naming its own type and MD5 sum, and so never counts the
+// probe as a subscriber (a publisher that publishes once when its first subscriber connects
+// sends that message to the node's subscription, not to the probe). A publisher the node's
+// subscription is linked to is not asked at all (roscpp links only publishers of the MD5 sum
+// subscribed with). Publishers of another definition are refused by name.
 #pragma once
 
 #include <condition_variable>

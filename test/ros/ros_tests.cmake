@@ -91,3 +91,12 @@ add_rostest(test/ros/hostile.test DEPENDENCIES ${PROJECT_NAME}_node)
 # frame, query boxes moved into ~fixed_frame, ids, filters, refusals naming the box, queries
 # while frames flow.
 add_rostest(test/ros/query.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)
+
+# ~sources compared as resolved names: one topic spelled two ways, remapped onto another, or
+# the scenery topic stops the node at start-up with a FATAL naming both.
+add_rostest(test/ros/startup.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# One-shot publishers (wait for a subscriber, publish once), each the first on a topic of its
+# own, of every source type: every message reaches the world (the publisher check is never
+# counted as a subscriber).
+add_rostest(test/ros/one_shot.test DEPENDENCIES ${PROJECT_NAME}_node)
