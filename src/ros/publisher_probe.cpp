@@ -278,6 +278,7 @@ void PublisherProbe::probeOnce() {
   std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> asked;
   std::vector<std::string> refused;
   const auto linked = linkedPublishers();
+  std::set<std::pair<std::string, std::string>> unlinked;  // seen unlinked, not asked yet
   for (int i = 0; i < publications.size(); ++i) {
     const std::string topic = publications[i][0];
     const auto entry = std::find_if(topics_.begin(), topics_.end(),
@@ -301,11 +302,21 @@ void PublisherProbe::probeOnce() {
       bool is_refused = false;
       if (before != asked_.end() && before->second.first == static_cast<std::string>(uri)) {
         is_refused = before->second.second;
+      } else if (unlinked_.count(key) == 0) {
+        // Seen unlinked for the first time: the subscription may be linking it now. Asked at
+        // the next look if still unlinked (a publisher refused for its MD5 sum, or a link
+        // slow to come): a publisher's log then names the check's refused connection only
+        // where something is wrong.
+        unlinked.insert(key);
+        continue;
       } else {
         std::string error;
         const auto published =
             askPublisher(uri, topic, ros::this_node::getName() + "/publisher_check", error);
-        if (!published) continue;  // not reachable now: asked again next time
+        if (!published) {  // not reachable now: asked again next time
+          unlinked.insert(key);
+          continue;
+        }
         if (const auto reason = entry->second(*published)) {
           is_refused = true;
           refuse_(topic, node, *reason);
@@ -316,6 +327,7 @@ void PublisherProbe::probeOnce() {
     }
   }
   asked_ = std::move(asked);  // publishers gone are forgotten
+  unlinked_ = std::move(unlinked);
   refused_(refused);
 }
 

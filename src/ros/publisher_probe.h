@@ -65,6 +65,9 @@ class PublisherProbe {
   // (topic, publisher) -> the node URI asked and whether it was refused: asked again only when
   // the publisher's URI changes (a node restarted under its name); forgotten when it leaves.
   std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> asked_;
+  // (topic, publisher) seen at the last look without a link from the subscription, not asked
+  // yet: asked at this look if still unlinked.
+  std::set<std::pair<std::string, std::string>> unlinked_;
   std::mutex mutex_;
   std::condition_variable stop_signal_;
   bool stopping_ = false;

@@ -5,7 +5,7 @@ standard input closes (so that the message is not cut off by the end of the proc
 
     one_shot_publisher.py TYPE TOPIC STAMP_SECONDS ID
 
-TYPE is a ~sources type; the message holds one unit box at x = ID (id ID for a BoxArray),
+TYPE is a ~sources type; the message holds one unit box at x = 3 ID (id ID for a BoxArray),
 stamped STAMP_SECONDS, in frame `map`. Used by test_one_shot.py, one process per trial: a new
 node for the node's publisher check to ask.
 """
@@ -22,10 +22,10 @@ from test_adapters import foreign_classes
 
 def one_box_message(type_name, stamp, box_id):
     header = rospy.Header(frame_id="map", stamp=stamp)
-    pose = Pose(Point(float(box_id), 0.0, 0.0), Quaternion(0.0, 0.0, 0.0, 1.0))
+    x = 3.0 * box_id  # its own place: no two trials' boxes touch
+    pose = Pose(Point(x + 0.5, 0.5, 0.5), Quaternion(0.0, 0.0, 0.0, 1.0))
     size = Vector3(1.0, 1.0, 1.0)
     if type_name == "sap_broadphase/BoxArray":
-        x = float(box_id)
         return BoxArray(header=header, ids=[box_id], bounds=[x, 0, 0, x + 1, 1, 1])
     if type_name == "visualization_msgs/MarkerArray":
         return MarkerArray(markers=[Marker(header=header, ns="one_shot", id=0, type=Marker.CUBE,

@@ -6,22 +6,22 @@ for every source type.
 Each trial starts a new publisher node (one_shot_publisher.py) on a topic of its own, where it
 is the first and only publisher: the node subscribes and its publisher check asks the new
 publisher what it publishes. A check counted as a subscriber would let the publisher send its
-one message to the check instead of the subscription. The trial's frame is stamped with a time
-of its own, newer than every earlier trial's, so the world's frame carrying it is told by its
-stamp in `stats` (the newest stamp of the world's sources).
+one message to the check instead of the subscription. Each trial's box has a place of its own,
+so `query_boxes` tells whether it is in the world; the trials of the five types run side by
+side, one round after another.
 
-No timing is asserted: each wait is for a condition (the trial's stamp in `stats`), bounded by
+No timing is asserted: each wait is for a condition (the trial's box in the world), bounded by
 WAIT only so that a lost message fails the trial instead of hanging the test.
 """
 import os
 import subprocess
 import sys
-import threading
+import time
 import unittest
 
 import rospy
 import rostest
-from sap_broadphase.msg import FrameStats
+from sap_broadphase.srv import QueryBoxes, QueryBoxesRequest
 
 PACKAGE = "sap_broadphase"
 WAIT = 20.0  # seconds; a bound on waiting, never a speed check
@@ -37,15 +37,8 @@ class OneShotTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_one_shot", anonymous=True)
-        cls.condition = threading.Condition()
-        cls.stamps = set()
-        cls.stats_sub = rospy.Subscriber("stats", FrameStats, cls.on_stats, queue_size=1000)
-
-    @classmethod
-    def on_stats(cls, msg):
-        with cls.condition:
-            cls.stamps.add(msg.header.stamp.to_sec())
-            cls.condition.notify_all()
+        rospy.wait_for_service("query_boxes", WAIT)
+        cls.query = rospy.ServiceProxy("query_boxes", QueryBoxes, persistent=True)
 
     def topic(self, short, trial):
         return "one_shot/%s_%d" % (short, trial)
@@ -57,28 +50,41 @@ class OneShotTest(unittest.TestCase):
         expected = [self.topic(short, k) for short, _ in TYPES for k in range(TRIALS)]
         self.assertEqual(listed, expected)
 
-    def trial(self, type_name, topic, stamp, box_id):
-        """True once the frame the one-shot publisher sent is in the world."""
-        publisher = subprocess.Popen(
-            [sys.executable, PUBLISHER, type_name, topic, "%.1f" % stamp, str(box_id)],
-            stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-        try:
-            with self.condition:
-                return self.condition.wait_for(lambda: stamp in self.stamps, WAIT)
-        finally:
-            publisher.stdin.close()
-            publisher.wait(WAIT)
+    def in_world(self, box_id):
+        """True when the world holds a box overlapping trial box_id's place."""
+        request = QueryBoxesRequest()
+        request.boxes.header.frame_id = "map"
+        x = 3.0 * box_id
+        request.boxes.bounds = [x + 0.25, 0.25, 0.25, x + 0.75, 0.75, 0.75]
+        answer = self.query(request)
+        self.assertTrue(answer.success, answer.message)
+        return len(answer.hits) > 0
+
+    def wait_in_world(self, box_id):
+        end = time.monotonic() + WAIT
+        while time.monotonic() < end:
+            if self.in_world(box_id):
+                return True
+            time.sleep(0.02)  # polled: the answer is exact for the frame it was answered on
+        return False
 
     def test_one_shot_publishes_reach_the_world(self):
-        with self.condition:
-            self.condition.wait_for(lambda: self.stats_sub.get_num_connections() > 0, WAIT)
-        self.assertGreater(self.stats_sub.get_num_connections(), 0, "no connection to stats")
         lost = []
-        for t, (short, type_name) in enumerate(TYPES):
-            for k in range(TRIALS):
-                stamp = 1000.0 + 100 * t + k  # newer than every earlier trial's
-                if not self.trial(type_name, self.topic(short, k), stamp, 1000 * t + k):
+        for k in range(TRIALS):
+            publishers = {}
+            for t, (short, type_name) in enumerate(TYPES):
+                box_id = 1000 * t + k
+                publishers[type_name, box_id] = subprocess.Popen(
+                    [sys.executable, PUBLISHER, type_name, self.topic(short, k),
+                     "%d" % (1000 + k), str(box_id)],
+                    stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+            for (type_name, box_id), publisher in publishers.items():
+                reached = self.wait_in_world(box_id)
+                publisher.stdin.close()
+                publisher.wait(WAIT)
+                if not reached:
                     lost.append("%s trial %d" % (type_name, k))
+                rospy.loginfo("%s trial %d: %s", type_name, k, "reached" if reached else "LOST")
         self.assertEqual(lost, [], "%d of %d one-shot messages never reached the world"
                          % (len(lost), TRIALS * len(TYPES)))
 
