@@ -108,10 +108,11 @@ std::optional<ValidationError> findIdOverflow(const BoxFrame& inFrame) {
     const BoxSpan& span = inFrame.span(s);
     for (std::size_t i = 0; span.id_offset != 0 && i < span.count; ++i) {
       if (span.idOf(i) <= UINT32_MAX) continue;
-      ValidationError error{first_box + i, static_cast<uint32_t>(span.idOf(i)),
+      // Named by the id its sender gave it: the sum wrapped past 32 bits names another box.
+      const uint64_t own_id = span.idOf(i) - span.id_offset;
+      ValidationError error{first_box + i, static_cast<uint32_t>(own_id),
                             "id offset " + std::to_string(span.id_offset) + " + id " +
-                                std::to_string(span.idOf(i) - span.id_offset) +
-                                " exceeds 4294967295"};
+                                std::to_string(own_id) + " exceeds 4294967295"};
       error.problem = BoxProblem::kIdOverflow;
       return error;
     }

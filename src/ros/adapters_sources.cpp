@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <set>
 
 namespace sap_broadphase {
@@ -145,6 +146,26 @@ std::string parseSourceSpecs(const XmlRpc::XmlRpcValue& inValue,
     specs.push_back(spec);
   }
   outSpecs = std::move(specs);
+  return "";
+}
+
+std::string checkResolvedSourceTopics(
+    const std::vector<SourceSpec>& inSpecs,
+    const std::function<std::string(const std::string&)>& inResolve) {
+  const std::string scenery = inResolve("static_boxes");
+  std::map<std::string, std::string> entry_of;  // resolved name -> the entry's own spelling
+  for (const SourceSpec& spec : inSpecs) {
+    const std::string resolved = inResolve(spec.topic);
+    if (resolved == scenery) {
+      return "~sources lists '" + spec.topic + "', which is the scenery topic static_boxes (" +
+             resolved + "): the scenery is read as static_boxes only";
+    }
+    const auto [earlier, added] = entry_of.emplace(resolved, spec.topic);
+    if (!added) {
+      return "~sources lists '" + earlier->second + "' and '" + spec.topic +
+             "', one topic twice (" + resolved + ")";
+    }
+  }
   return "";
 }
 

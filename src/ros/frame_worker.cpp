@@ -2,7 +2,9 @@
 #include "frame_worker.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
+#include <shared_mutex>
 #include <utility>
 
 #include "checked_callbacks.h"
@@ -24,6 +26,45 @@ double millisecondsSince(std::chrono::steady_clock::time_point inStart) {
 }
 
 }  // namespace
+
+void EngineLock::lock() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  ++writers_waiting_;
+  writer_go_.wait(lock, [this] { return !writing_ && readers_ == 0; });
+  --writers_waiting_;
+  writing_ = true;
+}
+
+void EngineLock::unlock() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  writing_ = false;
+  if (readers_waiting_ > 0) {
+    // Every reader that waited for this frame goes before the next writer.
+    readers_ += readers_waiting_;
+    readers_waiting_ = 0;
+    ++phase_;
+    readers_go_.notify_all();
+  } else {
+    writer_go_.notify_one();
+  }
+}
+
+void EngineLock::lock_shared() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!writing_ && writers_waiting_ == 0) {
+    ++readers_;
+    return;
+  }
+  ++readers_waiting_;
+  const uint64_t phase = phase_;
+  readers_go_.wait(lock, [&] { return phase_ != phase; });  // admitted (counted) by unlock()
+}
+
+void EngineLock::unlock_shared() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  assert(readers_ > 0 && "a reader unlocks the engine it locked");
+  if (--readers_ == 0) writer_go_.notify_one();
+}
 
 FrameWorker::FrameWorker(const NodeParams& inParams, SourceIngest& ioIngest,
                          FrameOutputs& ioOutputs, NodeStatus& ioStatus)
@@ -60,9 +101,12 @@ void FrameWorker::reconfigure(const NodeParams& inSettings) {
   wake_.notify_one();
 }
 
-QueryHitList FrameWorker::query(const BoxFrame& inQueries) const {
-  std::shared_lock<std::shared_mutex> lock(engine_mutex_);
-  return engine_.query(inQueries);
+QueryAnswer FrameWorker::query(const BoxFrame& inQueries) const {
+  std::shared_lock<EngineLock> lock(engine_mutex_);
+  QueryAnswer answer;
+  answer.hits = engine_.query(inQueries);
+  answer.header = engine_header_;
+  return answer;
 }
 
 bool FrameWorker::waitUntil(const ros::Time& inDeadline, const ros::Duration& inPeriod) {
@@ -116,6 +160,7 @@ void FrameWorker::run() {
           const bool scenery_changed = takeScenery();
           const bool sources_changed = takeDeliveries();
           expireSources();
+          status_.setLiveSources(sources_.size(), params_.sources.size());
           // Before the frame: its boxes were named when their messages were converted, so
           // id_names reaches listeners before the pairs that use the names, and the frame's
           // markers label its new boxes.
@@ -147,9 +192,16 @@ void FrameWorker::recoverFrom(const std::string& inWhat) {
   status_.refuse(std_msgs::Header(), 0,
                  "a frame could not be computed (" + inWhat + "): refused, new engine");
   outputs_.restartEvents();  // the last published pairs may have gone with the failure
-  std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+  std::lock_guard<EngineLock> lock(engine_mutex_);
   engine_ = Broadphase(params_.engine);
   if (scenery_) engine_.setStaticBoxes(scenery_->span());
+  engine_header_ = sceneryHeader();
+}
+
+std_msgs::Header FrameWorker::sceneryHeader() const {
+  std_msgs::Header header;
+  header.frame_id = ingest_.fixedFrame().empty() ? static_frame_ : ingest_.fixedFrame();
+  return header;
 }
 
 void FrameWorker::applySettings(const NodeParams& inSettings) {
@@ -159,9 +211,10 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
     // temporal state (partition bounds, kept candidates, the last frame) and must be told
     // the scenery again.
     outputs_.holdLastPairs();  // pair_events still tells what changed since the last frame
-    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_ = Broadphase(inSettings.engine);
     if (scenery_) engine_.setStaticBoxes(scenery_->span());
+    engine_header_ = sceneryHeader();
     status_.setEngineConfig(inSettings.engine);
   }
   outputs_.setMarkers(inSettings.publish_markers, inSettings.markers);
@@ -183,7 +236,7 @@ bool FrameWorker::takeScenery() {
   if (scenery->size() > 0 && !ingest_.placeFrame(kStaticSourceName, ros::Time(0), *scenery))
     return false;
   try {
-    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_.setStaticBoxes(scenery->span());
   } catch (const InvalidBoxes& refusal) {  // the scenery in force stays
     status_.refuse(message->header, scenery->size(),
@@ -222,8 +275,9 @@ void FrameWorker::expireSources() {
   if (!expired.empty() && sources_.size() == 0) {
     // No frame follows until a source comes back: the last one must not stay in the world.
     outputs_.holdLastPairs();  // this update is not published: its events are not the node's
-    std::lock_guard<std::shared_mutex> lock(engine_mutex_);
+    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_.update(BoxFrame());
+    engine_header_ = sceneryHeader();
   }
   for (const auto& [key, frames] : expired) {
     ingest_.forget(key);
@@ -276,9 +330,15 @@ const PairList* FrameWorker::loadWorld() {
     spans_.clear();
     for (const WorldMember& member : world_.members) spans_.push_back(member.frame->span());
     try {
-      std::lock_guard<std::shared_mutex> lock(engine_mutex_);
-      return &engine_.update(BoxFrame(spans_));
+      std::lock_guard<EngineLock> lock(engine_mutex_);
+      const PairList& pairs = engine_.update(BoxFrame(spans_));
+      engine_header_ = world_.header();
+      return &pairs;
     } catch (const InvalidBoxes& refusal) {
+      {
+        std::lock_guard<EngineLock> lock(engine_mutex_);
+        engine_header_ = sceneryHeader();  // an update that threw leaves the scenery alone
+      }
       refuseMember(refusal.error());
     }
   }

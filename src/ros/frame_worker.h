@@ -5,11 +5,11 @@
 #pragma once
 
 #include <condition_variable>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <mutex>
 #include <optional>
-#include <shared_mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -26,6 +26,37 @@
 
 namespace sap_broadphase {
 
+/// The engine's lock: a reader-writer lock in phases. A query (reader) that arrives while the
+/// worker holds the engine, or waits for it, is let in as soon as that one frame is done, before
+/// the worker's next frame; the worker waits only for the queries in progress. So a query waits
+/// at most for the frame in progress, whatever the frame rate, and a stream of queries never
+/// holds up the frames (a reader-preferring lock starves the worker, a writer-preferring one
+/// the queries when frames follow each other without a gap). Meets Lockable and
+/// SharedLockable (std::lock_guard, std::shared_lock).
+class EngineLock {
+ public:
+  void lock();
+  void unlock();
+  void lock_shared();
+  void unlock_shared();
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable readers_go_;
+  std::condition_variable writer_go_;
+  bool writing_ = false;
+  std::size_t writers_waiting_ = 0;
+  std::size_t readers_ = 0;          // admitted (running, or woken and about to)
+  std::size_t readers_waiting_ = 0;  // for the frame in progress to end
+  uint64_t phase_ = 0;               // counts the writers' ends: waiting readers are admitted
+};
+
+/// What a query answers and the frame it was answered on.
+struct QueryAnswer {
+  QueryHitList hits;
+  std_msgs::Header header;  ///< the world's frame: its newest source stamp, its frame id
+};
+
 class FrameWorker {
  public:
   /// Starts the thread; ioIngest, ioOutputs and ioStatus must outlive the worker.
@@ -41,9 +72,9 @@ class FrameWorker {
   /// Reconfigured settings, taken into force before the next frame (any thread).
   void reconfigure(const NodeParams& inSettings);
   /// What overlaps inQueries (checked, in the world's frame) in the world: the last frame
-  /// computed plus the scenery (Broadphase::query). Any thread; waits at most for the engine
-  /// work in progress (a frame, a new scenery or a new engine).
-  QueryHitList query(const BoxFrame& inQueries) const;
+  /// computed plus the scenery (Broadphase::query), and that frame's header. Any thread; waits
+  /// at most for the engine work in progress (a frame, a new scenery or a new engine).
+  QueryAnswer query(const BoxFrame& inQueries) const;
 
  private:
   /// Waits for work, takes it in, computes; until the destructor says stop.
@@ -62,6 +93,8 @@ class FrameWorker {
   void expireSources();
   /// The ROS clock went back to inNow: receipt times and time-outs start again from it.
   void restartClock(const ros::Time& inNow);
+  /// The header of a world that is the scenery alone: stamp 0, the world's frame.
+  std_msgs::Header sceneryHeader() const;
   /// Counts and logs an exception (inWhat) that ended a round of the loop; a new engine.
   void recoverFrom(const std::string& inWhat);
   /// Hands the sources' frames to the engine, publishes the pairs and the frame's accounts.
@@ -92,8 +125,9 @@ class FrameWorker {
 
   // Queries read engine_ from the service thread (shared); the worker changes it (frames, the
   // scenery, a new engine) exclusively, and reads it alone without the lock.
-  mutable std::shared_mutex engine_mutex_;
+  mutable EngineLock engine_mutex_;
   Broadphase engine_;
+  std_msgs::Header engine_header_;  // of the world engine_ holds (under engine_mutex_)
   SourceSet sources_;
   std::map<SourceKey, Delivery> deliveries_;
   SourceFramePtr scenery_;      // the scenery, declared again to a rebuilt engine

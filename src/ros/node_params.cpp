@@ -13,6 +13,8 @@
 #include <type_traits>
 
 #include <dynamic_reconfigure/Config.h>
+#include <ros/names.h>
+#include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <yaml-cpp/yaml.h>
 
@@ -183,7 +185,12 @@ std::string readSources(const ros::NodeHandle& inPrivate, std::vector<SourceSpec
     std::string error = parseYamlParameter(text, value);
     if (!error.empty()) return "~sources: " + error;
   }
-  return parseSourceSpecs(value, ioSources);
+  std::string error = parseSourceSpecs(value, ioSources);
+  if (!error.empty()) return error;
+  // Topics resolve in the node's namespace (the private one's parent), as it subscribes.
+  const ros::NodeHandle topics(ros::names::parentNamespace(inPrivate.getNamespace()));
+  return checkResolvedSourceTopics(
+      ioSources, [&](const std::string& inTopic) { return topics.resolveName(inTopic); });
 }
 
 /// Reads the marker settings (the node's own, not the engine's).

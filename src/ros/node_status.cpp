@@ -140,6 +140,12 @@ void NodeStatus::restartClock() {
   diagnostics_.force_update();
 }
 
+void NodeStatus::setLiveSources(std::size_t inLive, std::size_t inConfigured) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  counters_.held_sources = static_cast<uint32_t>(inLive);
+  counters_.configured_sources = static_cast<uint32_t>(inConfigured);
+}
+
 void NodeStatus::frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine) {
   auto stats = boost::make_shared<FrameStats>();
   {
@@ -180,6 +186,26 @@ FrameStats NodeStatus::makeStats(const std_msgs::Header& inHeader, std::size_t i
   return stats;
 }
 
+void NodeStatus::summarize(diagnostic_updater::DiagnosticStatusWrapper& ioStatus) const {
+  using diagnostic_msgs::DiagnosticStatus;
+  const std::string configured = std::to_string(counters_.configured_sources) + " in ~sources";
+  if (counters_.held_sources == 0 && counters_.computed == 0) {
+    ioStatus.summary(DiagnosticStatus::OK,
+                     "waiting for boxes: no source of the " + configured + " has published yet");
+  } else if (counters_.held_sources == 0) {
+    // Every source went silent past its time-out: the node computes nothing until one returns.
+    std::string text = "computing nothing: no live source of the " + configured;
+    if (!counters_.last_error.empty()) text += " (last error: " + counters_.last_error + ")";
+    ioStatus.summary(DiagnosticStatus::WARN, text);
+  } else if (counters_.computed == reported_.computed) {
+    ioStatus.summary(DiagnosticStatus::OK, "no new frame since the last report: " +
+                                               std::to_string(counters_.held_sources) +
+                                               " live sources hold their last frames");
+  } else {
+    ioStatus.summary(DiagnosticStatus::OK, "computing");
+  }
+}
+
 void NodeStatus::diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus) {
   std::lock_guard<std::mutex> lock(mutex_);
   const ros::Time now = ros::Time::now();
@@ -190,15 +216,14 @@ void NodeStatus::diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus)
   const uint64_t new_losses = counters_.lost - reported_.lost;
   if (new_refusals + new_skips + new_time_outs + new_losses > 0)
     ioStatus.summary(diagnostic_msgs::DiagnosticStatus::WARN, counters_.last_error);
-  else if (counters_.computed == 0)
-    ioStatus.summary(diagnostic_msgs::DiagnosticStatus::OK, "waiting for boxes");
   else
-    ioStatus.summary(diagnostic_msgs::DiagnosticStatus::OK, "computing");
+    summarize(ioStatus);
   ioStatus.add("frame rate (Hz)",
                seconds > 0.0 ? (counters_.computed - reported_.computed) / seconds : 0.0);
   ioStatus.add("last latency (ms)", counters_.last_ms_total);
   ioStatus.add("max latency since last report (ms)", counters_.max_ms_total);
-  ioStatus.add("live sources", counters_.live_sources);
+  ioStatus.add("live sources", counters_.held_sources);
+  ioStatus.add("configured sources", counters_.configured_sources);
   ioStatus.add("static boxes", counters_.static_boxes);
   ioStatus.add("frames computed", counters_.computed);
   ioStatus.add("source frames received", counters_.received);

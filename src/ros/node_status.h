@@ -57,6 +57,10 @@ class NodeStatus {
   /// Counts and logs a source gone silent (worker thread): a WARN and the last error when
   /// inUnexpected (a stream broke off), else an INFO (a source that published once).
   void timeOut(const std::string& inMessage, bool inUnexpected);
+  /// The sources the worker holds now (each within its time-out) of the inConfigured topics of
+  /// ~sources (worker thread, every round): /diagnostics counts a source live only while it
+  /// holds, and says so when none does.
+  void setLiveSources(std::size_t inLive, std::size_t inConfigured);
   /// Counts a computed frame and publishes its stats with the engine's report.
   void frameComputed(const FrameAccount& inFrame, const FrameReport& inEngine);
   /// The ROS clock went back: the diagnostics' period and rate start again from now (worker
@@ -67,24 +71,29 @@ class NodeStatus {
 
  private:
   struct Counters {
-    uint64_t received = 0;           // source frames received
-    uint64_t processed = 0;          // source frames taken into the world
-    uint64_t dropped = 0;            // source frames replaced before the worker took them
-    uint64_t refused = 0;            // invalid frames, and sources left out of a frame
-    uint64_t skipped = 0;            // source frames without a transform into ~fixed_frame
-    uint64_t timed_out = 0;          // sources dropped after ~source_timeout of silence
-    uint64_t lost = 0;               // MarkerArray messages lost in a subscriber queue
-    uint64_t computed = 0;           // frames computed
-    std::string last_refusal;        // why the last frame or source was refused
-    std::string last_error;          // the last refusal, skip or time-out, for /diagnostics
-    std::string refused_publishers;  // publishers of another type or MD5 sum, now
-    uint32_t live_sources = 0;       // sources of the last computed frame's world
-    uint32_t static_boxes = 0;       // boxes of the scenery in force
-    double last_ms_total = 0.0;      // latency of the last computed frame
-    double max_ms_total = 0.0;       // largest latency since the last diagnostics report
+    uint64_t received = 0;            // source frames received
+    uint64_t processed = 0;           // source frames taken into the world
+    uint64_t dropped = 0;             // source frames replaced before the worker took them
+    uint64_t refused = 0;             // invalid frames, and sources left out of a frame
+    uint64_t skipped = 0;             // source frames without a transform into ~fixed_frame
+    uint64_t timed_out = 0;           // sources dropped after ~source_timeout of silence
+    uint64_t lost = 0;                // MarkerArray messages lost in a subscriber queue
+    uint64_t computed = 0;            // frames computed
+    std::string last_refusal;         // why the last frame or source was refused
+    std::string last_error;           // the last refusal, skip or time-out, for /diagnostics
+    std::string refused_publishers;   // publishers of another type or MD5 sum, now
+    uint32_t live_sources = 0;        // sources of the last computed frame's world (stats)
+    uint32_t held_sources = 0;        // sources held now, each within its time-out
+    uint32_t configured_sources = 0;  // topics of ~sources
+    uint32_t static_boxes = 0;        // boxes of the scenery in force
+    double last_ms_total = 0.0;       // latency of the last computed frame
+    double max_ms_total = 0.0;        // largest latency since the last diagnostics report
   };
   /// Stats of the counters as they are now (called with mutex_ held).
   FrameStats makeStats(const std_msgs::Header& inHeader, std::size_t inBoxes) const;
+  /// The level and summary of /diagnostics (called with mutex_ held): WARN for new problems
+  /// since the last report, or for a node that computed before and holds no source now.
+  void summarize(diagnostic_updater::DiagnosticStatusWrapper& ioStatus) const;
   /// The /diagnostics status: rate, latency, drops, refusals, skips, time-outs, last error.
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus);
 

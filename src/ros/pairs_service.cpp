@@ -44,6 +44,7 @@ bool PairsService::onComputePairs(ComputePairs::Request& inRequest,
     std::swap(config, pending_config_);
   }
   if (config) engine_ = Broadphase(*config);
+  outResponse.header = inRequest.boxes.header;  // the frame answered on: the request's own
   outResponse.pairs.header = inRequest.boxes.header;
   std::optional<std::string> refusal = checkBoxArrayShape(inRequest.boxes);
   if (!refusal) {

@@ -15,6 +15,7 @@
 #include <ros/master.h>
 #include <ros/network.h>
 #include <ros/ros.h>
+#include <ros/xmlrpc_manager.h>
 #include <xmlrpcpp/XmlRpcClient.h>
 
 namespace sap_broadphase {
@@ -110,33 +111,48 @@ bool requestTopic(const std::string& inNodeUri, const std::string& inTopic,
   return true;
 }
 
-}  // namespace
+/// The type and MD5 sum the check asks for: no publisher has them, so every publisher refuses
+/// the check's connection, and says in its refusal what it publishes.
+constexpr const char* kNoType = "sap_broadphase/PublisherCheck";
+constexpr const char* kNoMd5 = "00000000000000000000000000000000";
 
-std::optional<PublishedType> askPublisher(const std::string& inNodeUri, const std::string& inTopic,
-                                          const std::string& inCallerId, std::string& outError) {
-  std::string host;
-  int port = 0;
-  if (!requestTopic(inNodeUri, inTopic, inCallerId, host, port, outError)) return std::nullopt;
-  Socket socket(host, port, outError);
+/// The text of inText between inOpening and the next "]", or nothing.
+std::optional<std::string> bracketAfter(const std::string& inText, const std::string& inOpening) {
+  const std::size_t start = inText.find(inOpening);
+  if (start == std::string::npos) return std::nullopt;
+  const std::size_t from = start + inOpening.size();
+  const std::size_t end = inText.find(']', from);
+  if (end == std::string::npos) return std::nullopt;
+  return inText.substr(from, end - from);
+}
+
+/// What a publisher's refusal says it publishes: roscpp and rospy both answer a subscriber of
+/// another MD5 sum "... but our version has [type/md5] ...".
+std::optional<PublishedType> versionInRefusal(const std::string& inError) {
+  const auto version = bracketAfter(inError, "our version has [");
+  if (!version) return std::nullopt;
+  const std::size_t slash = version->rfind('/');
+  if (slash == std::string::npos) return std::nullopt;
+  return PublishedType{version->substr(0, slash), version->substr(slash + 1)};
+}
+
+/// One exchange of connection headers with the TCPROS server at inHost:inPort: the
+/// publisher's answer, or nothing with outError.
+std::optional<ros::Header> exchangeHeaders(const std::string& inHost, int inPort,
+                                           const ros::M_string& inFields, std::string& outError) {
+  Socket socket(inHost, inPort, outError);
   if (!socket.open()) return std::nullopt;
-  // A subscriber's header with type and MD5 "*": every publisher answers with its own.
   boost::shared_array<uint8_t> request;
   uint32_t request_size = 0;
-  ros::Header::write({{"callerid", inCallerId},
-                      {"topic", inTopic},
-                      {"md5sum", "*"},
-                      {"type", "*"},
-                      {"tcp_nodelay", "1"}},
-                     request, request_size);
-  const uint32_t length = request_size;
+  ros::Header::write(inFields, request, request_size);
   uint8_t length_bytes[4];
-  std::memcpy(length_bytes, &length, 4);  // little-endian, as TCPROS
-  uint32_t answer_size = 0;
+  std::memcpy(length_bytes, &request_size, 4);  // little-endian, as TCPROS
   if (!socket.sendAll(length_bytes, 4) || !socket.sendAll(request.get(), request_size) ||
       !socket.receiveAll(length_bytes, 4)) {
-    outError = "no connection header from " + host + ":" + std::to_string(port);
+    outError = "no connection header from " + inHost + ":" + std::to_string(inPort);
     return std::nullopt;
   }
+  uint32_t answer_size = 0;
   std::memcpy(&answer_size, length_bytes, 4);
   if (answer_size > kMaxHeaderBytes) {
     outError = "a connection header of " + std::to_string(answer_size) + " bytes";
@@ -149,15 +165,77 @@ std::optional<PublishedType> askPublisher(const std::string& inNodeUri, const st
     if (outError.empty()) outError = "a connection header cut short";
     return std::nullopt;
   }
-  std::string error;
-  if (header.getValue("error", error)) {
-    outError = error;
-    return std::nullopt;
+  return header;
+}
+
+/// (topic, publisher's node URI) of every publisher this node's subscriptions are linked to,
+/// from the node's own XML-RPC getBusInfo: [code, text, [[id, publisher URI, "i", transport,
+/// topic, ...], ...]]. Empty when the node's server cannot be asked.
+std::set<std::pair<std::string, std::string>> linkedPublishers() {
+  std::set<std::pair<std::string, std::string>> linked;
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(ros::XMLRPCManager::instance()->getServerURI(), host, port))
+    return linked;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue params, result;
+  params[0] = ros::this_node::getName();
+  using Value = XmlRpc::XmlRpcValue;
+  if (!client.execute("getBusInfo", params, result) || result.getType() != Value::TypeArray ||
+      result.size() < 3 || result[2].getType() != Value::TypeArray)
+    return linked;
+  Value& info = result[2];
+  for (int i = 0; i < info.size(); ++i) {
+    Value& link = info[i];
+    if (link.getType() != Value::TypeArray || link.size() < 5 ||
+        link[1].getType() != Value::TypeString || link[2].getType() != Value::TypeString ||
+        link[4].getType() != Value::TypeString || static_cast<std::string>(link[2]) != "i")
+      continue;
+    linked.emplace(static_cast<std::string>(link[4]), static_cast<std::string>(link[1]));
   }
-  PublishedType published;
-  header.getValue("type", published.type);
-  header.getValue("md5sum", published.md5);
-  return published;
+  return linked;
+}
+
+}  // namespace
+
+std::optional<PublishedType> askPublisher(const std::string& inNodeUri, const std::string& inTopic,
+                                          const std::string& inCallerId, std::string& outError) {
+  std::string host;
+  int port = 0;
+  if (!requestTopic(inNodeUri, inTopic, inCallerId, host, port, outError)) return std::nullopt;
+  // Asked for a type and MD5 sum it does not have, a publisher refuses the connection and names
+  // its own in the refusal: it never counts the check as a subscriber. (Accepted, with MD5 "*",
+  // the check was the first subscriber of a publisher that waits for one and publishes once,
+  // and took that message from the real subscription.) rospy compares the type first and
+  // names only its own type then: asked again with that type, it names its MD5 sum too.
+  std::string asked_type = kNoType;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const auto header = exchangeHeaders(host, port,
+                                        {{"callerid", inCallerId},
+                                         {"topic", inTopic},
+                                         {"md5sum", kNoMd5},
+                                         {"type", asked_type},
+                                         {"tcp_nodelay", "1"}},
+                                        outError);
+    if (!header) return std::nullopt;
+    std::string error;
+    if (!header->getValue("error", error)) {
+      // Accepted: a publisher of MD5 "*" takes any subscriber, and names itself in its header.
+      PublishedType published;
+      header->getValue("type", published.type);
+      header->getValue("md5sum", published.md5);
+      return published;
+    }
+    if (auto published = versionInRefusal(error)) return published;
+    const auto own_type = bracketAfter(error, "] vs. [");  // rospy: "types do not match"
+    if (!own_type || *own_type == asked_type) {
+      outError = error;
+      return std::nullopt;
+    }
+    asked_type = *own_type;
+  }
+  outError = "no type and MD5 sum in the publisher's answers";
+  return std::nullopt;
 }
 
 PublisherProbe::PublisherProbe(std::vector<std::pair<std::string, Check>> inTopics, Refuse inRefuse,
@@ -199,6 +277,8 @@ void PublisherProbe::probeOnce() {
   XmlRpc::XmlRpcValue& publications = payload[0];  // [[topic, [node, ...]], ...]
   std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> asked;
   std::vector<std::string> refused;
+  const auto linked = linkedPublishers();
+  std::set<std::pair<std::string, std::string>> unlinked;  // seen unlinked, not asked yet
   for (int i = 0; i < publications.size(); ++i) {
     const std::string topic = publications[i][0];
     const auto entry = std::find_if(topics_.begin(), topics_.end(),
@@ -213,16 +293,30 @@ void PublisherProbe::probeOnce() {
       if (!ros::master::execute("lookupNode", lookup, lookup_response, uri, false) ||
           uri.getType() != XmlRpc::XmlRpcValue::TypeString)
         continue;
+      // A publisher the subscription is linked to has the MD5 sum subscribed with (roscpp
+      // links no other; a link it then drops for its MD5 sum is gone by the next look): it is
+      // not asked, and so never disturbed while it connects.
+      if (linked.count({topic, static_cast<std::string>(uri)}) > 0) continue;
       const auto key = std::make_pair(topic, node);
       const auto before = asked_.find(key);
       bool is_refused = false;
       if (before != asked_.end() && before->second.first == static_cast<std::string>(uri)) {
         is_refused = before->second.second;
+      } else if (unlinked_.count(key) == 0) {
+        // Seen unlinked for the first time: the subscription may be linking it now. Asked at
+        // the next look if still unlinked (a publisher refused for its MD5 sum, or a link
+        // slow to come): a publisher's log then names the check's refused connection only
+        // where something is wrong.
+        unlinked.insert(key);
+        continue;
       } else {
         std::string error;
         const auto published =
             askPublisher(uri, topic, ros::this_node::getName() + "/publisher_check", error);
-        if (!published) continue;  // not reachable now: asked again next time
+        if (!published) {  // not reachable now: asked again next time
+          unlinked.insert(key);
+          continue;
+        }
         if (const auto reason = entry->second(*published)) {
           is_refused = true;
           refuse_(topic, node, *reason);
@@ -233,6 +327,7 @@ void PublisherProbe::probeOnce() {
     }
   }
   asked_ = std::move(asked);  // publishers gone are forgotten
+  unlinked_ = std::move(unlinked);
   refused_(refused);
 }
 

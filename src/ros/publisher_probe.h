@@ -4,8 +4,12 @@
 // publisher of another never locks the others out (with MD5 "*", roscpp fixes a topic's MD5 sum
 // to its first publisher's). roscpp refuses the others at connection time without telling the
 // subscriber; the probe asks each publisher the master lists, as a subscriber would (XML-RPC
-// requestTopic, then a TCPROS connection header with MD5 "*"), reads the type and MD5 sum of its
-// answer and closes. Publishers of another definition are refused by name.
+// requestTopic, then a TCPROS connection header), for a type and MD5 sum no publisher has: the
+// publisher refuses that connection, naming its own type and MD5 sum, and so never counts the
+// probe as a subscriber (a publisher that publishes once when its first subscriber connects
+// sends that message to the node's subscription, not to the probe). A publisher the node's
+// subscription is linked to is not asked at all (roscpp links only publishers of the MD5 sum
+// subscribed with). Publishers of another definition are refused by name.
 #pragma once
 
 #include <condition_variable>
@@ -61,6 +65,9 @@ class PublisherProbe {
   // (topic, publisher) -> the node URI asked and whether it was refused: asked again only when
   // the publisher's URI changes (a node restarted under its name); forgotten when it leaves.
   std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> asked_;
+  // (topic, publisher) seen at the last look without a link from the subscription, not asked
+  // yet: asked at this look if still unlinked.
+  std::set<std::pair<std::string, std::string>> unlinked_;
   std::mutex mutex_;
   std::condition_variable stop_signal_;
   bool stopping_ = false;

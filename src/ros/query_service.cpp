@@ -6,6 +6,14 @@
 
 namespace sap_broadphase {
 
+namespace {
+
+/// Threads that answer query_boxes: calls beyond them wait in the queue, and each of those waits
+/// for a frame more whenever a frame starts before a thread is free.
+constexpr uint32_t kQueryThreads = 8;
+
+}  // namespace
+
 QueryService::QueryService(ros::NodeHandle& ioNode, SourceIngest& ioIngest,
                            const FrameWorker& inWorker, int inLogPeriod)
     : ingest_(ioIngest), worker_(inWorker), log_period_(inLogPeriod) {
@@ -17,7 +25,7 @@ QueryService::QueryService(ros::NodeHandle& ioNode, SourceIngest& ioIngest,
       [this](const std::string& inReason, QueryBoxes::Response& outResponse) {
         refuse(inReason, outResponse);
       });
-  spinner_.emplace(1, &queue_);
+  spinner_.emplace(kQueryThreads, &queue_);
   spinner_->start();
 }
 
@@ -32,14 +40,15 @@ bool QueryService::onQuery(QueryBoxes::Request& inRequest, QueryBoxes::Response&
   const BoxArray& boxes = inRequest.boxes;
   std::optional<std::string> refusal = checkBoxArrayShape(boxes);
   const bool moved = !ingest_.fixedFrame().empty();
+  BoxSet queries;           // the query boxes moved into ~fixed_frame (this call's own)
   if (!refusal && moved) {  // moved into ~fixed_frame as records; else read where they lie
-    copyBoxArray(boxes, queries_);
-    refusal = ingest_.placeInFixedFrame(boxes.header, queries_);
+    copyBoxArray(boxes, queries);
+    refusal = ingest_.placeInFixedFrame(boxes.header, queries);
   }
-  QueryHitList hits;
+  QueryAnswer answer;
   if (!refusal) {
     try {
-      hits = worker_.query(moved ? BoxFrame(queries_) : BoxFrame(boxArrayRecords(boxes)));
+      answer = worker_.query(moved ? BoxFrame(queries) : BoxFrame(boxArrayRecords(boxes)));
     } catch (const InvalidBoxes& invalid) {
       refusal = invalid.error().message();
     }
@@ -48,9 +57,10 @@ bool QueryService::onQuery(QueryBoxes::Request& inRequest, QueryBoxes::Response&
     refuse("query boxes: " + *refusal, outResponse);
     return true;  // the call itself succeeded; the answer says why the boxes were refused
   }
+  outResponse.header = answer.header;
   outResponse.hits.clear();
-  outResponse.hits.reserve(2 * hits.size());
-  for (const QueryHit& hit : hits) {
+  outResponse.hits.reserve(2 * answer.hits.size());
+  for (const QueryHit& hit : answer.hits) {
     outResponse.hits.push_back(hit.query);
     outResponse.hits.push_back(hit.world);
   }

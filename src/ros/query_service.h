@@ -19,7 +19,7 @@ namespace sap_broadphase {
 
 class QueryService {
  public:
-  /// Advertises `query_boxes` on ioNode, served by its own spinner thread. ioIngest (for tf2)
+  /// Advertises `query_boxes` on ioNode, served by its own spinner threads. ioIngest (for tf2)
   /// and inWorker (the world) must outlive the service.
   QueryService(ros::NodeHandle& ioNode, SourceIngest& ioIngest, const FrameWorker& inWorker,
                int inLogPeriod);
@@ -38,7 +38,6 @@ class QueryService {
   SourceIngest& ingest_;
   const FrameWorker& worker_;
   int log_period_;
-  BoxSet queries_;  // the query boxes moved into ~fixed_frame (service thread only)
   ros::CallbackQueue queue_;
   ros::ServiceServer service_;
   std::optional<ros::AsyncSpinner> spinner_;

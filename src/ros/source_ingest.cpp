@@ -284,8 +284,9 @@ std::optional<std::string> SourceIngest::placeInFixedFrame(const std_msgs::Heade
   if (!tf_buffer_) return std::nullopt;
   if (auto reason = unplaceableFrame(inHeader.frame_id)) return reason;
   std::string error;
-  if (!moveIntoFixedFrame(inHeader.frame_id, inHeader.stamp, ioBoxes, error))
-    return "no transform into '" + fixed_frame_ + "': " + error;
+  bool bad_transform = false;
+  if (!moveIntoFixedFrame(inHeader.frame_id, inHeader.stamp, ioBoxes, error, bad_transform))
+    return bad_transform ? error : "no transform into '" + fixed_frame_ + "': " + error;
   return std::nullopt;
 }
 
@@ -412,8 +413,13 @@ bool SourceIngest::placeFrame(const std::string& inName, const ros::Time& inStam
     ioFrame.message.reset();
   }
   std::string error;
-  if (!moveIntoFixedFrame(ioFrame.header.frame_id, inStamp, ioFrame.records, error)) {
-    status_.skip(inName + " skipped: no transform into '" + fixed_frame_ + "': " + error);
+  bool bad_transform = false;
+  if (!moveIntoFixedFrame(ioFrame.header.frame_id, inStamp, ioFrame.records, error,
+                          bad_transform)) {
+    if (bad_transform)  // the frame's own transform is wrong: refused, as a wrong box is
+      status_.refuse(ioFrame.header, ioFrame.size(), inName + ": " + error);
+    else
+      status_.skip(inName + " skipped: no transform into '" + fixed_frame_ + "': " + error);
     return false;
   }
   ioFrame.header.frame_id = fixed_frame_;  // moved there
@@ -421,10 +427,18 @@ bool SourceIngest::placeFrame(const std::string& inName, const ros::Time& inStam
 }
 
 bool SourceIngest::moveIntoFixedFrame(const std::string& inFrame, const ros::Time& inStamp,
-                                      BoxSet& ioBoxes, std::string& outError) {
+                                      BoxSet& ioBoxes, std::string& outError,
+                                      bool& outBadTransform) {
   try {
     const geometry_msgs::TransformStamped transform =
         tf_buffer_->lookupTransform(fixed_frame_, inFrame, inStamp);
+    if (const auto problem = nonFiniteTransform(transform.transform)) {
+      outError = "the transform from '" + inFrame + "' into '" + fixed_frame_ + "' at " +
+                 std::to_string(transform.header.stamp.toSec()) + " is not finite (" + *problem +
+                 "): refused";
+      outBadTransform = true;
+      return false;
+    }
     transformBoxes(transform.transform, ioBoxes);
     return true;
   } catch (const tf2::TransformException& exception) {

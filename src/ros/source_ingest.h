@@ -72,7 +72,8 @@ class SourceIngest {
   /// Moves ioFrame (of the source or scenery named inName) into ~fixed_frame with the transform
   /// at inStamp (time 0: the latest, for the scenery: it stays put, and a latched message may
   /// be older than tf2's cache); nothing to do without a ~fixed_frame. False, with the skip
-  /// counted, when tf2 has no such transform.
+  /// counted, when tf2 has no such transform; false, with the frame refused (counted, logged),
+  /// when the transform is not finite.
   bool placeFrame(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame);
 
   /// Publishes the names of every adapter's ids on ~id_names when some are new since the last
@@ -128,9 +129,10 @@ class SourceIngest {
   /// True when tf2 can move frame inFrame into the fixed frame at inStamp now (no waiting).
   bool transformable(const std::string& inFrame, const ros::Time& inStamp) const;
   /// Moves ioBoxes from inFrame into the fixed frame at inStamp (time 0: latest). False, with
-  /// outError, when tf2 has no such transform.
+  /// outError, when tf2 has no such transform, or with outBadTransform too when the transform
+  /// is not finite (tf2 takes infinities): the boxes are then left as they were.
   bool moveIntoFixedFrame(const std::string& inFrame, const ros::Time& inStamp, BoxSet& ioBoxes,
-                          std::string& outError);
+                          std::string& outError, bool& outBadTransform);
 
   NodeStatus& status_;
   Wake wake_;

@@ -30,6 +30,18 @@ std::string sourceName(const SourceKey& inKey) {
   return name;
 }
 
+std::optional<std::string> nonFiniteTransform(const geometry_msgs::Transform& inTransform) {
+  const geometry_msgs::Vector3& t = inTransform.translation;
+  const geometry_msgs::Quaternion& q = inTransform.rotation;
+  const std::pair<const char*, double> components[] = {
+      {"translation.x", t.x}, {"translation.y", t.y}, {"translation.z", t.z}, {"rotation.x", q.x},
+      {"rotation.y", q.y},    {"rotation.z", q.z},    {"rotation.w", q.w}};
+  for (const auto& [name, value] : components) {
+    if (!std::isfinite(value)) return std::string(name) + " is " + std::to_string(value);
+  }
+  return std::nullopt;
+}
+
 void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes) {
   const tf2::Matrix3x3 rotation(tf2::Quaternion(inTransform.rotation.x, inTransform.rotation.y,
                                                 inTransform.rotation.z, inTransform.rotation.w));

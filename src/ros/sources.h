@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,11 @@ constexpr const char* kStaticSourceName = "'static_boxes'";
 /// becomes -inf / +inf. A box that is no box (a NaN bound, min > max) stays as published, for
 /// the engine's check to name it in the sender's own numbers.
 void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes);
+
+/// Why inTransform cannot move boxes: a translation or rotation component that is not finite
+/// ("translation.x is inf"), or nothing. tf2 refuses NaN but takes infinities, which would
+/// make every moved box span the whole axis and pair with everything.
+std::optional<std::string> nonFiniteTransform(const geometry_msgs::Transform& inTransform);
 
 /// One frame of a source as the node keeps it, immutable once stored: the source's latest
 /// frame, its last accepted one and the spans of the world being computed share it.

@@ -253,6 +253,8 @@ TEST(FrameHistory, IdOffsetsNumberSpansAndOverflowIsRefused) {
     EXPECT_EQ(problem->problem, BoxProblem::kIdOverflow);
     EXPECT_EQ(problem->index, 3u);
     EXPECT_EQ(problem->span, 1u);
+    EXPECT_EQ(problem->id, 6u) << "the box's own id, not the sum wrapped past 32 bits";
+    EXPECT_NE(problem->message().find("(id 6)"), std::string::npos) << problem->message();
     EXPECT_NE(problem->message().find("exceeds 4294967295"), std::string::npos)
         << problem->message();
     loadAndRemember(history, BoxFrame(spans), 1);  // then the same size again: the block path

@@ -50,11 +50,13 @@ add_rostest(test/ros/reconfigure.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJEC
 # caller id) give the live node's pairs frame by frame: sources are told apart by frame id.
 add_rostest(test/ros/replay.test DEPENDENCIES ${PROJECT_NAME}_node)
 
-# use_sim_time: ~rate ticks, source time-outs and diagnostics follow the /clock the test drives.
+# use_sim_time: ~rate ticks, source time-outs and diagnostics follow the /clock the test drives;
+# sources silent past their time-out are not live in /diagnostics, which warns.
 add_rostest(test/ros/clock.test DEPENDENCIES ${PROJECT_NAME}_node)
 
 # tf2 without stalls: a source without its transform never holds up the others; a scenery
-# stamped long ago is placed with the latest transform of a moving frame.
+# stamped long ago is placed with the latest transform of a moving frame; a source whose
+# transform is infinite (tf2 takes it) is refused naming the transform.
 add_rostest(test/ros/tf.test DEPENDENCIES ${PROJECT_NAME}_node)
 # Input adapters without a roscore: embedded definitions against genmsg's MD5, the vision_msgs
 # and jsk wire decoders, MarkerArray state (DELETE, DELETEALL, CUBE_LIST), validation, ~sources.
@@ -89,5 +91,14 @@ add_rostest(test/ros/hostile.test DEPENDENCIES ${PROJECT_NAME}_node)
 
 # query_boxes of the node and of BroadphaseNodelet: hits against the scenery and a source's
 # frame, query boxes moved into ~fixed_frame, ids, filters, refusals naming the box, queries
-# while frames flow.
+# of several callers while frames flow, each answer's header naming the frame it was answered on.
 add_rostest(test/ros/query.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)
+
+# ~sources compared as resolved names: one topic spelled two ways, remapped onto another, or
+# the scenery topic stops the node at start-up with a FATAL naming both.
+add_rostest(test/ros/startup.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# One-shot publishers (wait for a subscriber, publish once), each the first on a topic of its
+# own, of every source type: every message reaches the world (the publisher check is never
+# counted as a subscriber).
+add_rostest(test/ros/one_shot.test DEPENDENCIES ${PROJECT_NAME}_node)

@@ -763,5 +763,26 @@ TEST(SourceSpecs, ProblemsNameTheEntryAndKey) {
   EXPECT_TRUE(specs.empty());  // never replaced by a refused list
 }
 
+// Topics are compared as the node subscribes to them, resolved in its namespace: one topic
+// spelled two ways, or the scenery topic as a source, is refused naming both spellings.
+TEST(SourceSpecs, TopicsAreComparedAsResolvedNames) {
+  const auto in_ns = [](const std::string& inTopic) {
+    return inTopic.front() == '/' ? inTopic : "/ns/" + inTopic;
+  };
+  const auto specs_of = [](std::vector<std::string> inTopics) {
+    std::vector<SourceSpec> specs(inTopics.size());
+    for (std::size_t k = 0; k < specs.size(); ++k) specs[k].topic = inTopics[k];
+    return specs;
+  };
+  EXPECT_EQ(checkResolvedSourceTopics(specs_of({"boxes", "/ns/boxes"}), in_ns),
+            "~sources lists 'boxes' and '/ns/boxes', one topic twice (/ns/boxes)");
+  EXPECT_EQ(checkResolvedSourceTopics(specs_of({"/ns/markers", "a", "markers"}), in_ns),
+            "~sources lists '/ns/markers' and 'markers', one topic twice (/ns/markers)");
+  EXPECT_EQ(checkResolvedSourceTopics(specs_of({"a", "/ns/static_boxes"}), in_ns),
+            "~sources lists '/ns/static_boxes', which is the scenery topic static_boxes "
+            "(/ns/static_boxes): the scenery is read as static_boxes only");
+  EXPECT_EQ(checkResolvedSourceTopics(specs_of({"boxes", "/boxes", "/other/boxes"}), in_ns), "");
+}
+
 }  // namespace
 }  // namespace sap_broadphase

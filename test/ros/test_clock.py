@@ -17,6 +17,7 @@ import unittest
 
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rosgraph_msgs.msg import Clock
 from sap_broadphase.msg import BoxArray, FrameStats
 
@@ -128,6 +129,7 @@ class ClockTest(unittest.TestCase):
                             % (last.sources, last.sources_timed_out, last.header.stamp))
 
         self.clock_jumping_back_restarts_the_time_outs(msg, extra)
+        self.silent_sources_are_not_live()
 
     def clock_jumping_back_restarts_the_time_outs(self, boxes, extra):
         """The clock jumps back 60 s (a bag played again, a simulation restarted): a source
@@ -159,6 +161,36 @@ class ClockTest(unittest.TestCase):
         self.assertTrue(
             step(False, lambda s: s.sources_timed_out > timed_out and s.sources == 1),
             "the source silent since the clock jumped back never timed out")
+
+    def silent_sources_are_not_live(self):
+        """Both sources fall silent: once ~source_timeout of ROS time has passed, /diagnostics
+        counts no live source and warns that the node computes nothing (not "OK, computing"
+        with the dead sources still counted live)."""
+        reports = []
+
+        def on_diagnostics(msg):
+            with self.condition:
+                reports.extend(s for s in msg.status if s.name.endswith("broadphase"))
+                self.condition.notify_all()
+
+        sub = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+        self.wait_connected("node's /diagnostics", lambda: sub.get_num_connections() >= 1)
+        value = lambda status, key: next((v.value for v in status.values if v.key == key), None)
+        dead = lambda s: (s.level == DiagnosticStatus.WARN and value(s, "live sources") == "0"
+                          and s.message.startswith("computing nothing"))
+        for _ in range(int(2 * WAIT / 0.2)):
+            self.now_ns += PERIOD_NS
+            self.publish_clock()
+            with self.condition:
+                if self.condition.wait_for(lambda: any(map(dead, reports)), 0.2):
+                    break
+        with self.condition:
+            seen = [(s.level, s.message, value(s, "live sources")) for s in reports[-5:]]
+            self.assertTrue(any(map(dead, reports)),
+                            "no WARN without live sources in %d reports; the last: %s"
+                            % (len(reports), seen))
+        sub.unregister()
+
 
 if __name__ == "__main__":
     rostest.rosrun(PACKAGE, "clock", ClockTest)

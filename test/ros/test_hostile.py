@@ -283,9 +283,16 @@ class Hostile(unittest.TestCase):
         (stats and /diagnostics), and this test's publisher of the right definition, connecting
         after it, still feeds the source (its box pairs with those of `boxes`)."""
         self.expect_alive()
-        refusal = self.wait_refusal(
-            lambda text: "/wrong_md5_publisher" in text and "shared_vision" in text and
-            "with MD5 sum 00000000000000000000000000000000" in text, lambda: None)
+        # The publisher is refused once, when the node first asks it, possibly before this
+        # test subscribed to stats: every later stats message still carries that refusal as
+        # the last one (nothing else is refused meanwhile), so a frame on `boxes` brings it.
+        boxes = rospy.Publisher("boxes", BoxArray, queue_size=10)
+        frame = BoxArray(ids=[1, 2], bounds=[0, 0, 0, 1, 1, 1, 0.5, 0.5, 0.5, 2, 2, 2])
+        frame.header.frame_id = "map"
+        named_in = lambda text: ("/wrong_md5_publisher" in text and "shared_vision" in text and
+                                 "with MD5 sum 00000000000000000000000000000000" in text)
+        refusal = self.wait_stats(lambda msg: named_in(msg.last_refusal),
+                                  lambda: boxes.publish(frame), 0)
         self.assertIsNotNone(refusal, "the publisher of another MD5 sum was not refused by name")
         named = threading.Event()
 

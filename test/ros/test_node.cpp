@@ -116,6 +116,9 @@ TEST(Service, ValidFramesExact) {
     EXPECT_TRUE(response->success) << response->message;
     EXPECT_EQ(response->pairs.header.stamp, msg.header.stamp);
     EXPECT_EQ(response->pairs.header.frame_id, "service_frame");
+    // The frame answered on: the request's own.
+    EXPECT_EQ(response->header.stamp, msg.header.stamp);
+    EXPECT_EQ(response->header.frame_id, "service_frame");
     EXPECT_EQ(toPairs(response->pairs), bruteForcePairs(boxes));
   }
 }

@@ -117,8 +117,12 @@ class QueryBoxesTest(unittest.TestCase):
         self.publish_robot()
         # Every frame of this source (frame map) holds exactly one of ids 2 and 3, beside the
         # robot's box (its own source, frame robot): a query over all of them sees one of 2
-        # and 3 (none before the first frame), never both, whatever frame is in progress.
+        # and 3 (none before the first frame), never both, whatever frame is in progress. Each
+        # answer's header names the frame it was answered on: the flowing frame of that stamp
+        # (the world's newest) holds the id the answer saw. Several callers at once.
         stop = threading.Event()
+        flowing_id = {}  # stamp -> the id of ids 2 and 3 that frame holds
+        flowing_lock = threading.Lock()
 
         def flow():
             k = 0
@@ -126,24 +130,47 @@ class QueryBoxesTest(unittest.TestCase):
                 ids, bounds = FLOWING[k % 2]
                 msg = box_array("map", bounds, ids)
                 msg.header.stamp = rospy.Time.now()
+                with flowing_lock:
+                    flowing_id[msg.header.stamp.to_nsec()] = ids[0]
                 self.boxes.publish(msg)
                 k += 1
                 rospy.sleep(0.002)
 
+        seen, problems = set(), []
+        request = box_array("map", [0.5, 0.5, 0.5, 40, 0.6, 0.6], [9])
+
+        def ask():
+            query = rospy.ServiceProxy("query_boxes", QueryBoxes, persistent=True)
+            deadline = rospy.get_time() + WAIT
+            while len(seen) < 2 and rospy.get_time() < deadline and not problems:
+                answer = query(request)
+                hits = pairs_of(answer.hits)
+                if not answer.success or hits not in [[(9, 1), (9, 100)],
+                                                      [(9, 1), (9, 2), (9, 100)],
+                                                      [(9, 1), (9, 3), (9, 100)]]:
+                    problems.append("answer %s %r" % (hits, answer.message))
+                    break
+                flowing = [world for _, world in hits if world in (2, 3)]
+                if flowing:
+                    with flowing_lock:
+                        expected = flowing_id.get(answer.header.stamp.to_nsec())
+                    if answer.header.frame_id != "map" or expected != flowing[0]:
+                        problems.append("hit %d answered on frame %r stamped %s, which holds %s"
+                                        % (flowing[0], answer.header.frame_id,
+                                           answer.header.stamp, expected))
+                        break
+                seen.update(flowing)
+            query.close()
+
         flowing = threading.Thread(target=flow)
         flowing.start()
+        callers = [threading.Thread(target=ask) for _ in range(4)]
         try:
-            request = box_array("map", [0.5, 0.5, 0.5, 40, 0.6, 0.6], [9])
-            seen = set()
-            deadline = rospy.get_time() + WAIT
-            while len(seen) < 2 and rospy.get_time() < deadline:
-                for _ in range(20):
-                    answer = self.query(request)
-                    self.assertTrue(answer.success, answer.message)
-                    hits = pairs_of(answer.hits)
-                    self.assertIn(hits, [[(9, 1), (9, 100)], [(9, 1), (9, 2), (9, 100)],
-                                         [(9, 1), (9, 3), (9, 100)]])
-                    seen.update(world for _, world in hits if world in (2, 3))
+            for caller in callers:
+                caller.start()
+            for caller in callers:
+                caller.join()
+            self.assertEqual(problems, [])
             self.assertTrue({2, 3} <= seen, "saw only %s" % sorted(seen))
         finally:
             stop.set()

@@ -179,6 +179,37 @@ class TfTest(unittest.TestCase):
         self.assertEqual(pairs, expected, "the late robot never joined once its transform came")
 
 
+    def test_non_finite_transform_refuses_the_source(self):
+        """map -> r_inf translates by (inf, 0, 0), which tf2 takes: a box published in r_inf
+        would span the whole x axis and pair with every box. Its frame is refused, counted and
+        named; the frames in robot_ok are answered exactly, without it."""
+        node = Node("inf")
+        self.wait_until(node.connected, "connection to the node in /inf")
+        ids = list(range(30))
+        bounds = random_bounds(400, len(ids))
+        stamp = self.send_frame(node, ids, bounds, "robot_ok")
+        self.assertEqual(node.wait_pairs(stamp), oracle(ids, bounds))
+
+        self.send_frame(node, [500], [0.0, 0.0, 0.0, 1.0, 1.0, 1.0], "r_inf")
+        refused = lambda: any("r_inf" in s.last_refusal and "not finite" in s.last_refusal
+                              for s in node.stats)
+        with node.condition:
+            found = node.condition.wait_for(refused, WAIT)
+            last = node.stats[-1].last_refusal if node.stats else "(no stats)"
+        self.assertTrue(found, "the frame in r_inf was not refused for its infinite transform "
+                        "(last refusal: %r)" % last)
+        with node.condition:
+            refusal = next(s for s in node.stats if "r_inf" in s.last_refusal)
+        # tf2 composes the looked-up transform from the infinite one: inf, or inf - inf = NaN.
+        self.assertIn("is not finite (translation.x is ", refusal.last_refusal)
+        self.assertGreaterEqual(refusal.frames_refused, 1)
+
+        stamp = self.send_frame(node, ids, bounds, "robot_ok")
+        pairs = node.wait_pairs(stamp)
+        self.assertEqual(pairs, oracle(ids, bounds),
+                         "the box in r_inf joined the world: %s"
+                         % [p for p in (pairs or []) if 500 in p][:5])
+
     def test_old_scenery_placed_with_the_latest_transform(self):
         node = Node("scenery")
         self.wait_until(node.connected, "connection to the node in /scenery")
