@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -168,10 +169,11 @@ bool isFinite(const FrameBoxes& inBoxes, std::size_t i) {
   return std::all_of(bounds, bounds + kBoundsPerBox, [](double v) { return std::isfinite(v); });
 }
 
-/// Closed intervals, as the engine's pairs: boxes that only touch overlap.
-bool overlap(const FrameBoxes& inBoxes, std::size_t i, std::size_t j) {
+/// Whether boxes i and j overlap, touch or lie less than inGap apart on every axis.
+bool near(const FrameBoxes& inBoxes, std::size_t i, std::size_t j, double inGap) {
   for (int axis = 0; axis < 3; ++axis) {
-    if (inBoxes.hi(axis, i) < inBoxes.lo(axis, j) || inBoxes.hi(axis, j) < inBoxes.lo(axis, i))
+    if (inBoxes.hi(axis, i) + inGap < inBoxes.lo(axis, j) ||
+        inBoxes.hi(axis, j) + inGap < inBoxes.lo(axis, i))
       return false;
   }
   return true;
@@ -231,6 +233,19 @@ Selection selectBoxes(const FrameBoxes& inBoxes, std::size_t inMovingCount,
   return selection;
 }
 
+/// By box index, the highest top among the box's drawn partners (-infinity: none).
+std::vector<double> contactTops(const FrameBoxes& inBoxes, const IdIndex& inIndexOf,
+                                const PairList& inPairs, const std::vector<char>& inDrawn) {
+  std::vector<double> tops(inBoxes.size(), -std::numeric_limits<double>::infinity());
+  for (const IdPair& pair : inPairs) {
+    const std::size_t a = inIndexOf(pair.a), b = inIndexOf(pair.b);
+    if (a == IdIndex::kAbsent || b == IdIndex::kAbsent || !inDrawn[a] || !inDrawn[b]) continue;
+    tops[a] = std::max(tops[a], inBoxes.hi(2, b));
+    tops[b] = std::max(tops[b], inBoxes.hi(2, a));
+  }
+  return tops;
+}
+
 /// A label of a body: its text, centred at position.
 struct Label {
   std::string text;
@@ -261,10 +276,11 @@ std::vector<NamedBox> namedBoxes(const FrameBoxes& inBoxes, const std::vector<st
   return named;
 }
 
-/// Bodies: the named boxes of one source that overlap or touch, directly or through others.
-/// Returns, for each of inNamed, the position in inNamed of its body's first box.
-std::vector<std::size_t> findBodies(const FrameBoxes& inBoxes,
-                                    const std::vector<NamedBox>& inNamed) {
+/// Bodies: the named boxes of one source that are near each other (less than inGap apart),
+/// directly or through others: a robot's parts, which touch or nearly touch. Returns, for each
+/// of inNamed, the position in inNamed of its body's first box.
+std::vector<std::size_t> findBodies(const FrameBoxes& inBoxes, const std::vector<NamedBox>& inNamed,
+                                    double inGap) {
   std::vector<std::size_t> parent(inNamed.size());
   for (std::size_t k = 0; k < parent.size(); ++k) parent[k] = k;
   const auto root = [&parent](std::size_t k) {
@@ -272,7 +288,7 @@ std::vector<std::size_t> findBodies(const FrameBoxes& inBoxes,
     return k;
   };
   // Sweep along x within each source: a box meets the later ones whose x interval starts
-  // before its own ends.
+  // before its own ends (plus the gap).
   std::vector<std::size_t> order(inNamed.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
@@ -283,9 +299,10 @@ std::vector<std::size_t> findBodies(const FrameBoxes& inBoxes,
     const NamedBox& box = inNamed[order[p]];
     for (std::size_t q = p + 1; q < order.size(); ++q) {
       const NamedBox& later = inNamed[order[q]];
-      if (later.source != box.source || inBoxes.lo(0, later.index) > inBoxes.hi(0, box.index))
+      if (later.source != box.source ||
+          inBoxes.lo(0, later.index) > inBoxes.hi(0, box.index) + inGap)
         break;
-      if (overlap(inBoxes, box.index, later.index)) {
+      if (near(inBoxes, box.index, later.index, inGap)) {
         const std::size_t x = root(order[p]), y = root(order[q]);
         parent[std::max(x, y)] = std::min(x, y);  // the root is the body's first box
       }
@@ -296,16 +313,19 @@ std::vector<std::size_t> findBodies(const FrameBoxes& inBoxes,
   return body;
 }
 
-/// One label per body, centred above its top, inHeight metres tall, in the order of the
-/// bodies' first boxes.
+/// One label per body (its boxes less than a label's height apart), inHeight metres tall,
+/// centred over the body above the top of the body and of what it touches (inContactTop: by
+/// box index, the highest top among the box's drawn partners), in the order of the bodies'
+/// first boxes.
 std::vector<Label> bodyLabels(const FrameBoxes& inBoxes, const std::vector<std::size_t>& inDrawn,
-                              const BoxNames& inNames, double inHeight) {
+                              const BoxNames& inNames, const std::vector<double>& inContactTop,
+                              double inHeight) {
   const std::vector<NamedBox> named = namedBoxes(inBoxes, inDrawn, inNames);
-  const std::vector<std::size_t> body = findBodies(inBoxes, named);
+  const std::vector<std::size_t> body = findBodies(inBoxes, named, inHeight);
   std::vector<Label> labels;
   for (std::size_t first = 0; first < named.size(); ++first) {
     if (body[first] != first) continue;
-    double lo[3], hi[3];
+    double lo[3], hi[3], top = -std::numeric_limits<double>::infinity();
     std::string parts;
     for (std::size_t k = first; k < named.size(); ++k) {
       if (body[k] != first) continue;
@@ -314,14 +334,17 @@ std::vector<Label> bodyLabels(const FrameBoxes& inBoxes, const std::vector<std::
         lo[axis] = k == first ? inBoxes.lo(axis, i) : std::min(lo[axis], inBoxes.lo(axis, i));
         hi[axis] = k == first ? inBoxes.hi(axis, i) : std::max(hi[axis], inBoxes.hi(axis, i));
       }
+      if (std::isfinite(inContactTop[i])) top = std::max(top, inContactTop[i]);
       parts += (parts.empty() ? "" : ", ") + named[k].part;
     }
     Label label;
     label.text = named[first].source.empty() ? parts : named[first].source + ": " + parts;
     label.extent = labelExtent(label.text, inHeight);
-    // Centred half a line above the top face, clear of the body's outline.
+    // Half a line above the body and what it touches: clear of every outline of its pairs (a
+    // label below a pillar's top is crossed by the pillar's lines).
+    top = std::max(top, hi[2]);
     label.position =
-        makePoint(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), hi[2] + 0.5 * label.extent.height);
+        makePoint(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), top + 0.5 * label.extent.height);
     labels.push_back(std::move(label));
   }
   return labels;
@@ -356,10 +379,10 @@ void separateLabels(std::vector<Label>& ioLabels) {
 /// Appends to ioMarkers the bodies' labels, inHeight metres tall (rviz's scale.z: the height
 /// of a capital letter), facing the viewer.
 void appendNames(const FrameBoxes& inBoxes, const std::vector<std::size_t>& inDrawn,
-                 const BoxNames& inNames, const std_msgs::Header& inHeader,
-                 const std_msgs::ColorRGBA& inColor, double inHeight,
-                 visualization_msgs::MarkerArray& ioMarkers) {
-  std::vector<Label> labels = bodyLabels(inBoxes, inDrawn, inNames, inHeight);
+                 const BoxNames& inNames, const std::vector<double>& inContactTop,
+                 const std_msgs::Header& inHeader, const std_msgs::ColorRGBA& inColor,
+                 double inHeight, visualization_msgs::MarkerArray& ioMarkers) {
+  std::vector<Label> labels = bodyLabels(inBoxes, inDrawn, inNames, inContactTop, inHeight);
   separateLabels(labels);
   int32_t next_id = 0;
   for (Label& label : labels) {
@@ -475,8 +498,9 @@ MarkerCounts buildMarkers(const BoxFrame& inFrame, const PairList& inPairs,
     // Text scaled with the boxes it names, as the lines are: 6 line widths (0.6 of the mean
     // edge by default), about the smallest rviz's font stays legible at a view of the whole
     // scene.
-    appendNames(boxes, selection.colliding, *inNames, inHeader, inOptions.name_color, 6.0 * width,
-                outMarkers);
+    appendNames(boxes, selection.colliding, *inNames,
+                contactTops(boxes, index_of, inPairs, selection.drawn), inHeader,
+                inOptions.name_color, 6.0 * width, outMarkers);
   }
   return counts;
 }

@@ -60,9 +60,10 @@ using BoxNames = std::unordered_map<uint32_t, std::string>;
 /// given), whose boxes are drawn only when they collide. Under the max_boxes cap, whole pairs
 /// are drawn first (in pair order), then single sides while room is left.
 ///
-/// Labels: the named boxes of one source (the part of the name before ": ") that overlap or
-/// touch each other are one body with one label, "<source>: <part>, <part>", above the
-/// body's top; a label that would cover an earlier one is lifted above it.
+/// Labels: the named boxes of one source (the part of the name before ": ") that touch or
+/// nearly touch (less than a label's height apart) are one body with one label,
+/// "<source>: <part>, <part>", above the top of the body and of the boxes it pairs with; a
+/// label that would cover an earlier one is lifted above it.
 MarkerCounts buildMarkers(const BoxFrame& inFrame, const PairList& inPairs,
                           const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
                           visualization_msgs::MarkerArray& outMarkers,

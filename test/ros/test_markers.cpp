@@ -355,15 +355,16 @@ TEST(Markers, FramesWithAndWithoutPairsDrawBothSidesOfEveryPair) {
   EXPECT_GT(scenery_pairs, 0u) << "the scene must meet the scenery for this test to mean anything";
 }
 
-// A robot (body and three load cubes, all named, all touching each other) against a pillar of
-// the scenery, another robot against the same pillar: one label per robot naming its parts,
-// the two labels apart, the pillar drawn red.
+// A robot (body and three load cubes just above it, all named) against a pillar of the
+// scenery, another robot against the same pillar: one label per robot naming its parts, above
+// the pillar's top, the two labels apart, the pillar drawn red.
 TEST(Markers, PartsOfOneBodyShareOneLabelAndBodiesLabelsStayApart) {
   BoxSet robots;
   const double body_lo[3] = {0, 0, 0}, body_hi[3] = {1, 1, 1};
   robots.add(1000, body_lo, body_hi);
   for (uint32_t k = 0; k < 3; ++k) {
-    const double lo[3] = {0.3 * k, 0, 1}, hi[3] = {0.3 * k + 0.3, 0.3, 1.3};
+    // On the body, a little above it (as a robot's load): still part of the body.
+    const double lo[3] = {0.3 * k, 0, 1.05}, hi[3] = {0.3 * k + 0.3, 0.3, 1.35};
     robots.add(1001 + k, lo, hi);
   }
   const double other_lo[3] = {1.2, 0, 0}, other_hi[3] = {2.2, 1, 1};
@@ -389,6 +390,8 @@ TEST(Markers, PartsOfOneBodyShareOneLabelAndBodiesLabelsStayApart) {
   EXPECT_EQ(texts, (std::set<std::string>{"robot_a/boxes: body/0, load/0[0], load/0[1], load/0[2]",
                                           "robot_b/boxes: body/0"}));
   expectLabelsApart(markers);
+  for (const Marker* text : namesOf(markers))
+    EXPECT_GT(text->pose.position.z - 0.5 * text->scale.z, 2.0) << "above the pillar's top";
   const Marker* colliding = findNamespace(markers, kCollidingNamespace);
   ASSERT_NE(colliding, nullptr);
   EXPECT_EQ(wireframeBoxes(*colliding).count(boundsOf(pillar, 4)), 1u) << "the pillar is red";
