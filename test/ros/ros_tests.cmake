@@ -91,3 +91,9 @@ add_rostest(test/ros/hostile.test DEPENDENCIES ${PROJECT_NAME}_node)
 # frame, query boxes moved into ~fixed_frame, ids, filters, refusals naming the box, queries
 # while frames flow.
 add_rostest(test/ros/query.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_nodelets)
+
+# The rostest template of docs/NODE.md, as written there: the node answers a BoxArray with its
+# PairArray once the test has seen both connections; and NODE.md's copy equals the files.
+add_rostest(test/ros/template.test DEPENDENCIES ${PROJECT_NAME}_node)
+catkin_run_tests_target("pytest" "template_doc" "pytest-template_doc.xml"
+  COMMAND "/usr/bin/python3 -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/test_template_doc.py --junitxml=${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/pytest-template_doc.xml")
