@@ -96,9 +96,10 @@ class ExampleRobotsTest(unittest.TestCase):
             cls.empty_lists += ["%s/%d" % (m.ns, m.id) for m in msg.markers
                                 if m.action == Marker.ADD and m.type in LIST_TYPES
                                 and not m.points]
-            cls.drawn_by_stamp[msg.header.stamp.to_nsec()] = {
-                wireframe for m in msg.markers if m.ns == "colliding"
-                for wireframe in wireframes(m.points)}
+            if msg.markers:  # each marker has the frame's header (a MarkerArray has none)
+                cls.drawn_by_stamp[msg.markers[0].header.stamp.to_nsec()] = {
+                    wireframe for m in msg.markers if m.ns == "colliding"
+                    for wireframe in wireframes(m.points)}
             cls.names_drawn.update(m.text for m in msg.markers if m.ns == "names")
             cls.lock.notify_all()
 
