@@ -43,7 +43,7 @@ constexpr const char* kCollidingFillNamespace = "colliding_fill";
 constexpr const char* kNonCollidingNamespace = "non_colliding";
 constexpr const char* kPairLinkNamespace = "pair_links";
 /// One TEXT_VIEW_FACING marker per body that has names: the named colliding boxes of one
-/// source that touch each other share one label (ids 0, 1, ...).
+/// source that touch or nearly touch share one label (ids 0, 1, ...).
 constexpr const char* kNamesNamespace = "names";
 
 /// Box id -> the name users know it by (as on ~id_names); boxes without a name are absent.
