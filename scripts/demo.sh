@@ -22,10 +22,12 @@ while [ $# -gt 0 ]; do
 done
 
 mkdir -p "$ROOT/build"
-echo "demo: set-up and build (first run: several minutes; log in build/demo_setup.log)"
+echo "demo: set-up check: packages, sources mirrored, build (first run: several minutes;" \
+  "log in build/demo_setup.log)"
 "$ROOT/scripts/setup.sh" >"$ROOT/build/demo_setup.log" 2>&1 || {
   tail -n 20 "$ROOT/build/demo_setup.log" >&2
   echo "demo: set-up failed, see $ROOT/build/demo_setup.log" >&2; exit 1; }
+grep '^setup: ' "$ROOT/build/demo_setup.log" | sed 's/^setup: /demo: set-up: /' || true
 source "$ROOT/scripts/env.sh"
 
 # OpenMP threads sleep at barriers rather than spin (see README.md, "Threads").

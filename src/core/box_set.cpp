@@ -176,18 +176,23 @@ void BoxSet::add(uint32_t inId, const double inMin[3], const double inMax[3], ui
 
 namespace {
 
+// "1 box", "2 boxes": inCount and the noun that agrees with it.
+std::string countOf(std::size_t inCount, const char* inOne, const char* inMany) {
+  return std::to_string(inCount) + " " + (inCount == 1 ? inOne : inMany);
+}
+
 // Why the arrays of inBoxes cannot form a span, if they cannot.
 std::optional<ValidationError> shapeProblem(const BoxSet& inBoxes) {
   const std::size_t n = inBoxes.size();
   if (inBoxes.bounds.size() != kBoundsPerBox * n)
-    return shapeError("bounds has " + std::to_string(inBoxes.bounds.size()) + " values for " +
-                      std::to_string(n) + " ids (6 a box)");
+    return shapeError("bounds has " + countOf(inBoxes.bounds.size(), "value", "values") + " for " +
+                      countOf(n, "id", "ids") + " (6 a box)");
   if (!inBoxes.groups.empty() && inBoxes.groups.size() != n)
-    return shapeError("groups has " + std::to_string(inBoxes.groups.size()) + " entries for " +
-                      std::to_string(n) + " boxes");
+    return shapeError("groups has " + countOf(inBoxes.groups.size(), "entry", "entries") + " for " +
+                      countOf(n, "box", "boxes"));
   if (!inBoxes.masks.empty() && inBoxes.masks.size() != n)
-    return shapeError("masks has " + std::to_string(inBoxes.masks.size()) + " entries for " +
-                      std::to_string(n) + " boxes");
+    return shapeError("masks has " + countOf(inBoxes.masks.size(), "entry", "entries") + " for " +
+                      countOf(n, "box", "boxes"));
   return std::nullopt;
 }
 

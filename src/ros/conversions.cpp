@@ -10,11 +10,17 @@ namespace sap_broadphase {
 
 namespace {
 
+/// "1 box", "2 boxes": inCount and the noun that agrees with it.
+std::string countOf(std::size_t inCount, const char* inOne, const char* inMany) {
+  return std::to_string(inCount) + " " + (inCount == 1 ? inOne : inMany);
+}
+
 // Says what the sender can change: the two lengths that disagree and the two valid choices.
 std::string lengthError(const char* inField, std::size_t inLength, std::size_t inBoxes) {
-  return std::string(inField) + " has " + std::to_string(inLength) + " entries but bounds holds " +
-         std::to_string(inBoxes) + " boxes (" + std::to_string(6 * inBoxes) +
-         " values): give one " + inField + " entry per box, or none";
+  return std::string(inField) + " has " + countOf(inLength, "entry", "entries") +
+         " but bounds holds " + countOf(inBoxes, "box", "boxes") + " (" +
+         countOf(6 * inBoxes, "value", "values") + "): give one " + inField +
+         " entry per box, or none";
 }
 
 }  // namespace

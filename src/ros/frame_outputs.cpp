@@ -102,12 +102,12 @@ bool FrameOutputs::wantsMarkers() const {
 }
 
 MarkerCounts FrameOutputs::publishMarkers(const BoxFrame& inWorld, const PairList& inPairs,
-                                          const std_msgs::Header& inHeader,
-                                          const BoxNames& inNames) {
+                                          const std_msgs::Header& inHeader, const BoxNames& inNames,
+                                          const BoxFrame* inScenery) {
   if (!wantsMarkers()) return MarkerCounts{};
   auto markers = boost::make_shared<visualization_msgs::MarkerArray>();
   const MarkerCounts counts =
-      buildMarkers(inWorld, inPairs, inHeader, markers_, *markers, &inNames);
+      buildMarkers(inWorld, inPairs, inHeader, markers_, *markers, &inNames, inScenery);
   markers_pub_.publish(markers);
   return counts;
 }

@@ -37,9 +37,10 @@ class FrameOutputs {
   /// True when markers are on and somebody subscribes to them (a frame then needs its boxes).
   bool wantsMarkers() const;
   /// Publishes the markers of the world and its pairs, with the names of inNames, while someone
-  /// listens.
+  /// listens; the scenery's boxes (when given) that are in a pair are drawn too.
   MarkerCounts publishMarkers(const BoxFrame& inWorld, const PairList& inPairs,
-                              const std_msgs::Header& inHeader, const BoxNames& inNames);
+                              const std_msgs::Header& inHeader, const BoxNames& inNames,
+                              const BoxFrame* inScenery = nullptr);
   /// Takes marker settings changed at run time: `markers` advertised or shut down.
   void setMarkers(bool inPublishMarkers, const MarkerOptions& inMarkers);
 

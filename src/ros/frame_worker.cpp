@@ -315,9 +315,10 @@ void FrameWorker::computeFrame() {
   frame.ms_message = outputs_.publishPairs(*pairs, frame.header);
   frame.ms_total = millisecondsSince(start);
   outputs_.publishEvents(engine_.events(), *pairs, frame.header);
-  // The boxes just loaded, read where the sources keep them.
+  // The boxes just loaded, read where the sources keep them, and the scenery they meet.
+  const BoxFrame scenery = scenery_ ? BoxFrame(scenery_->span()) : BoxFrame();
   const MarkerCounts markers =
-      outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.idNames());
+      outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.idNames(), &scenery);
   frame.marker_boxes = markers.drawn;
   frame.marker_boxes_omitted = markers.colliding_omitted;
   status_.frameComputed(frame, engine_.stats());

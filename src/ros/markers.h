@@ -36,28 +36,45 @@ struct MarkerCounts {
   uint32_t colliding_omitted = 0;
 };
 
-/// Namespaces of the markers, one LINE_LIST each (the fill: a TRIANGLE_LIST).
+/// Namespaces of the markers, one LINE_LIST each (the fill: a TRIANGLE_LIST), each sent only
+/// when it has points (rviz shows an empty list marker as an error).
 constexpr const char* kCollidingNamespace = "colliding";
 constexpr const char* kCollidingFillNamespace = "colliding_fill";
 constexpr const char* kNonCollidingNamespace = "non_colliding";
 constexpr const char* kPairLinkNamespace = "pair_links";
-/// One TEXT_VIEW_FACING marker per named colliding box (ids 0, 1, ... in drawing order).
+/// One TEXT_VIEW_FACING marker per body that has names: the named colliding boxes of one
+/// source that touch or nearly touch share one label (ids 0, 1, ...).
 constexpr const char* kNamesNamespace = "names";
 
 /// Box id -> the name users know it by (as on ~id_names); boxes without a name are absent.
 using BoxNames = std::unordered_map<uint32_t, std::string>;
 
 /// Fills outMarkers (replaced): a DELETEALL, then the colliding boxes of inPairs as one
-/// LINE_LIST (24 points a box, always present, maybe empty), their faces as a TRIANGLE_LIST
-/// (36 points a box, when any), then, if enabled and not empty, the non-colliding boxes and the
-/// pair links, and, if enabled, the name of each drawn colliding box inNames holds (when given)
-/// as a text above the box. Header (frame and stamp) from inHeader. The boxes are those of
-/// inFrame, whatever spans hold them. A pair may name a box inFrame does not hold (the scenery
-/// of static_boxes): its box in inFrame is drawn as colliding, the other is not drawn and has
-/// no link.
+/// LINE_LIST (24 points a box) and their faces as a TRIANGLE_LIST (36 points a box), both only
+/// when some box collides; then, if enabled and not empty, the non-colliding boxes of inFrame and
+/// the pair links (box centre to box centre); and, if enabled, labels naming the drawn colliding
+/// boxes that inNames (when given) names. Header (frame and stamp) from inHeader.
+///
+/// Both sides of a pair are drawn: a pair's box is looked up in inFrame (whatever spans hold
+/// it) and else in inScenery (the static_boxes the engine pairs the moving boxes with; when
+/// given), whose boxes are drawn only when they collide. Under the max_boxes cap, whole pairs
+/// are drawn first (in pair order), then single sides while room is left.
+///
+/// Labels: the named boxes of one source (the part of the name before ": ") that touch or
+/// nearly touch (less than a label's height apart) are one body with one label,
+/// "<source>: <part>, <part>", above the top of the body and of the boxes it pairs with; a
+/// label that would cover an earlier one is lifted above it.
 MarkerCounts buildMarkers(const BoxFrame& inFrame, const PairList& inPairs,
                           const std_msgs::Header& inHeader, const MarkerOptions& inOptions,
                           visualization_msgs::MarkerArray& outMarkers,
-                          const BoxNames* inNames = nullptr);
+                          const BoxNames* inNames = nullptr, const BoxFrame* inScenery = nullptr);
+
+/// The room a label of inText, inHeight metres tall (rviz's scale.z), takes: its width
+/// (estimated from its length: rviz centres the text on its position) and height, in metres.
+struct LabelExtent {
+  double width;
+  double height;
+};
+LabelExtent labelExtent(const std::string& inText, double inHeight);
 
 }  // namespace sap_broadphase

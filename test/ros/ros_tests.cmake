@@ -102,3 +102,9 @@ add_rostest(test/ros/startup.test DEPENDENCIES ${PROJECT_NAME}_node)
 # own, of every source type: every message reaches the world (the publisher check is never
 # counted as a subscriber).
 add_rostest(test/ros/one_shot.test DEPENDENCIES ${PROJECT_NAME}_node)
+
+# The rostest template of docs/NODE.md, as written there: the node answers a BoxArray with its
+# PairArray once the test has seen both connections; and NODE.md's copy equals the files.
+add_rostest(test/ros/template.test DEPENDENCIES ${PROJECT_NAME}_node)
+catkin_run_tests_target("pytest" "template_doc" "pytest-template_doc.xml"
+  COMMAND "/usr/bin/python3 -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/test_template_doc.py --junitxml=${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/pytest-template_doc.xml")

@@ -665,7 +665,7 @@ TEST(Overrides, IdOffsetOverflowIsRefusedByTheEngine) {
   EXPECT_EQ(error->problem, BoxProblem::kIdOverflow) << error->message();
   // A shape the records cannot take is the adapter's to refuse.
   boxes.ids = {1};
-  EXPECT_EQ(adapter.convertBoxArray(boxes, frame).value_or("").rfind("ids has 1 entries", 0), 0u);
+  EXPECT_EQ(adapter.convertBoxArray(boxes, frame).value_or("").rfind("ids has 1 entry but", 0), 0u);
 }
 
 XmlRpc::XmlRpcValue entry(const std::string& inTopic) {

@@ -3,13 +3,15 @@
 subscribed) runs as a user starts it: each robot, robot_a publishing a MarkerArray and robot_b a BoxArray in its own moving tf
 frame, meets the map's pillar on its path and the pair shows in `pairs`; id_names names
 robot_a's markers; `markers` keeps drawing colliding boxes while the robots meet the map's
-scenery and writes robot_a's names above its colliding boxes; the Python client example (examples/ros/pairs_client.py) answers with the
+scenery, the map's box of each such pair drawn too, no list marker without points, and
+writes robot_a's names above its colliding boxes; the Python client example (examples/ros/pairs_client.py) answers with the
 pairs of its own boxes and prints frames of the node. Also: every parameter of
 config/default.yaml is an argument of both launch files.
 
 No timing is asserted: every wait is for a condition, bounded by WAIT only so that a broken
 system fails the test instead of hanging it.
 """
+import importlib.util
 import os
 import re
 import subprocess
@@ -21,13 +23,42 @@ import rospy
 import rostest
 import yaml
 from sap_broadphase.msg import IdNames, PairArray
-from visualization_msgs.msg import MarkerArray
+from visualization_msgs.msg import Marker, MarkerArray
 
 PACKAGE = "sap_broadphase"
 WAIT = 120.0  # seconds; a bound on waiting (robot_b reaches its pillar after half a turn)
 MAP_IDS = range(0, 6)
 ROBOT_A_IDS = range(1000, 2000)
 ROBOT_B_IDS = range(2000, 2004)
+LIST_TYPES = (Marker.LINE_LIST, Marker.LINE_STRIP, Marker.TRIANGLE_LIST, Marker.CUBE_LIST,
+              Marker.SPHERE_LIST, Marker.POINTS)
+
+
+def rounded(values):
+    return tuple(round(v, 6) for v in values)
+
+
+def wireframes(points):
+    """The boxes of a colliding LINE_LIST (24 points a box), as rounded bounds."""
+    boxes = []
+    for k in range(0, len(points) - 23, 24):
+        corners = points[k:k + 24]
+        boxes.append(rounded([min(p.x for p in corners), min(p.y for p in corners),
+                              min(p.z for p in corners), max(p.x for p in corners),
+                              max(p.y for p in corners), max(p.z for p in corners)]))
+    return boxes
+
+
+def map_boxes():
+    """The map's boxes by id, as examples/ros/example_map.py publishes them (room of 14 m)."""
+    path = os.path.join(rospkg.RosPack().get_path(PACKAGE), "examples", "ros", "example_map.py")
+    spec = importlib.util.spec_from_file_location("example_map", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return {k: rounded(box) for k, box in enumerate(module.map_boxes(14.0))}
+
+
+MAP_BOXES = map_boxes()
 
 
 class ExampleRobotsTest(unittest.TestCase):
@@ -43,13 +74,18 @@ class ExampleRobotsTest(unittest.TestCase):
         # the map's scenery included.
         cls.colliding_drawn = 0
         cls.names_drawn = set()  # texts of the `names` markers
+        cls.empty_lists = []  # "ns/id" of list markers added without points (rviz: Error)
+        cls.pairs_by_stamp = {}  # stamp -> pairs of that frame
+        cls.drawn_by_stamp = {}  # stamp -> boxes of the `colliding` list, rounded bounds
         rospy.Subscriber("markers", MarkerArray, cls.on_markers, queue_size=10)
 
     @classmethod
     def on_pairs(cls, msg):
         with cls.lock:
             ids = msg.pairs
-            cls.pairs_seen.update((ids[k], ids[k + 1]) for k in range(0, len(ids), 2))
+            pairs = [(ids[k], ids[k + 1]) for k in range(0, len(ids), 2)]
+            cls.pairs_seen.update(pairs)
+            cls.pairs_by_stamp[msg.header.stamp.to_nsec()] = pairs
             cls.lock.notify_all()
 
     @classmethod
@@ -57,6 +93,13 @@ class ExampleRobotsTest(unittest.TestCase):
         with cls.lock:
             if any(m.ns == "colliding" and m.points for m in msg.markers):
                 cls.colliding_drawn += 1
+            cls.empty_lists += ["%s/%d" % (m.ns, m.id) for m in msg.markers
+                                if m.action == Marker.ADD and m.type in LIST_TYPES
+                                and not m.points]
+            if msg.markers:  # each marker has the frame's header (a MarkerArray has none)
+                cls.drawn_by_stamp[msg.markers[0].header.stamp.to_nsec()] = {
+                    wireframe for m in msg.markers if m.ns == "colliding"
+                    for wireframe in wireframes(m.points)}
             cls.names_drawn.update(m.text for m in msg.markers if m.ns == "names")
             cls.lock.notify_all()
 
@@ -114,6 +157,25 @@ class ExampleRobotsTest(unittest.TestCase):
         self.wait_for(lambda: len(self.names) >= len(expected))
         with self.lock:
             self.assertEqual(self.names, expected)
+
+    def map_pair_drawn(self):
+        """A frame with a robot-map pair whose markers arrived: (pair, map box drawn)."""
+        for stamp in set(self.pairs_by_stamp) & set(self.drawn_by_stamp):
+            for a, b in self.pairs_by_stamp[stamp]:
+                if a in MAP_IDS and b not in MAP_IDS:
+                    return (a, b), MAP_BOXES[a] in self.drawn_by_stamp[stamp]
+        return None
+
+    def test_markers_draw_both_sides_and_no_empty_list(self):
+        # The scenery's box of a pair turns red as the robot's does; a frame without pairs
+        # sends no empty list marker (rviz would show the display in Error).
+        self.assertTrue(self.wait_for(lambda: self.map_pair_drawn() is not None),
+                        "no frame whose pairs and markers both arrived with a map pair")
+        with self.lock:
+            pair, drawn = self.map_pair_drawn()
+            self.assertTrue(drawn, "map box %d of pair %s not in the colliding markers"
+                            % (pair[0], pair))
+            self.assertEqual(self.empty_lists, [], "list markers added without points")
 
     def test_markers_name_robot_a_colliding_boxes(self):
         # robot_a's boxes are named (MarkerArray source) and collide with the map on its way;
