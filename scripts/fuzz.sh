@@ -5,7 +5,7 @@
 #   scripts/fuzz.sh                       # 20000 runs per target
 #   scripts/fuzz.sh --runs 100000
 #   scripts/fuzz.sh --seconds 120         # per target
-#   scripts/fuzz.sh --target text         # one target: text, boxset, box_array, sequence or wire
+#   scripts/fuzz.sh --target text         # one target: text, boxset, box_array, sequence, wire or settings
 #   scripts/fuzz.sh --save                # merge new coverage into fuzz/corpus/ afterwards
 #   scripts/fuzz.sh --junit FILE          # also write each target's verdict as a JUnit test case
 #
@@ -14,7 +14,9 @@
 # conversions, engine vs oracle), fuzz_sequence (the input picks a configuration, with every
 # skip switchable, and the edits between frames; one engine, every frame vs the oracle,
 # fuzz/sequence_checks.h), fuzz_wire (every type the node reads from the wire, arbitrary,
-# truncated and lying bytes through WireLayout and roscpp, fuzz/wire_checks.h). The ROS
+# truncated and lying bytes through WireLayout and roscpp, fuzz/wire_checks.h), fuzz_settings
+# (every value of any kind through the engine's field table as rosparam, reconfigure requests
+# and Python carry them, and every row of the limits table, fuzz/settings_checks.h). The ROS
 # message headers are generated here with gencpp, so
 # no catkin workspace is needed. Crashes land in build/fuzz/crashes/; copy each one into
 # fuzz/regressions/<target>/ so that test_fuzz_replay (test/stress) replays it for ever.
@@ -24,7 +26,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT="$ROOT/build/fuzz"
 RUNS=20000
 SECONDS_PER_TARGET=""
-TARGETS=(text boxset box_array sequence wire)
+TARGETS=(text boxset box_array sequence wire settings)
 SAVE=0
 JUNIT=""
 while [ $# -gt 0 ]; do
@@ -79,6 +81,7 @@ export CXX FLAGS INCLUDES ROOT newest_header
 sources=("$ROOT"/src/core/*.cpp "$ROOT/src/ros/conversions.cpp" "$ROOT/fuzz/fuzz_checks.cpp" \
          "$ROOT/fuzz/box_array_checks.cpp" "$ROOT/fuzz/sequence_checks.cpp" \
          "$ROOT/fuzz/wire_checks.cpp" "$ROOT/src/ros/wire_layout.cpp" \
+         "$ROOT/fuzz/settings_checks.cpp" \
          "$ROOT/test/stress/stress_sequences.cpp" "$ROOT"/fuzz/fuzz_*.cpp)
 for src in "${sources[@]}"; do echo "$src $OUT/obj/$(basename "$src" .cpp).o"; done | \
   xargs -P2 -n2 bash -c 'compile "$0" "$1"'
@@ -97,6 +100,7 @@ link box_array "$OUT/obj/box_array_checks.o" "$OUT/obj/conversions.o" \
 link sequence "$OUT/obj/sequence_checks.o"
 link wire "$OUT/obj/wire_checks.o" "$OUT/obj/wire_layout.o" -lroscpp_serialization -lrostime \
   -lcpp_common
+link settings "$OUT/obj/settings_checks.o"
 
 # Runs: ASan must not abort on allocations it cannot serve (roscpp-style bad_alloc is
 # handled by the targets); OpenMP threads wait passively on this small machine.

@@ -7,7 +7,9 @@
 #include <pybind11/pybind11.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <shared_mutex>
 #include <string>
@@ -122,7 +124,17 @@ py::array_t<uint32_t> pairArray(std::vector<Record>&& inRecords) {
 
 sb::ConfigValue configValue(const std::string& inName, const py::handle& inValue) {
   if (py::isinstance<py::bool_>(inValue)) return inValue.cast<bool>();
-  if (py::isinstance<py::int_>(inValue)) return inValue.cast<int64_t>();
+  if (py::isinstance<py::int_>(inValue)) {
+    // An int beyond int64 goes on as the number it is (infinite past a double), so that the
+    // field's row refuses it in words (ValueError), not pybind11's cast (RuntimeError).
+    int overflow = 0;
+    const long long integer = PyLong_AsLongLongAndOverflow(inValue.ptr(), &overflow);
+    if (overflow == 0) return static_cast<int64_t>(integer);
+    const double number = PyLong_AsDouble(inValue.ptr());
+    if (number != -1.0 || !PyErr_Occurred()) return number;
+    PyErr_Clear();  // past a double
+    return overflow * std::numeric_limits<double>::infinity();
+  }
   if (py::isinstance<py::float_>(inValue)) return inValue.cast<double>();
   if (py::isinstance<py::str>(inValue)) return inValue.cast<std::string>();
   if (inValue.is_none() && inName == "skin") return std::string("auto");

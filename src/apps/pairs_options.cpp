@@ -55,8 +55,10 @@ std::string parsePairsOptions(int inArgc, char** inArgv, PairsOptions& outOption
     } else if (arg == "--threads") {
       int64_t threads = 0;
       if (!cursor.takeValue(arg, value, error)) return error;
-      if (!parseInteger(value, 1, 4096, threads))
-        return "bad --threads value '" + value + "' (an integer from 1 to 4096)";
+      const Limit& limit = *findLimit("sap_pairs, sap_pairs_mpi", "--threads");
+      if (!parseInteger(value, 1, static_cast<int64_t>(limit.max), threads))
+        return "bad --threads value '" + value + "' (" + limit.allowed + ": at most " +
+               std::to_string(maxThreads()) + " on this machine)";
       outOptions.threads = static_cast<int>(threads);
     } else if (arg == "--method") {
       if (!cursor.takeValue(arg, value, error)) return error;

@@ -30,7 +30,7 @@ const char* const kUsage =
     "\n"
     "Prints every overlapping pair as 'a b' (a < b), one a line, sorted by (a, b).\n"
     "\n"
-    "  --threads N   worker threads, N >= 1 (default: all cores)\n"
+    "  --threads N   worker threads, 1 to 4 a processor (default: all cores)\n"
     "  --method M    sap: parallel sweep-and-prune, sequential for small inputs (default)\n"
     "                sequential: the sequential sweep;  brute: test every pair (oracle)\n"
     "  --count       print only the number of pairs\n"

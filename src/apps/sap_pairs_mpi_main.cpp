@@ -35,7 +35,7 @@ const char* const kUsage =
     "blocks of file order; each rank computes one slab of the x axis; rank 0 prints every\n"
     "overlapping pair as 'a b' (a < b), one a line, sorted by (a, b).\n"
     "\n"
-    "  --threads N   worker threads of each rank, N >= 1 (default: all cores)\n"
+    "  --threads N   worker threads of each rank, 1 to 4 a processor (default: all cores)\n"
     "  --method M    each rank's engine: sap (default), sequential or brute\n"
     "  --count       print only the number of pairs\n"
     "  --stats       print one line a rank to stderr: its boxes, its slab's boxes, its border\n"

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cli_args.h"
+#include "sap_broadphase/core/config.h"
 #include "sap_broadphase/core/scenes.h"
 #include "sap_broadphase/core/text_io.h"
 
@@ -56,18 +57,25 @@ std::string parseOptions(int inArgc, char** inArgv, SceneConfig& ioConfig, int& 
     if (!cursor.takeValue(arg, value, error)) return error;
     int64_t integer = 0;
     uint64_t seed = 0;
-    const std::string bad = "bad " + arg + " value '" + value + "'";
+    const Limit* limit = findLimit("sap_scene", arg);  // --n, --density, --frame, --frames
+    const std::string bad = "bad " + arg + " value '" + value + "'" +
+                            (limit ? std::string(" (") + limit->allowed + ")" : std::string());
+    // An integer flag within its row of the limits table.
+    auto integerOf = [&]() {
+      return cli::parseInteger(value, static_cast<int64_t>(limit->min),
+                               static_cast<int64_t>(limit->max), integer);
+    };
     if (arg == "--scene") {
       if (!parseSceneKind(value, ioConfig.kind)) return bad + " (uniform, ball or plane)";
     } else if (arg == "--n") {
-      if (!cli::parseInteger(value, 0, static_cast<int64_t>(kMaxBoxes), integer))
-        return bad + " (an integer from 0 to " + std::to_string(kMaxBoxes) + ")";
+      if (!integerOf()) return bad;
       ioConfig.n = static_cast<std::size_t>(integer);
     } else if (arg == "--density") {
-      if (!cli::parseFiniteDouble(value, ioConfig.density) || !(ioConfig.density > 0.0))
-        return bad + " (a finite number > 0)";
+      double density = 0.0;
+      if (!cli::parseFiniteDouble(value, density) || limitProblem(*limit, density)) return bad;
+      ioConfig.density = density;
     } else if (arg == "--frame") {
-      if (!cli::parseInteger(value, 0, INT32_MAX, integer)) return bad + " (an integer >= 0)";
+      if (!integerOf()) return bad;
       outFrame = static_cast<int>(integer);
     } else if (arg == "--seed") {
       if (!cli::parseUnsigned64(value, seed)) return bad + " (an unsigned 64-bit integer)";
@@ -75,7 +83,7 @@ std::string parseOptions(int inArgc, char** inArgv, SceneConfig& ioConfig, int& 
     } else if (arg == "--axis") {
       if (!cli::parseAxisName(value, ioConfig.plane_axis)) return bad + " (x, y or z)";
     } else {  // --frames
-      if (!cli::parseInteger(value, 2, INT32_MAX, integer)) return bad + " (an integer >= 2)";
+      if (!integerOf()) return bad;
       ioConfig.frames = static_cast<int>(integer);
     }
   }

@@ -229,8 +229,8 @@ void Broadphase::Impl::addSceneryPairs(const BoxColumns& inBoxes, int inThreads)
 void Broadphase::Impl::describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta) {
   report.path = inPlan.path;
   report.threads = inPlan.threads;
-  report.skin = inPlan.skin;
-  report.skin_choice = inPlan.skin_choice;
+  report.skin = skin.overBudget() ? 0.0 : inPlan.skin;
+  report.skin_choice = skin.overBudget() ? SkinChoice::kOverBudget : inPlan.skin_choice;
   report.moved_boxes = inDelta.moved_boxes;
   report.max_displacement = inDelta.max_displacement;
   report.static_boxes = scenery.size();

@@ -150,13 +150,18 @@ std::optional<std::optional<double>> asSkin(const ConfigValue& inValue) {
   } else {
     return std::nullopt;
   }
-  if (skin && !(*skin >= 0.0 && std::isfinite(*skin))) return std::nullopt;
+  if (skin && !(*skin >= 0.0 && *skin <= kMaxSkin)) return std::nullopt;
   return skin;
 }
 
-// The one wording of a refused value.
+// The one wording of a refused value. A bound that depends on the machine (threads) is
+// named as it is here.
 std::string refusal(const ConfigField& inField, const ConfigValue& inValue) {
-  return std::string(inField.name) + " must be " + inField.allowed + ", not " + valueText(inValue);
+  std::string text =
+      std::string(inField.name) + " must be " + inField.allowed + ", not " + valueText(inValue);
+  if (std::string(inField.name) == "threads")
+    text += " (at most " + std::to_string(maxThreads()) + " on this machine)";
+  return text;
 }
 
 bool inRange(const ConfigField& inField, double inValue) {
@@ -255,25 +260,29 @@ constexpr double kLargestCount = 9007199254740992.0;
 
 std::vector<ConfigField> makeConfigFields() {
   return {
-      {"threads", ConfigFieldType::kInteger, "0", 0.0, kLargestInt,
-       "an integer >= 0 (0 = all cores)",
+      {"threads", ConfigFieldType::kInteger, "0", 0.0, static_cast<double>(maxThreads()),
+       "an integer from 0 to 4 a processor (0 = all cores)",
        "worker threads; 0 = all cores, or one where one is measured faster (method auto)",
+       "at most 4 a processor (kMaxThreadsPerProcessor x omp_get_num_procs): more only wait at "
+       "the sweep's barriers, and OpenMP starts every one (999 on 2 cores: 110 s a frame; "
+       "100000: no address space left)",
        getInteger<&C::threads>, setInteger<&C::threads>},
       {"method", ConfigFieldType::kMethod, "auto", 0.0, 0.0, "auto, parallel, sequential or brute",
        "auto: one thread below parallel_min_boxes boxes or with one thread, else parallel; brute: "
        "every pair tested (the oracle)",
-       getMethod, setMethod},
+       "the engine's methods", getMethod, setMethod},
       {"primary_axis", ConfigFieldType::kAxis, "x", 0.0, 2.0, "x, y or z (or 0, 1, 2)",
-       "first sweep axis", getAxis<&C::primary_axis>, setAxis<&C::primary_axis>},
+       "first sweep axis", "three axes", getAxis<&C::primary_axis>, setAxis<&C::primary_axis>},
       {"secondary_axis", ConfigFieldType::kAxis, "y", 0.0, 2.0, "x, y or z (or 0, 1, 2)",
-       "second sweep axis; must differ from primary_axis", getAxis<&C::secondary_axis>,
-       setAxis<&C::secondary_axis>},
+       "second sweep axis; must differ from primary_axis", "three axes",
+       getAxis<&C::secondary_axis>, setAxis<&C::secondary_axis>},
       {"axis_swapping", ConfigFieldType::kBool, "true", 0.0, 1.0, "true or false",
-       "swap a clustered sweep axis with the unused one (section 5 of the paper)",
+       "swap a clustered sweep axis with the unused one (section 5 of the paper)", "a switch",
        getBool<&C::axis_swapping>, setBool<&C::axis_swapping>},
       {"axis_swap_threshold", ConfigFieldType::kNumber, "0.25", 0.0, kInfinity, "a number >= 0",
-       "dispersion D above which a sweep axis is swapped", getNumber<&C::axis_swap_threshold>,
-       setNumber<&C::axis_swap_threshold>},
+       "dispersion D above which a sweep axis is swapped",
+       "D is >= 0; +inf never swaps; NaN and negatives mean nothing",
+       getNumber<&C::axis_swap_threshold>, setNumber<&C::axis_swap_threshold>},
       // The one cut-off of method auto. Measured against the one-thread engine with
       // sap_microbench's BM_SmallFrame (uniform scenes, CPU time of one thread): the small
       // frame stays ahead up to 2^15 boxes at density 0.35 and beyond 2^16 at 0.05. Against the
@@ -289,21 +298,26 @@ std::vector<ConfigField> makeConfigFields() {
        "an integer >= 0",
        "method auto: frames below this many boxes run on one thread (the small-frame path, or "
        "the sequential sweep under a fixed skin)",
+       "a count of boxes (2^53: every count a double holds exactly)",
        getInteger<&C::parallel_min_boxes>, setInteger<&C::parallel_min_boxes>},
       {"third_axis_slabs", ConfigFieldType::kInteger, "0", 0.0,
        static_cast<double>(kMaxThirdAxisSlabs), "an integer in 0..64 (0 = auto)",
        "active lists per slab of the unused axis: 0 = auto, 1 = the paper's single list",
+       "slab numbers are stored in 8 bits, and more slabs cost inserts for large boxes",
        getInteger<&C::third_axis_slabs>, setInteger<&C::third_axis_slabs>},
       {"reuse_unchanged_frames", ConfigFieldType::kBool, "true", 0.0, 1.0, "true or false",
-       "a frame bit for bit equal to the previous one returns its pairs",
+       "a frame bit for bit equal to the previous one returns its pairs", "a switch",
        getBool<&C::reuse_unchanged_frames>, setBool<&C::reuse_unchanged_frames>},
-      {"skin", ConfigFieldType::kSkin, "auto", 0.0, kInfinity,
-       "auto, off (or 0) or a finite skin >= 0 in the boxes' units",
+      {"skin", ConfigFieldType::kSkin, "auto", 0.0, kMaxSkin,
+       "auto, off (or 0) or a skin in 0..3e38 in the boxes' units",
        "kept candidates: sweep boxes grown by skin / 2 a side; auto chooses it from the motion",
+       "grown keys are float32 (3e38 is below their largest); what a skin may cost in kept "
+       "candidates is the engine's budget (kMaxKeptCandidatesPerBox), past which it sweeps "
+       "plainly",
        getSkin, setSkin},
       {"exact_final_test", ConfigFieldType::kBool, "true", 0.0, 1.0, "true or false",
        "false: report pairs whose float32 keys overlap (faster, may report extra pairs)",
-       getBool<&C::exact_final_test>, setBool<&C::exact_final_test>},
+       "a switch", getBool<&C::exact_final_test>, setBool<&C::exact_final_test>},
   };
 }
 
@@ -335,6 +349,10 @@ bool sameConfig(const BroadphaseConfig& inA, const BroadphaseConfig& inB) {
   return true;
 }
 
+int maxThreads() {
+  return kMaxThreadsPerProcessor * std::max(1, omp_get_num_procs());
+}
+
 int resolveThreadCount(int inRequested) {
   return inRequested > 0 ? inRequested : std::max(1, omp_get_max_threads());
 }
@@ -349,6 +367,127 @@ std::optional<std::string> configProblem(const BroadphaseConfig& inConfig) {
     return std::string("primary_axis and secondary_axis must differ, not both ") +
            axisName(inConfig.primary_axis);
   return std::nullopt;
+}
+
+// ---- The limits table ----
+
+namespace {
+
+constexpr const char* kEngineEntry = "engine setting";
+constexpr const char* kNodeEntry = "node parameter";
+constexpr const char* kReconfigureEntry = "dynamic_reconfigure";
+constexpr const char* kTextEntry = "box text reader";
+constexpr const char* kMessageEntry = "topics and services";
+
+constexpr const char* kEngineViolation =
+    "start-up: FATAL, exit 1; reconfigure: refused, the old value returned; Python: ValueError; "
+    "C++: std::invalid_argument";
+constexpr const char* kNodeViolation = "FATAL naming it at start-up, the node exits 1";
+constexpr const char* kReconfigureViolation =
+    "refused with a warning naming it; the returned config holds the settings in force";
+constexpr const char* kCliViolation = "exit 2, the flag and its range on stderr, nothing on stdout";
+
+// ros::Duration keeps whole seconds in an int32: the longest span it holds.
+constexpr double kLongestDuration = 2147483647.0;
+constexpr double kLargestInt32 = 2147483647.0;
+
+// The engine's fields as rows of the limits table.
+void addEngineLimits(std::vector<Limit>& ioLimits) {
+  for (const ConfigField& field : configFields()) {
+    const bool ranged = field.type == ConfigFieldType::kInteger ||
+                        field.type == ConfigFieldType::kNumber ||
+                        field.type == ConfigFieldType::kSkin;
+    ioLimits.push_back({kEngineEntry, field.name, ranged ? field.min : 0.0,
+                        ranged ? field.max : 0.0, false, field.allowed, field.reason,
+                        kEngineViolation});
+  }
+}
+
+std::vector<Limit> makeLimits() {
+  std::vector<Limit> rows;
+  addEngineLimits(rows);
+  const std::vector<Limit> others = {
+      {kNodeEntry, "~rate", 1e-9, 1e6, true, "0 (a frame per delivery) or 1e-9..1e6 Hz",
+       "the period 1 / rate is a ros::Duration (at most 2^31 - 1 s; below 4.7e-10 Hz roscpp "
+       "aborts); above 1 MHz a timer only fires as fast as it can",
+       kNodeViolation},
+      {kNodeEntry, "~source_timeout", 0.0, kLongestDuration, false,
+       "0 (never) or up to 2147483647 s", "a ros::Duration", kNodeViolation},
+      {kNodeEntry, "~transform_timeout", 0.0, kLongestDuration, false, "0..2147483647 s",
+       "a ros::Duration", kNodeViolation},
+      {kNodeEntry, "~refusal_log_period", 0.0, kLongestDuration, false, "0..2147483647 s",
+       "a ros::Duration", kNodeViolation},
+      {kNodeEntry, "~boxes_queue_size", 1.0, 1000.0, false, "1..1000",
+       "each queued message may hold a whole frame (up to 1 GB); 0 is roscpp's unbounded queue",
+       kNodeViolation},
+      {kNodeEntry, "~pairs_queue_size", 1.0, 1000.0, false, "1..1000",
+       "each queued message holds a frame's pairs; 0 is roscpp's unbounded queue", kNodeViolation},
+      {kNodeEntry, "~max_marker_boxes", 0.0, 1000000.0, false, "0..1000000",
+       "a marker array of a million boxes is some 400 MB; rviz draws far fewer", kNodeViolation},
+      {kNodeEntry, "~marker_line_width", 0.0, 1e6, false,
+       "0 (10 % of the mean edge) or up to "
+       "1e6 m",
+       "a width in metres; NaN and infinity draw nothing", kNodeViolation},
+      {kReconfigureEntry, "max_marker_boxes", 0.0, 1000000.0, false, "0..1000000",
+       "as ~max_marker_boxes", kReconfigureViolation},
+      {kReconfigureEntry, "marker_line_width", 0.0, 1e6, false,
+       "0 (10 % of the mean edge) or up to 1e6 m", "as ~marker_line_width", kReconfigureViolation},
+      {"sap_pairs, sap_pairs_mpi", "--threads", 1.0, static_cast<double>(maxThreads()), false,
+       "an integer from 1 to 4 a processor", "as the engine's threads", kCliViolation},
+      {"sap_scene", "--n", 0.0, 2147483647.0, false, "an integer from 0 to 2147483647",
+       "the engine's most boxes a frame (kMaxBoxes)", kCliViolation},
+      {"sap_scene", "--density", std::numeric_limits<double>::denorm_min(),
+       std::numeric_limits<double>::max(), false, "a finite number > 0",
+       "a volume fraction; 0 has no box size", kCliViolation},
+      {"sap_scene", "--frame", 0.0, kLargestInt32, false, "an integer >= 0", "an int frame index",
+       kCliViolation},
+      {"sap_scene", "--frames", 2.0, kLargestInt32, false, "an integer >= 2",
+       "the motion is timed over at least two frames", kCliViolation},
+      {kTextEntry, "line length", 0.0, static_cast<double>(kMaxTextLineBytes), false,
+       "at most 1048576 bytes",
+       "a box line is about 200 bytes; checked while reading, so an endless line "
+       "(/dev/zero) is refused without being held",
+       "FILE:LINE: refused, sap_pairs exits 2"},
+      {kMessageEntry, "message length", 0.0, 1e9, false, "at most 10^9 bytes",
+       "roscpp's own limit (20 833 333 boxes a BoxArray without ids); checked before anything "
+       "is allocated",
+       "refused by roscpp, the connection dropped, logged; the node stays up"},
+  };
+  rows.insert(rows.end(), others.begin(), others.end());
+  return rows;
+}
+
+// A number as a message writes it: "1e-10", "999", "nan".
+std::string numberText(double inValue) {
+  return valueText(ConfigValue(inValue));
+}
+
+}  // namespace
+
+const std::vector<Limit>& limits() {
+  static const std::vector<Limit> rows = makeLimits();
+  return rows;
+}
+
+const Limit* findLimit(const std::string& inEntry, const std::string& inName) {
+  for (const Limit& limit : limits())
+    if (inEntry == limit.entry && inName == limit.name) return &limit;
+  return nullptr;
+}
+
+std::optional<std::string> limitProblem(const Limit& inLimit, double inValue) {
+  if ((inLimit.zero_allowed && inValue == 0.0) ||
+      (inValue >= inLimit.min && inValue <= inLimit.max))
+    return std::nullopt;
+  return std::string(inLimit.name) + " must be " + inLimit.allowed + ", not " + numberText(inValue);
+}
+
+std::string limitsMarkdown() {
+  std::string text = "| Entry point | Name | Valid | Why | Out of range |\n|---|---|---|---|---|\n";
+  for (const Limit& limit : limits())
+    text += std::string("| ") + limit.entry + " | `" + limit.name + "` | " + limit.allowed + " | " +
+            limit.reason + " | " + limit.violation + " |\n";
+  return text;
 }
 
 }  // namespace sap_broadphase

@@ -21,6 +21,8 @@ const char* skinChoiceName(SkinChoice inChoice) {
       return "too_fast";
     case SkinChoice::kNotWorthIt:
       return "not_worth_it";
+    case SkinChoice::kOverBudget:
+      return "over_budget";
   }
   return "unknown";
 }

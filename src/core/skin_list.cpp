@@ -178,6 +178,17 @@ const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, in
   return reference_;
 }
 
+void SkinList::keepOverlapping(const BoxColumns& inBoxes, PairList& ioPairs) {
+  const IndexOfId index_of(inBoxes.ids);
+  std::size_t kept = 0;
+  for (const IdPair& pair : ioPairs) {
+    const uint32_t a = index_of(pair.a);
+    const uint32_t b = index_of(pair.b);
+    if (recordsOverlap(recordOf(inBoxes, a), recordOf(inBoxes, b))) ioPairs[kept++] = pair;
+  }
+  ioPairs.resize(kept);
+}
+
 void SkinList::adopt(const BoxColumns& inBoxes, const PairList& inCandidates) {
   const std::size_t count = inCandidates.size();
   if (count > std::numeric_limits<uint32_t>::max())

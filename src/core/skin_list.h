@@ -37,8 +37,28 @@ struct alignas(64) BoundsRecord {
   double hi[4];
 };
 
+/// The kept candidates' memory budget: a grown sweep that finds more candidates than this a
+/// box (and more than kMinKeptCandidateBudget in all) keeps none. A kept candidate costs some
+/// 40 bytes (its canonical pair, positions, slot, sort runs); 64 a box is 2.5 KB a box, about
+/// ten times what the plain path holds, and far above what a skin that pays gives (a few a
+/// box). Without it `skin 1e300` at 4000 boxes kept all 8 million pairs (+515 MB).
+constexpr std::size_t kMaxKeptCandidatesPerBox = 64;
+/// Below this many candidates the budget does not apply (small frames of crowded boxes).
+constexpr std::size_t kMinKeptCandidateBudget = std::size_t{1} << 20;
+
+/// Most candidates kept for a frame of inBoxes boxes.
+inline std::size_t keptCandidateBudget(std::size_t inBoxes) {
+  return inBoxes * kMaxKeptCandidatesPerBox > kMinKeptCandidateBudget
+             ? inBoxes * kMaxKeptCandidatesPerBox
+             : kMinKeptCandidateBudget;
+}
+
 class SkinList {
  public:
+  /// Keeps of ioPairs (pairs of ids of inBoxes, e.g. a grown sweep's candidates) those whose
+  /// boxes overlap exactly in inBoxes, in their order: the frame's pairs without keeping
+  /// anything.
+  static void keepOverlapping(const BoxColumns& inBoxes, PairList& ioPairs);
   /// The boxes of inBoxes grown by inSkin / 2 on every side (rounded outward), kept as the
   /// reference of the next candidates and returned for the sweep that finds them (valid until
   /// the next inflate()).

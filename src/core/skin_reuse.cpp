@@ -28,6 +28,7 @@ void measureExtents(FrameSpread& ioSpread, int inThreads, SkinCosts& ioCosts) {
 
 void SkinReuse::startFrame(const FrameDelta& inDelta) {
   times_ = WorkTimes();
+  over_budget_frame_ = false;
   if (!inDelta.sameIds()) {
     std::fill(std::begin(recent_motion_), std::end(recent_motion_), 0.0);
     return;
@@ -59,7 +60,15 @@ const BoxColumns& SkinReuse::grow(const BoxColumns& inSwept, double inSkin, int 
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer grow_timer(times_.ms_grow);
   skin_ = inSkin;
-  return kept_.inflate(inSwept, inSkin, inThreads);
+  if (inSkin >= over_budget_skin_ && inSwept.size() == over_budget_boxes_) {
+    // This skin already found more candidates than the budget at this size: sweep the boxes
+    // as they are (kept candidates of skin 0, for an unchanged frame) instead.
+    skin_ = 0.0;
+    over_budget_frame_ = true;
+    ioReport.skin = 0.0;
+    ioReport.skin_choice = SkinChoice::kOverBudget;
+  }
+  return kept_.inflate(inSwept, skin_, inThreads);
 }
 
 void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport,
@@ -67,6 +76,10 @@ void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameRep
   {
     PhaseTimer timer(ioReport.ms_skin);
     PhaseTimer keep_timer(times_.ms_keep);
+    if (ioPairs.size() > keptCandidateBudget(inSwept.size())) {
+      keepNoCandidates(inSwept, ioReport, ioPairs);
+      return;
+    }
     kept_.adopt(inSwept, ioPairs);
   }
   // Every box lies inside its own grown box: the pass that answers the frame always runs.
@@ -74,6 +87,21 @@ void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameRep
   SAP_ASSERT(covered, "a box outside the skin it was just grown by");
   static_cast<void>(covered);
   answerFromCandidates(inThreads, ioReport, ioPairs);
+}
+
+// Over the budget: the grown sweep's candidates answer this frame once, tested exactly, and
+// are not kept; their memory goes back at once.
+void SkinReuse::keepNoCandidates(const BoxColumns& inSwept, FrameReport& ioReport,
+                                 PairList& ioPairs) {
+  over_budget_skin_ = skin_;
+  over_budget_boxes_ = inSwept.size();
+  over_budget_frame_ = true;
+  kept_ = SkinList();  // gives back the last candidates' memory too
+  SkinList::keepOverlapping(inSwept, ioPairs);
+  ioPairs.shrink_to_fit();
+  ioReport.skin = 0.0;
+  ioReport.skin_candidates = 0;
+  ioReport.skin_choice = SkinChoice::kOverBudget;
 }
 
 // A grown sweep's frame holds four kinds of work: growing the boxes, the sweep itself, keeping

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 
 #include "core/axis_spread.h"
 #include "core/box_columns.h"
@@ -51,6 +52,10 @@ class SkinReuse {
   void learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t inSweepPairs,
              const FrameReport& inReport);
 
+  /// True when this frame's skin went over the kept-candidate budget (keptCandidateBudget):
+  /// the frame kept no candidates, or swept its boxes ungrown; its report says kOverBudget.
+  bool overBudget() const { return over_budget_frame_; }
+
   /// What the plan weighs.
   bool hasCandidates() const { return kept_.valid(); }
   double skin() const { return skin_; }
@@ -63,10 +68,16 @@ class SkinReuse {
 
  private:
   void learnPassCosts(double inMilliseconds, double inBoxes);
+  void keepNoCandidates(const BoxColumns& inSwept, FrameReport& ioReport, PairList& ioPairs);
 
   SkinList kept_;      // kept candidates of the last grown sweep
   double skin_ = 0.0;  // the skin they were swept with
-  SkinCosts costs_;    // what earlier frames measured
+  // The smallest skin whose grown sweep went over the candidate budget, and at how many
+  // boxes: until the count changes, a skin at least as large grows nothing (skin 0).
+  double over_budget_skin_ = std::numeric_limits<double>::infinity();
+  std::size_t over_budget_boxes_ = 0;
+  bool over_budget_frame_ = false;  // this frame's skin went over the budget
+  SkinCosts costs_;                 // what earlier frames measured
   double recent_motion_[tuning::kMotionWindow] = {};
   int motion_slot_ = 0;
   // This frame's kept-candidate work, for learn(): growing the boxes, keeping the grown

@@ -1,6 +1,8 @@
 // The box/pair text format: a line tokenizer, strict number parsing, and buffered writers.
 #include "sap_broadphase/core/text_io.h"
 
+#include "sap_broadphase/core/config.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -203,6 +205,34 @@ class BlockWriter {
   std::size_t used_ = 0;
 };
 
+/// Reads one line of ioInput into outLine (without its '\n'); false at the end of the input.
+/// A line longer than kMaxTextLineBytes sets outTooLong and is not read further: an endless
+/// line costs kMaxTextLineBytes, not the machine's memory.
+bool readBoundedLine(std::istream& ioInput, std::string& outLine, bool& outTooLong) {
+  outLine.clear();
+  outTooLong = false;
+  std::streambuf* buffer = ioInput.rdbuf();
+  if (!buffer) {
+    ioInput.setstate(std::ios::badbit);
+    return false;
+  }
+  bool any = false;
+  while (true) {
+    const int next = buffer->sbumpc();
+    if (next == std::char_traits<char>::eof()) {
+      if (!any) ioInput.setstate(std::ios::eofbit | std::ios::failbit);
+      return any;
+    }
+    any = true;
+    if (next == '\n') return true;
+    if (outLine.size() == kMaxTextLineBytes) {
+      outTooLong = true;
+      return true;
+    }
+    outLine.push_back(static_cast<char>(next));
+  }
+}
+
 }  // namespace
 
 std::string ParseError::message() const {
@@ -222,8 +252,11 @@ std::optional<ParseError> readBoxText(std::istream& ioInput, const std::string& 
     outBoxes.clear();
     return earlier ? *earlier : ParseError{inSource, inLine, std::move(inReason)};
   };
-  while (std::getline(ioInput, line)) {
+  bool too_long = false;
+  while (readBoundedLine(ioInput, line, too_long)) {
     ++lineNumber;
+    if (too_long)
+      return fail(lineNumber, "line longer than " + std::to_string(kMaxTextLineBytes) + " bytes");
     Field fields[kFieldCount];
     std::string reason;
     const std::size_t count = splitFields(line, fields, reason);

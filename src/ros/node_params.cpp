@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
-#include <thread>
+#include <stdexcept>
 #include <type_traits>
 
 #include <dynamic_reconfigure/Config.h>
@@ -97,46 +97,40 @@ std::optional<ConfigValue> getEntry(const dynamic_reconfigure::Config& inMsg,
   return std::nullopt;
 }
 
-/// Reads a non-negative integer parameter; keeps ioValue when absent.
-template <typename Integer>
-std::string readCount(const ros::NodeHandle& inPrivate, const std::string& inName,
-                      Integer& ioValue) {
-  int value = 0;
-  if (!inPrivate.getParam(inName, value)) return "";
-  if (value < 0) return "~" + inName + " must not be negative";
-  ioValue = static_cast<Integer>(value);
-  return "";
-}
-
-/// Reads a non-negative number of seconds or Hz; keeps ioValue when absent.
-std::string readNonNegative(const ros::NodeHandle& inPrivate, const std::string& inName,
-                            double& ioValue) {
-  double value = ioValue;
-  if (!inPrivate.getParam(inName, value)) {
-    int integer = 0;  // an integer given in YAML is not a double for the parameter server
-    if (!inPrivate.getParam(inName, integer)) return "";
-    value = integer;
+/// Reads a number parameter (an integer given in YAML is not a double for the parameter
+/// server: either is taken); keeps ioValue when absent. Returns the problem of a value of
+/// another kind.
+std::string readNumber(const ros::NodeHandle& inPrivate, const std::string& inName,
+                       double& ioValue) {
+  XmlRpc::XmlRpcValue raw;
+  if (!inPrivate.getParam(inName, raw)) return "";
+  if (raw.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+    ioValue = static_cast<double>(raw);
+  } else if (raw.getType() == XmlRpc::XmlRpcValue::TypeInt) {
+    ioValue = static_cast<int>(raw);
+  } else {
+    return "~" + inName + " must be a number";
   }
-  if (!(value >= 0.0) || !std::isfinite(value))
-    return "~" + inName + " must be a finite number >= 0, not " + std::to_string(value);
-  ioValue = value;
   return "";
 }
 
-/// Threads a processor of this machine at most at run time: past a few, an OpenMP team only
-/// waits at the sweep's barriers (the paper's passes sync once per pass) for cores it cannot
-/// have, and a typo (999) would start hundreds of threads.
-constexpr unsigned kMaxThreadsPerProcessor = 4;
-
-/// The refusal of a threads setting far above the machine's processors, or nothing.
-std::optional<std::string> threadsProblem(int inThreads) {
-  const unsigned processors = std::max(1u, std::thread::hardware_concurrency());
-  if (inThreads <= 0 || static_cast<unsigned>(inThreads) <= kMaxThreadsPerProcessor * processors)
-    return std::nullopt;
-  return "threads " + std::to_string(inThreads) + " is more than " +
-         std::to_string(kMaxThreadsPerProcessor) + " a processor of this machine's " +
-         std::to_string(processors) + " (at most " +
-         std::to_string(kMaxThreadsPerProcessor * processors) + "; 0 uses every core)";
+/// Reads a node parameter checked against its row of the limits table (entry "node
+/// parameter", name "~" + inName); keeps ioValue when absent. Returns the refusal.
+template <typename Value>
+std::string readLimited(const ros::NodeHandle& inPrivate, const std::string& inName,
+                        Value& ioValue) {
+  const Limit* limit = findLimit("node parameter", "~" + inName);
+  if (!limit) throw std::logic_error("~" + inName + " has no row in the limits table");
+  double value = static_cast<double>(ioValue);
+  std::string error = readNumber(inPrivate, inName, value);
+  if (!error.empty()) return error;
+  if (const auto problem = limitProblem(*limit, value)) return *problem;
+  if constexpr (std::is_integral_v<Value>) {
+    if (std::trunc(value) != value)
+      return "~" + inName + " must be an integer, not " + valueText(ConfigValue(value));
+  }
+  ioValue = static_cast<Value>(value);
+  return "";
 }
 
 /// A YAML scalar as rospy's YAML loader types it: an unquoted integer, number or boolean is
@@ -197,12 +191,12 @@ std::string readSources(const ros::NodeHandle& inPrivate, std::vector<SourceSpec
 std::string readMarkers(const ros::NodeHandle& inPrivate, NodeParams& ioParams) {
   MarkerOptions& markers = ioParams.markers;
   inPrivate.param("publish_markers", ioParams.publish_markers, ioParams.publish_markers);
-  std::string error = readCount(inPrivate, "max_marker_boxes", markers.max_boxes);
+  std::string error = readLimited(inPrivate, "max_marker_boxes", markers.max_boxes);
   if (!error.empty()) return error;
   inPrivate.param("show_non_colliding", markers.show_non_colliding, markers.show_non_colliding);
   inPrivate.param("show_pair_links", markers.show_pair_links, markers.show_pair_links);
   inPrivate.param("show_names", markers.show_names, markers.show_names);
-  return readNonNegative(inPrivate, "marker_line_width", markers.line_width);
+  return readLimited(inPrivate, "marker_line_width", markers.line_width);
 }
 
 }  // namespace
@@ -220,22 +214,21 @@ std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outPara
   std::string error;
   if (!(error = readEngine(inPrivate, outParams.engine)).empty()) return error;
   if (!(error = readMarkers(inPrivate, outParams)).empty()) return error;
-  if (!(error = readCount(inPrivate, "boxes_queue_size", outParams.boxes_queue_size)).empty())
+  if (!(error = readLimited(inPrivate, "boxes_queue_size", outParams.boxes_queue_size)).empty())
     return error;
-  if (!(error = readCount(inPrivate, "pairs_queue_size", outParams.pairs_queue_size)).empty())
+  if (!(error = readLimited(inPrivate, "pairs_queue_size", outParams.pairs_queue_size)).empty())
     return error;
-  if (!(error = readCount(inPrivate, "refusal_log_period", outParams.refusal_log_period)).empty())
+  if (!(error = readLimited(inPrivate, "refusal_log_period", outParams.refusal_log_period)).empty())
     return error;
-  outParams.boxes_queue_size = std::max(outParams.boxes_queue_size, 1);
 
   if (!(error = readSources(inPrivate, outParams.sources)).empty()) return error;
-  if (!(error = readNonNegative(inPrivate, "source_timeout", outParams.source_timeout)).empty())
+  if (!(error = readLimited(inPrivate, "source_timeout", outParams.source_timeout)).empty())
     return error;
-  if (!(error = readNonNegative(inPrivate, "rate", outParams.rate)).empty()) return error;
+  if (!(error = readLimited(inPrivate, "rate", outParams.rate)).empty()) return error;
   inPrivate.param<std::string>("fixed_frame", outParams.fixed_frame, outParams.fixed_frame);
   if (!outParams.fixed_frame.empty() && outParams.fixed_frame.front() == '/')
     outParams.fixed_frame.erase(0, 1);  // tf2 frame ids carry no leading slash
-  return readNonNegative(inPrivate, "transform_timeout", outParams.transform_timeout);
+  return readLimited(inPrivate, "transform_timeout", outParams.transform_timeout);
 }
 
 std::string describeNodeParams(const NodeParams& inParams) {
@@ -292,10 +285,12 @@ std::string fromReconfigureConfig(const BroadphaseNodeConfig& inConfig, NodePara
     if (const auto problem = field.set(engine, *value)) return *problem;
   }
   if (const auto problem = configProblem(engine)) return *problem;
-  if (const auto problem = threadsProblem(engine.threads)) return *problem;
-  if (inConfig.max_marker_boxes < 0) return "max_marker_boxes must not be negative";
-  if (!(inConfig.marker_line_width >= 0.0) || !std::isfinite(inConfig.marker_line_width))
-    return "marker_line_width must be a finite number >= 0";
+  if (const auto problem = limitProblem(*findLimit("dynamic_reconfigure", "max_marker_boxes"),
+                                        inConfig.max_marker_boxes))
+    return *problem;
+  if (const auto problem = limitProblem(*findLimit("dynamic_reconfigure", "marker_line_width"),
+                                        inConfig.marker_line_width))
+    return *problem;
 
   ioParams.engine = engine;
   ioParams.publish_markers = inConfig.publish_markers;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sap_broadphase/core/brute_force.h"
+#include "sap_broadphase/core/config.h"
 #include "sap_broadphase/core/scenes.h"
 #include "sap_broadphase/core/text_io.h"
 
@@ -251,6 +252,17 @@ TEST(Cli, EveryBadInputExitsTwoWithTheLine) {
   expectBadInput(good + "-3 0 0 0 1 1 1\n", 4, "id out of range");
   expectBadInput(good + "2.5 0 0 0 1 1 1\n", 4, "id is not a decimal integer");
   expectBadInput("x\n", 1, "expected 7 fields");
+  expectBadInput(good + std::string(kMaxTextLineBytes + 1, ' ') + "\n", 4, "line longer than");
+}
+
+// Issue 29: `sap_pairs /dev/zero` read one endless line until memory ran out. The line is
+// refused once it passes kMaxTextLineBytes, while it is being read.
+TEST(Cli, AnEndlessLineIsRefusedWhileBeingRead) {
+  TempDir dir;
+  const RunResult result = runPairs(dir, {"/dev/zero"});
+  EXPECT_EQ(result.status, 2) << result.err;
+  EXPECT_EQ(result.out, "");
+  EXPECT_NE(result.err.find("/dev/zero:1: line longer than"), std::string::npos) << result.err;
 }
 
 TEST(Cli, UnreadableFileExitsTwo) {
@@ -299,6 +311,9 @@ TEST(Cli, BadUsageOfSapPairsExitsTwo) {
   expectBadUsage(exe, {"--threads", "two"}, "bad --threads");
   expectBadUsage(exe, {"--threads", "1.5"}, "bad --threads");
   expectBadUsage(exe, {"--threads=99999"}, "bad --threads");
+  // Issue 29: 999 threads took 110 s instead of 0.25 s on 2 cores. At most 4 a processor.
+  expectBadUsage(exe, {"--threads", std::to_string(maxThreads() + 1)}, "bad --threads");
+  expectBadUsage(exe, {"--threads", "999999"}, "at most " + std::to_string(maxThreads()));
   expectBadUsage(exe, {"--threads"}, "--threads needs a value");
   expectBadUsage(exe, {"--method", "quick"}, "bad --method value 'quick'");
   expectBadUsage(exe, {"--method"}, "needs a value");

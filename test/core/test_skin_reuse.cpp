@@ -6,6 +6,7 @@
 #include "core/frame_history.h"
 #include "core/frame_plan.h"
 #include "core/skin_reuse.h"
+#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 
@@ -58,6 +59,53 @@ TEST(SkinReuse, KeptCandidatesAnswerExactlyWhileEveryBoxStaysInsideItsSkin) {
   skin.forget();
   EXPECT_FALSE(skin.hasCandidates());
   EXPECT_FALSE(skin.coversFrame(inside, 2, report));
+}
+
+// The candidate budget: a grown sweep over it keeps nothing, answers the frame exactly, and
+// the next grow() at that skin and size grows nothing.
+TEST(SkinReuse, OverBudgetKeepsNoCandidatesAndAnswersExactly) {
+  const BoxColumns boxes = columnsOf(test_support::randomBoxes(4000, 40.0, 1.5, 5));
+  SkinReuse skin;
+  FrameReport report;
+  PairList pairs = bruteForcePairs(skin.grow(boxes, 1e30, 1, report));
+  ASSERT_GT(pairs.size(), keptCandidateBudget(boxes.size()));  // every pair: 7 998 000
+  skin.keepAndAnswer(boxes, 1, report, pairs);
+  EXPECT_EQ(pairs, bruteForcePairs(boxes));
+  EXPECT_EQ(report.skin_choice, SkinChoice::kOverBudget);
+  EXPECT_EQ(report.skin_candidates, 0u);
+  EXPECT_FALSE(skin.hasCandidates());
+  EXPECT_EQ(skin.candidates(), 0u);
+  // The next frame at that skin sweeps the boxes as they are.
+  FrameReport next;
+  const BoxColumns& swept = skin.grow(boxes, 1e30, 1, next);
+  EXPECT_EQ(next.skin_choice, SkinChoice::kOverBudget);
+  EXPECT_TRUE(skin.overBudget());
+  for (std::size_t i = 0; i < boxes.size(); ++i) {  // grown by nothing (rounded outward)
+    ASSERT_LE(swept.hi[2][i] - boxes.hi[2][i], 1e-9) << i;
+    ASSERT_LE(boxes.lo[0][i] - swept.lo[0][i], 1e-9) << i;
+  }
+}
+
+// Issue 29, `skin 1e300` at 4000 boxes kept every pair (+515 MB a frame): 1e300 is now refused
+// by the table, and the largest skin it accepts stays within the budget through the engine,
+// frame after frame, with exact pairs.
+TEST(SkinReuse, TheLargestSkinAt4000BoxesStaysWithinTheBudget) {
+  BroadphaseConfig config;
+  config.skin = 1e300;
+  EXPECT_THROW(Broadphase{config}, std::invalid_argument);
+  config.skin = kMaxSkin;
+  config.threads = 1;
+  for (const Method method : {Method::kAuto, Method::kSequential, Method::kParallel}) {
+    SCOPED_TRACE(methodName(method));
+    config.method = method;
+    Broadphase engine(config);
+    for (int frame = 0; frame < 3; ++frame) {
+      const BoxSet boxes = test_support::randomBoxes(4000, 40.0, 1.5, 21 + frame % 2);
+      EXPECT_EQ(engine.update(boxes), bruteForcePairs(boxes)) << "frame " << frame;
+      EXPECT_EQ(engine.stats().skin_choice, SkinChoice::kOverBudget) << "frame " << frame;
+      EXPECT_LE(engine.stats().skin_candidates, keptCandidateBudget(4000));
+    }
+  }
 }
 
 TEST(SkinReuse, MotionIsTheLargestDisplacementOfTheRecentWindow) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sap_broadphase/core/config.h"
 #include "sap_broadphase/core/text_io.h"
 
 namespace sap_broadphase {
@@ -83,6 +84,50 @@ TEST(TextIo, CommentsAndBlankLinesAreIgnored) {
   ASSERT_EQ(ok.size(), 2u);
   EXPECT_EQ(ok.ids[1], 2u);
   EXPECT_EQ(ok.hi(2, 1), 1.0);
+}
+
+/// An endless input of one character and no newline (what /dev/zero is), counting what is read.
+class EndlessBuffer : public std::streambuf {
+ public:
+  std::size_t taken = 0;
+
+ protected:
+  int_type underflow() override {
+    setg(chunk_, chunk_, chunk_ + sizeof(chunk_));
+    taken += sizeof(chunk_);
+    return traits_type::to_int_type(chunk_[0]);
+  }
+
+ private:
+  char chunk_[4096] = {};
+};
+
+// Issue 29: an endless line was read until memory ran out. It is refused once it is longer
+// than kMaxTextLineBytes, having read no more than that (and a chunk).
+TEST(TextIo, AnEndlessLineIsRefusedWhileBeingRead) {
+  EndlessBuffer endless;
+  std::istream input(&endless);
+  BoxSet boxes;
+  const auto error = readBoxText(input, "zero", boxes);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->message(),
+            "zero:1: line longer than " + std::to_string(kMaxTextLineBytes) + " bytes");
+  EXPECT_LE(endless.taken, kMaxTextLineBytes + 2 * 4096);
+  EXPECT_EQ(boxes.size(), 0u);
+}
+
+TEST(TextIo, TheLongestLineIsRead) {
+  std::string line = "7 0 0 0 1 1 1 #";
+  line += std::string(kMaxTextLineBytes - line.size(), 'c');
+  ASSERT_EQ(line.size(), kMaxTextLineBytes);
+  std::istringstream input(line + "\n8 0 0 0 1 1 1");
+  BoxSet boxes;
+  EXPECT_EQ(readBoxText(input, "t.txt", boxes), std::nullopt);
+  EXPECT_EQ(boxes.size(), 2u);
+  std::istringstream longer(line + "c\n");
+  const auto error = readBoxText(longer, "t.txt", boxes);
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->line, 1u);
 }
 
 TEST(TextIo, EmptyInputIsNoBoxes) {

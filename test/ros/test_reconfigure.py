@@ -13,6 +13,7 @@ drops a failed subTest's message).
 """
 import os
 import random
+import subprocess
 import threading
 import time
 import unittest
@@ -152,6 +153,27 @@ class ReconfigureTest(unittest.TestCase):
         self.assertEqual(stats.pairs, len(expected))
         self.assertGreater(len(expected), 0, "the frames should have pairs to check")
 
+    def start_with(self, parameter, value):
+        """Runs a node with one private parameter; its exit status and output."""
+        node = subprocess.run(["rosrun", PACKAGE, "node", "__name:=limits_%s" % parameter,
+                               "_%s:=%s" % (parameter, value)],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              timeout=WAIT * 2)
+        return node.returncode, node.stdout
+
+    def test_0_out_of_range_parameters_stop_the_node_naming_them(self):
+        """Parameters out of the limits table stop the node at start-up with a FATAL naming
+        the parameter and exit status 1: never an abort, never a clamp (`_rate:=1e-10` ended
+        with SIGABRT from ros::Duration; `_threads:=999` was put in force)."""
+        for parameter, value in (("rate", "1e-10"), ("rate", "-1"), ("threads", "999"),
+                                 ("boxes_queue_size", "0"), ("max_marker_boxes", "-1"),
+                                 ("transform_timeout", "1e300"), ("skin", "1e300"),
+                                 ("parallel_min_boxes", "-1"), ("third_axis_slabs", "65")):
+            status, output = self.start_with(parameter, value)
+            self.assertEqual(status, 1, "_%s:=%s: exit %s\n%s" % (parameter, value, status, output))
+            self.assertIn("FATAL", output, "_%s:=%s\n%s" % (parameter, value, output))
+            self.assertIn("%s must be" % parameter, output)
+
     def threads_and_skin_at_run_time(self, endpoint):
         start = endpoint.client.get_configuration(timeout=WAIT)
         self.assertEqual(start["threads"], 1)  # the launch file's value
@@ -192,11 +214,24 @@ class ReconfigureTest(unittest.TestCase):
         for change in ({"skin": "-1"}, {"skin": "banana"}, {"skin": "nan"},
                        {"primary_axis": "y", "secondary_axis": "y"},
                        {"method": "quantum"}, {"threads": 2, "skin": "-0.5"},
-                       {"threads": 999}, {"threads": 4 * os.cpu_count() + 1}):
+                       {"threads": 999}, {"threads": 4 * os.cpu_count() + 1},
+                       # Issue 29: these were clamped by dynamic_reconfigure's server (to the
+                       # .cfg's range) and applied; the table refuses each.
+                       {"parallel_min_boxes": -1}, {"threads": -5}, {"third_axis_slabs": 65},
+                       {"axis_swap_threshold": -float("inf")},
+                       {"axis_swap_threshold": float("nan")},
+                       {"marker_line_width": float("inf")}, {"max_marker_boxes": -1},
+                       {"skin": "1e300"}):
             config = endpoint.client.update_configuration(change)
             for name in change:
+                # The client sees a refusal as the settings in force coming back.
                 self.assertEqual(config[name], before[name],
                                  "%s: %s was not refused" % (endpoint.namespace, change))
+            for name in before:
+                if name in ("groups", "group"):
+                    continue
+                self.assertEqual(config[name], before[name],
+                                 "%s: %s changed %s" % (endpoint.namespace, change, name))
         # Still up, still exact, still with the settings in force before.
         pairs, expected, stats = endpoint.frame()
         self.check_exact(endpoint, pairs, expected, stats)

@@ -52,6 +52,20 @@ std::string skinToText(const std::optional<double>& inSkin);
 /// configProblem's to check.
 bool skinFromText(const std::string& inText, std::optional<double>& outSkin);
 
+/// Most worker threads a processor (BroadphaseConfig::threads): the sweep's passes meet at a
+/// barrier each, so threads beyond the processors only wait there for a core, and OpenMP
+/// starts every one of them (999 on two cores took 110 s against 0.25 s; 100000 exhausts the
+/// address space). Four a processor leaves room for oversubscribed runs and hyper-threads.
+constexpr int kMaxThreadsPerProcessor = 4;
+/// Most threads any entry point accepts on this machine: kMaxThreadsPerProcessor times
+/// omp_get_num_procs().
+int maxThreads();
+
+/// Largest skin (BroadphaseConfig::skin): the grown boxes' sort keys are float32, so a skin
+/// past float32's range grows every key to infinity. What a skin below it may cost in kept
+/// candidates is bounded separately (kMaxKeptCandidatesPerBox, skin_list.h).
+constexpr double kMaxSkin = 3.0e38;
+
 /// Most third-axis slabs (BroadphaseConfig::third_axis_slabs): slab numbers are stored in 8
 /// bits, and more slabs cost inserts for large boxes.
 constexpr int kMaxThirdAxisSlabs = 64;
@@ -77,8 +91,14 @@ struct BroadphaseConfig {
   /// each sweep from the measured motion and costs, off when it does not pay; 0 = off;
   /// > 0 = this fixed skin.
   std::optional<double> skin;
-  bool exact_final_test = true;  ///< false: report pairs whose float32 keys overlap (faster,
-                                 ///< may report extra pairs; never misses one)
+  /// false: the sweeps skip their exact float64 test and report every pair whose
+  /// outward-rounded float32 keys overlap: a superset of the exact pairs, never missing one.
+  /// That holds where a sweep answers the frame without a skin: Method::kParallel and
+  /// kSequential, and kAuto at or above parallel_min_boxes with more than one thread. The
+  /// other paths test in doubles whatever this says and return the exact pairs: kAuto's
+  /// small-frame path (below parallel_min_boxes, or one thread), kept candidates (a skin),
+  /// brute force. So a frame may bring extra pairs or none, depending on its path.
+  bool exact_final_test = true;
 };
 
 /// The kinds of value a configuration field holds.
@@ -88,7 +108,7 @@ enum class ConfigFieldType : uint8_t {
   kNumber,   ///< a real number in [min, max]
   kMethod,   ///< a method name (methodName)
   kAxis,     ///< an axis: x, y, z (or 0, 1, 2)
-  kSkin,     ///< auto, off (or 0) or a finite skin >= 0
+  kSkin,     ///< auto, off (or 0) or a skin in [0, kMaxSkin]
 };
 
 /// A field's value as front ends carry it: kBool as bool, kInteger as int64_t, kNumber as
@@ -104,6 +124,7 @@ struct ConfigField {
   double max;                ///< kInteger, kNumber: largest allowed value (may be +inf)
   const char* allowed;       ///< what may be given, for messages: "an integer >= 0 (0 = all cores)"
   const char* doc;           ///< one line on what it does
+  const char* reason;        ///< why the range is what it is (docs/ROBUSTNESS.md, "Limits")
   /// The field's value in inConfig.
   ConfigValue (*get)(const BroadphaseConfig& inConfig);
   /// Stores inValue into ioConfig when it is of an accepted kind and in range (an integer is
@@ -131,5 +152,41 @@ int resolveThreadCount(int inRequested);
 /// field against its row of the table, then the rules between fields (distinct axes). The one
 /// check of a configuration (the engine's constructor and the node both use it).
 std::optional<std::string> configProblem(const BroadphaseConfig& inConfig);
+
+// ---- The limits table: every numeric value any entry point takes ----
+//
+// Beside the engine's fields (configFields(), the same rows for rosparam, dynamic_reconfigure
+// and Python keywords), the node's own parameters, the CLI flags, the text reader and the
+// message sizes: each with its closed range, why, and what a value outside it gets. Every
+// entry point checks its values here (limitProblem) and refuses, never clamps;
+// docs/ROBUSTNESS.md ("Limits of every entry point") is this table (limitsMarkdown()), and a
+// test fails when the two differ.
+
+/// Longest line the box text reader takes (bytes, newline excluded): a box line is at most
+/// about 200 bytes; the rest leaves room for comments. Checked while reading, so that an
+/// endless line (`sap_pairs /dev/zero`) is refused after this many bytes.
+constexpr std::size_t kMaxTextLineBytes = std::size_t{1} << 20;
+
+/// One numeric value an entry point takes.
+struct Limit {
+  const char* entry;      ///< where it comes in: "node parameter", "sap_pairs", ...
+  const char* name;       ///< as that entry point spells it: "~rate", "--threads"
+  double min;             ///< smallest valid value (closed range)
+  double max;             ///< largest valid value (may be +inf)
+  bool zero_allowed;      ///< 0 (off, all, none) is valid besides [min, max]
+  const char* allowed;    ///< what may be given, for messages and the doc
+  const char* reason;     ///< why the range is what it is
+  const char* violation;  ///< what a value outside it gets
+};
+
+/// Every limit of every entry point; the engine's fields first (one row each, taken from
+/// configFields(), that rosparam, dynamic_reconfigure and Python share).
+const std::vector<Limit>& limits();
+/// The row of inName at inEntry (inName as the entry point spells it), or nullptr.
+const Limit* findLimit(const std::string& inEntry, const std::string& inName);
+/// "NAME must be ALLOWED, not VALUE" when inValue is outside inLimit (NaN included), or nothing.
+std::optional<std::string> limitProblem(const Limit& inLimit, double inValue);
+/// The table as Markdown rows for docs/ROBUSTNESS.md.
+std::string limitsMarkdown();
 
 }  // namespace sap_broadphase

@@ -35,10 +35,12 @@ enum class SkinChoice : uint8_t {
   kChosen,      ///< automatic: a new skin chosen from the measured motion and costs
   kTooFast,     ///< automatic: at the measured motion no skin beats a plain sweep
   kNotWorthIt,  ///< automatic: frame too small or too static for a skin to pay
+  kOverBudget,  ///< the skin's grown sweep found more candidates than the memory budget
+                ///< (kMaxKeptCandidatesPerBox): none kept, the frame's pairs tested exactly
 };
 
 /// Name of a skin choice: "off", "fixed", "first_frame", "ids_changed", "kept", "chosen",
-/// "too_fast", "not_worth_it".
+/// "too_fast", "not_worth_it", "over_budget".
 const char* skinChoiceName(SkinChoice inChoice);
 
 /// What one frame cost and how it was computed. Times are milliseconds of wall clock.
