@@ -73,7 +73,8 @@ if run_by_catkin():
 
     setup(**generate_distutils_setup(**PACKAGE))
 else:
-    (ROOT / "build").mkdir(exist_ok=True)
+    BUILD = ROOT / "build" / "pip"  # beside the other builds (build/ws, build/no_ros)
+    BUILD.mkdir(parents=True, exist_ok=True)
     setup(
         name="sap_broadphase",
         version=package_xml("version"),
@@ -83,7 +84,7 @@ else:
         install_requires=["numpy"],
         ext_modules=[Extension("sap_broadphase._sap_broadphase", sources=[])],
         cmdclass={"build_ext": CMakeBuild},
-        options={"egg_info": {"egg_base": str(ROOT / "build")}},  # not in python/
+        options={"build": {"build_base": str(BUILD)}, "egg_info": {"egg_base": str(BUILD)}},
         zip_safe=False,
         **PACKAGE,
     )

@@ -212,3 +212,12 @@ def test_the_ros_messages_share_the_package():
     import sap_broadphase.srv  # pylint: disable=import-outside-toplevel
     assert hasattr(sap_broadphase.msg, "BoxArray") and hasattr(sap_broadphase.srv, "ComputePairs")
     assert hasattr(sap_broadphase, "find_pairs")
+
+
+@pytest.mark.skipif("SAP_EXPECT_INSTALLED_IN" not in os.environ,
+                    reason="run by scripts/pip_check.sh on the package pip installed")
+def test_the_package_is_the_one_pip_installed():
+    prefix = pathlib.Path(os.environ["SAP_EXPECT_INSTALLED_IN"]).resolve()
+    compiled = pathlib.Path(sap_broadphase._sap_broadphase.__file__).resolve()
+    assert prefix in pathlib.Path(sap_broadphase.__file__).resolve().parents
+    assert prefix in compiled.parents, f"the compiled module is {compiled}, not under {prefix}"
