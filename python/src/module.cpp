@@ -35,7 +35,7 @@ constexpr const char* kBoxesExpected =
     "an array of shape (n, 6) of float64, float32 or integers, rows min_x min_y min_z max_x max_y "
     "max_z";
 
-// The largest magnitude below which every integer is a float64: 2^53.
+// Every integer of magnitude up to 2^53 is a float64; above, some are not (2^53 + 1).
 constexpr int64_t kExactIntegerLimit = int64_t{1} << 53;
 
 std::string shapeText(const py::array& inArray) {
