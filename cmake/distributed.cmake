@@ -21,13 +21,16 @@ add_executable(sap_pairs_mpi src/apps/sap_pairs_mpi_main.cpp src/apps/pairs_opti
   src/apps/cli_args.cpp)
 target_link_libraries(sap_pairs_mpi ${PROJECT_NAME}_distributed)
 
-# The worker of `sap_bench -e distributed`, which sap_bench starts under mpirun.
-add_executable(sap_bench_distributed ${SAP_BENCH_DIR}/distributed_bench_main.cpp)
-target_link_libraries(sap_bench_distributed ${PROJECT_NAME}_distributed OpenMP::OpenMP_CXX)
-add_dependencies(sap_bench sap_bench_distributed)
-target_compile_definitions(sap_bench PRIVATE
-  SAP_BENCH_DISTRIBUTED_WORKER="$<TARGET_FILE:sap_bench_distributed>"
-  SAP_MPIEXEC="${MPIEXEC_EXECUTABLE}")
+# The worker of `sap_bench -e distributed`, which sap_bench starts under mpirun (with the
+# benchmarks only, SAP_BUILD_BENCHMARKS).
+if(TARGET sap_bench)
+  add_executable(sap_bench_distributed ${SAP_BENCH_DIR}/distributed_bench_main.cpp)
+  target_link_libraries(sap_bench_distributed ${PROJECT_NAME}_distributed OpenMP::OpenMP_CXX)
+  add_dependencies(sap_bench sap_bench_distributed)
+  target_compile_definitions(sap_bench PRIVATE
+    SAP_BENCH_DISTRIBUTED_WORKER="$<TARGET_FILE:sap_bench_distributed>"
+    SAP_MPIEXEC="${MPIEXEC_EXECUTABLE}")
+endif()
 
 # The tool and the library it links (shared under catkin) are installed; the headers are not
 # part of the installed engine package (include/sap_broadphase/core), which is MPI-free.

@@ -7,12 +7,14 @@
 # that writes its JUnit XML to ${SAP_TEST_RESULTS_DIR}, the file scripts/test_no_ros.sh counts.
 #
 # SAP_TESTING says whether tests are built: under catkin when CATKIN_ENABLE_TESTING is on,
-# under plain CMake when SAP_BUILD_TESTS is on (the default) and GoogleTest is installed. (Not
-# CTest's BUILD_TESTING: CGAL's package config, found by the benchmarks, declares it OFF.)
+# under plain CMake when SAP_BUILD_TESTS is on (off by default: a consumer's build needs
+# neither GoogleTest nor the tests' build time; scripts/test_no_ros.sh turns it on) and
+# GoogleTest is installed. (Not CTest's BUILD_TESTING: CGAL's package config, found by the
+# benchmarks, declares it OFF.)
 if(SAP_WITH_CATKIN)
   set(SAP_TESTING ${CATKIN_ENABLE_TESTING})
 else()
-  option(SAP_BUILD_TESTS "Build the ROS-free tests (needs GoogleTest)" ON)
+  option(SAP_BUILD_TESTS "Build the ROS-free tests (needs GoogleTest)" OFF)
   set(SAP_TESTING OFF)
   if(SAP_BUILD_TESTS)
     find_package(GTest)

@@ -59,7 +59,9 @@ install_optional_packages() {
 }
 
 [ "$install" -eq 1 ] && install_optional_packages
-SAP_WS="$WS" "$ROOT/scripts/setup.sh"
+# The benchmarks are on by default in the catkin build; said here in case the workspace was
+# configured without them.
+SAP_WS="$WS" "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON
 bin="$WS/devel/lib/sap_broadphase"
 
 mkdir -p "$out"

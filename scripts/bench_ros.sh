@@ -51,7 +51,8 @@ logs="$ROOT/build/bench_ros_logs"
 mkdir -p "$logs"
 
 echo "bench_ros.sh: set-up and build of $WS (log in $logs/setup.log)"
-if ! SAP_WS="$WS" timeout 3600 "$ROOT/scripts/setup.sh" >"$logs/setup.log" 2>&1; then
+if ! SAP_WS="$WS" timeout 3600 "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON \
+    >"$logs/setup.log" 2>&1; then
   tail -n 20 "$logs/setup.log" >&2
   echo "bench_ros.sh: set-up failed" >&2
   exit 1

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The test command: set-up if missing, build everything, run every test (GoogleTest for the
 # core and CLI, rostest for the node), then build and test the engine once more without ROS
-# (scripts/test_no_ros.sh), so that plain-CMake build cannot rot. Exits non-zero when any
-# test fails.
+# (scripts/test_no_ros.sh), so that plain-CMake build cannot rot, and last `pip install .` in a
+# fresh venv with the Python tests on what it installed (scripts/pip_check.sh). Exits non-zero
+# when any test fails.
 set -eo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$ROOT/scripts/setup.sh"
@@ -56,6 +57,22 @@ fi
 total=$((total + no_ros_total))
 failed=$((failed + no_ros_failed))
 skipped=$((skipped + no_ros_skipped))
+
+# `pip install .` in a fresh venv, then the Python tests against what it installed.
+set +e
+"$ROOT/scripts/pip_check.sh" "$ROOT/build/pip_check" > "$ROOT/build/pip_check.log" 2>&1
+pip_status=$?
+set -e
+read -r pip_total pip_failed pip_skipped < <(python3 "$ROOT/scripts/junit_summary.py" \
+  "$ROOT/build/pip_check/test_results")
+echo "pip install and its Python tests: $((pip_total - pip_failed - pip_skipped)) passed, $pip_failed failed (build/pip_check.log)"
+if [ "$pip_status" -ne 0 ] && [ "$pip_failed" -eq 0 ]; then
+  echo "scripts/pip_check.sh failed outside the tests, see build/pip_check.log"
+  pip_failed=1
+fi
+total=$((total + pip_total))
+failed=$((failed + pip_failed))
+skipped=$((skipped + pip_skipped))
 echo "tests: $((total - failed - skipped)) passed, $failed failed, $skipped skipped"
 # The last line and the exit status say the same: non-zero exactly when a failure is counted.
-[ "$failed" -eq 0 ] && [ "$status" -eq 0 ] && [ "$no_ros_status" -eq 0 ]
+[ "$failed" -eq 0 ] && [ "$status" -eq 0 ] && [ "$no_ros_status" -eq 0 ] && [ "$pip_status" -eq 0 ]

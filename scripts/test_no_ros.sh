@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The engine without ROS: builds the core library, the CLI tools, the benchmarks and the
-# ROS-free tests with plain CMake (-DSAP_BUILD_ROS=OFF, so no catkin is needed or used), runs
+# The engine without ROS: builds the core library, the CLI tools, the Python module, the
+# benchmarks and the ROS-free tests with plain CMake (-DSAP_BUILD_ROS=OFF, so no catkin is
+# needed or used; tests and benchmarks are options, -DSAP_BUILD_TESTS=ON
+# -DSAP_BUILD_BENCHMARKS=ON, off in a consumer's plain build), runs
 # the tests, installs the engine, builds examples/find_package against the installed package
 # config (find_package(sap_broadphase_core)) and checks the README and docs/ (links, commands,
 # the C++ example: scripts/check_docs.py), and runs the core tests a second time with the
@@ -19,7 +21,7 @@ PREFIX="$BUILD/install"
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 
 cmake -S "$ROOT" -B "$BUILD" -DSAP_BUILD_ROS=OFF -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_INSTALL_PREFIX="$PREFIX"
+  -DSAP_BUILD_TESTS=ON -DSAP_BUILD_BENCHMARKS=ON -DCMAKE_INSTALL_PREFIX="$PREFIX"
 cmake --build "$BUILD" -j"$JOBS"
 
 rm -rf "$BUILD/test_results"
@@ -35,7 +37,7 @@ ASSERTS_BUILD="$BUILD/asserts"
 ASSERTED_TESTS=(test_core test_engine test_skin_list test_frame_flow test_static_index test_query
   test_cli)
 cmake -S "$ROOT" -B "$ASSERTS_BUILD" -DSAP_BUILD_ROS=OFF -DCMAKE_BUILD_TYPE=Release \
-  -DSAP_ASSERTS=ON > /dev/null
+  -DSAP_BUILD_TESTS=ON -DSAP_ASSERTS=ON > /dev/null
 cmake --build "$ASSERTS_BUILD" -j"$JOBS" --target "${ASSERTED_TESTS[@]}"
 rm -rf "$ASSERTS_BUILD/test_results"
 set +e

@@ -2,8 +2,9 @@
 """sap_broadphase from Python: the pairs of a box cloud, then a world frame after frame with
 scenery, asked what overlaps a robot's next footprint.
 
-Run after `source scripts/env.sh` (ROS workspace) or with PYTHONPATH set to the ROS-free build's
-python directory (build/no_ros/python, or PREFIX/lib/python3/dist-packages once installed).
+Run with the package pip installed (README, "From Python"), after `source scripts/env.sh` (ROS
+workspace), or with PYTHONPATH set to the ROS-free build's python directory (BUILD/python, or
+PREFIX/lib/python3/dist-packages once installed).
 """
 import numpy as np
 

@@ -1,7 +1,10 @@
 """sap_broadphase: exact parallel Sweep and Prune broad phase for axis-aligned boxes.
 
-Boxes are numpy arrays of shape (n, 6), float64 rows ``min_x min_y min_z max_x max_y max_z``,
-closed intervals (touching boxes overlap, -0.0 == 0.0, infinities allowed).
+Boxes are numpy arrays of shape (n, 6) (or empty), rows ``min_x min_y min_z max_x max_y max_z``,
+closed intervals (touching boxes overlap, -0.0 == 0.0, infinities allowed), of float64 (read in
+place when C-contiguous, else copied once), float32 or integers (copied once into float64,
+exactly; integers beyond 2^53 in magnitude are refused); ids, groups and masks are integers in
+[0, 2^32). Other dtypes and shapes raise ValueError naming what was expected (docs/PYTHON.md).
 
 - ``find_pairs(boxes, ids=None, threads=0)``: every overlapping pair, uint32 (k, 2), a < b, sorted.
 - ``Broadphase(**config)``: frame after frame: ``update(boxes, ids=None, groups=None,

@@ -1,8 +1,10 @@
 // The Python module sap_broadphase._sap_broadphase (pybind11): numpy arrays in, numpy arrays
-// out. Boxes are (n, 6) float64 rows min_x min_y min_z max_x max_y max_z, read where they lie
-// when C-contiguous (a BoxSpan over the array: the engine's one input); pairs and hits are (k, 2)
-// uint32 arrays that own the engine's result vectors (no copy). The GIL is released while
-// the engine works; refusals carry the engine's words.
+// out. Boxes are (n, 6) rows min_x min_y min_z max_x max_y max_z of float64, float32 or
+// integers in any layout, given to the engine as float64 (a BoxSpan: its one input): a
+// C-contiguous float64 array is read where it lies, anything else is converted once, exactly
+// (integers beyond 2^53 are refused: float64 cannot hold them). Pairs and hits are (k, 2)
+// uint32 arrays that own their vectors. The GIL is released while the engine works; refusals
+// carry the engine's words.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -31,7 +33,11 @@ namespace {
 using namespace pybind11::literals;
 
 constexpr const char* kBoxesExpected =
-    "a float64 array of shape (n, 6), rows min_x min_y min_z max_x max_y max_z";
+    "an array of shape (n, 6) of float64, float32 or integers, rows min_x min_y min_z max_x max_y "
+    "max_z";
+
+// Every integer of magnitude up to 2^53 is a float64; above, some are not (2^53 + 1).
+constexpr int64_t kExactIntegerLimit = int64_t{1} << 53;
 
 std::string shapeText(const py::array& inArray) {
   std::string text = "(";
@@ -40,51 +46,92 @@ std::string shapeText(const py::array& inArray) {
   return text + (inArray.ndim() == 1 ? ",)" : ")");
 }
 
+std::string dtypeText(const py::array& inArray) {
+  return py::str(inArray.dtype()).cast<std::string>();
+}
+
 py::module_ numpy() {
   return py::module_::import("numpy");
 }
 
-// inBoxes as a C-contiguous float64 (n, 6) array: the array itself when it is one (no copy),
-// a contiguous copy of another float64 array, a float64 conversion of anything else (lists).
-py::array_t<double, py::array::c_style> boxArray(const py::handle& inBoxes, const char* inName) {
-  py::array array;
-  if (py::isinstance<py::array>(inBoxes)) {
-    array = py::reinterpret_borrow<py::array>(inBoxes);
-    if (!array.dtype().is(py::dtype::of<double>()))
-      throw py::type_error(std::string(inName) + ": expected " + kBoxesExpected + ", got dtype " +
-                           py::str(array.dtype()).cast<std::string>() +
-                           " (convert with .astype(numpy.float64))");
-  } else {
-    array = numpy().attr("asarray")(inBoxes, "dtype"_a = "float64");
+// inValues as a numpy array: itself when it is one, else numpy.asarray's reading of it (lists,
+// tuples); what numpy cannot read as an array is refused in the words of inExpected.
+py::array asArray(const py::handle& inValues, const std::string& inExpected) {
+  if (py::isinstance<py::array>(inValues)) return py::reinterpret_borrow<py::array>(inValues);
+  try {
+    return numpy().attr("asarray")(inValues);
+  } catch (py::error_already_set& error) {
+    throw py::value_error(inExpected + ", got " + error.what());
   }
-  if (array.ndim() != 2 || array.shape(1) != 6)
-    throw py::value_error(std::string(inName) + ": expected " + kBoxesExpected + ", got shape " +
-                          shapeText(array));
-  return numpy().attr("ascontiguousarray")(array);  // the same array when already contiguous
 }
 
-// An optional (n,) array of uint32 values (ids, groups, masks): empty for None.
+// inArray converted to a C-contiguous, aligned array of inType: the array itself when it is
+// one, else one copy (numpy.require).
+template <typename Value>
+py::array_t<Value, py::array::c_style> required(const py::array& inArray, const char* inType) {
+  return numpy().attr("require")(inArray, inType, py::make_tuple("C", "A"));
+}
+
+// Integers convert to float64 exactly up to 2^53 in magnitude; 8-byte ones may lie beyond.
+void checkExactInFloat64(const py::array& inArray, const std::string& inExpected) {
+  if (inArray.dtype().itemsize() < 8 || inArray.size() == 0) return;
+  const bool outside =
+      inArray.dtype().kind() == 'u'
+          ? inArray.attr("max")().cast<uint64_t>() > static_cast<uint64_t>(kExactIntegerLimit)
+          : inArray.attr("max")().cast<int64_t>() > kExactIntegerLimit ||
+                inArray.attr("min")().cast<int64_t>() < -kExactIntegerLimit;
+  if (outside)
+    throw py::value_error(inExpected + ", got " + dtypeText(inArray) + " values from " +
+                          py::str(inArray.attr("min")()).cast<std::string>() + " to " +
+                          py::str(inArray.attr("max")()).cast<std::string>() +
+                          ": beyond 2^53 in magnitude an integer has no exact float64 "
+                          "(convert with .astype(numpy.float64) to accept the rounding)");
+}
+
+// inBoxes as a C-contiguous float64 (n, 6) array. Read in place: a C-contiguous, aligned
+// float64 array of native byte order. Copied once: float64 in another layout (Fortran order,
+// strided, byte-swapped), float16/float32 and integers (exact: each is a float64), lists.
+// Empty: shape (0, 6) or (0,) (`[]`). Refused: other dtypes (bool, complex, float128,
+// objects, strings), other shapes, integers beyond 2^53.
+py::array_t<double, py::array::c_style> boxArray(const py::handle& inBoxes, const char* inName) {
+  const std::string expected = std::string(inName) + ": expected " + kBoxesExpected;
+  const py::array array = asArray(inBoxes, expected);
+  const char kind = array.dtype().kind();
+  const bool floating = kind == 'f' && array.dtype().itemsize() <= 8;
+  if (!floating && kind != 'i' && kind != 'u')
+    throw py::value_error(expected + ", got dtype " + dtypeText(array));
+  const bool empty = array.size() == 0 && array.ndim() == 1;
+  if (!empty && (array.ndim() != 2 || array.shape(1) != 6))
+    throw py::value_error(expected + ", got shape " + shapeText(array));
+  if (!floating) checkExactInFloat64(array, expected);
+  return required<double>(empty ? py::array(array.attr("reshape")(0, 6)) : array, "float64");
+}
+
+// An optional (n,) array of uint32 values (ids, groups, masks): empty for None. Read in place:
+// a C-contiguous uint32 array; any other integer array or list is checked to lie in [0, 2^32)
+// and copied once.
 py::array_t<uint32_t, py::array::c_style> uintArray(const py::handle& inValues, py::ssize_t inCount,
                                                     const char* inName) {
   if (inValues.is_none()) return py::array_t<uint32_t, py::array::c_style>();
-  py::array array = numpy().attr("asarray")(inValues);
-  const char kind = array.dtype().kind();
   const std::string expected = std::string(inName) + ": expected integers in [0, 2^32) of shape (" +
                                std::to_string(inCount) + ",)";
-  if (kind != 'i' && kind != 'u')
-    throw py::type_error(expected + ", got dtype " + py::str(array.dtype()).cast<std::string>());
+  const py::array array = asArray(inValues, expected);
   if (array.ndim() != 1 || array.shape(0) != inCount)
     throw py::value_error(expected + ", got shape " + shapeText(array));
-  if (!array.dtype().is(py::dtype::of<uint32_t>()) && inCount > 0) {
-    const auto lowest = array.attr("min")().cast<long double>();
-    const auto highest = array.attr("max")().cast<long double>();
-    if (lowest < 0 || highest > 4294967295.0L)
+  if (inCount == 0) return py::array_t<uint32_t, py::array::c_style>();  // `[]` is float64
+  const char kind = array.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    throw py::value_error(expected + ", got dtype " + dtypeText(array));
+  if (!array.dtype().is(py::dtype::of<uint32_t>())) {
+    const bool outside = (kind == 'i' && array.attr("min")().cast<int64_t>() < 0) ||
+                         (array.dtype().itemsize() > 4 && array.attr("max")().cast<uint64_t>() >
+                                                              std::numeric_limits<uint32_t>::max());
+    if (outside)
       throw py::value_error(expected + ", got values from " +
                             py::str(array.attr("min")()).cast<std::string>() + " to " +
                             py::str(array.attr("max")()).cast<std::string>());
-    array = array.attr("astype")("uint32");
   }
-  return numpy().attr("ascontiguousarray")(array);
+  return required<uint32_t>(array, "uint32");
 }
 
 // The arrays a call reads, kept alive while the engine reads them without the GIL.
@@ -246,6 +293,21 @@ class PyBroadphase {
         args.view());  // checks the boxes: a bad one leaves the scenery as it was
   }
 
+#ifdef SAP_HAS_CONTACT_EVENTS
+  // (began, ended): copies of the engine's lists, which the next update() replaces.
+  py::tuple events() const {
+    sb::PairList began, ended;
+    {
+      py::gil_scoped_release release;
+      std::shared_lock<std::shared_mutex> lock(mutex_);
+      const sb::ContactEvents& events = engine_.events();
+      began = events.began;
+      ended = events.ended;
+    }
+    return py::make_tuple(pairArray(std::move(began)), pairArray(std::move(ended)));
+  }
+#endif
+
   template <typename Change>
   void alone(Change&& inChange) {
     py::gil_scoped_release release;
@@ -257,7 +319,9 @@ class PyBroadphase {
     std::shared_lock<std::shared_mutex> lock(mutex_);
     return statsDict(engine_.stats());
   }
-  py::dict config() const { return configDict(engine_.config()); }
+  py::dict config() const {
+    return configDict(engine_.config());
+  }
   std::size_t staticBoxCount() const {
     std::shared_lock<std::shared_mutex> lock(mutex_);
     return engine_.staticBoxCount();
@@ -304,39 +368,50 @@ PYBIND11_MODULE(_sap_broadphase, m) {
   m.def("find_pairs", &findPairs, "boxes"_a, "ids"_a = py::none(), "threads"_a = 0,
         R"doc(Every overlapping pair of boxes (closed intervals: touching boxes overlap).
 
-boxes: array-like of shape (n, 6), float64 rows min_x min_y min_z max_x max_y max_z (a
-C-contiguous float64 array is read without a copy). ids: n uint32 ids (default: row numbers).
-threads: 0 = all cores. Returns a uint32 array of shape (k, 2), rows (a, b) of ids with a < b,
-sorted. Raises ValueError (InvalidBoxes) naming the first bad box and why.)doc");
+boxes: array-like of shape (n, 6) (or empty), rows min_x min_y min_z max_x max_y max_z, of
+float64 (a C-contiguous one is read without a copy; other layouts are copied once), float32 or
+integers (converted once to float64, exactly; integers beyond 2^53 in magnitude are refused).
+ids: n integers in [0, 2^32) (default: row numbers). threads: 0 = all cores. Returns a uint32
+array of shape (k, 2), rows (a, b) of ids with a < b, sorted. Raises ValueError: InvalidBoxes
+naming the first bad box and why, or what was expected of an argument.)doc");
 
   m.def("_one_shot_ms", &oneShotMs, "boxes"_a, "threads"_a = 0,
         "Milliseconds of find_pairs' work in C++ alone (for benchmarks).");
 
-  py::class_<PyBroadphase>(m, "Broadphase", R"doc(The stateful broad phase, frame after frame.
+  auto broadphase =
+      py::class_<PyBroadphase>(m, "Broadphase", R"doc(The stateful broad phase, frame after frame.
 
 Broadphase(**config): every BroadphaseConfig field by its name (threads, method, primary_axis,
 secondary_axis, axis_swapping, axis_swap_threshold, parallel_min_boxes, third_axis_slabs,
 reuse_unchanged_frames, skin, exact_final_test); see the config property.)doc")
-      .def(py::init<const py::kwargs&>())
-      .def("update", &PyBroadphase::update, "boxes"_a, "ids"_a = py::none(),
-           "groups"_a = py::none(), "masks"_a = py::none(),
-           "The frame's overlapping pairs: uint32 (k, 2), rows (a, b) of ids, a < b, sorted.")
-      .def("query", &PyBroadphase::query, "boxes"_a, "groups"_a = py::none(),
-           "masks"_a = py::none(),
-           "What overlaps each query box in the last frame and the scenery: uint32 (k, 2), rows "
-           "(query row, world id), sorted.")
-      .def("set_static_boxes", &PyBroadphase::setStaticBoxes, "boxes"_a, "ids"_a = py::none(),
-           "groups"_a = py::none(), "masks"_a = py::none(),
-           "Declares scenery (replacing any earlier): paired with every later frame's boxes.")
-      .def("clear_static_boxes",
-           [](PyBroadphase& inSelf) {
-             inSelf.alone([](sb::Broadphase& ioEngine) { ioEngine.clearStaticBoxes(); });
-           })
-      .def("reset",
-           [](PyBroadphase& inSelf) {
-             inSelf.alone([](sb::Broadphase& ioEngine) { ioEngine.reset(); });
-           })
-      .def_property_readonly("stats", &PyBroadphase::stats, "The last update()'s report.")
-      .def_property_readonly("config", &PyBroadphase::config, "The configuration in force.")
-      .def_property_readonly("static_box_count", &PyBroadphase::staticBoxCount);
+          .def(py::init<const py::kwargs&>())
+          .def("update", &PyBroadphase::update, "boxes"_a, "ids"_a = py::none(),
+               "groups"_a = py::none(), "masks"_a = py::none(),
+               "The frame's overlapping pairs: uint32 (k, 2), rows (a, b) of ids, a < b, sorted.")
+          .def(
+              "query", &PyBroadphase::query, "boxes"_a, "groups"_a = py::none(),
+              "masks"_a = py::none(),
+              "What overlaps each query box in the last frame and the scenery: uint32 (k, 2), rows "
+              "(query row, world id), sorted.")
+          .def("set_static_boxes", &PyBroadphase::setStaticBoxes, "boxes"_a, "ids"_a = py::none(),
+               "groups"_a = py::none(), "masks"_a = py::none(),
+               "Declares scenery (replacing any earlier): paired with every later frame's boxes.")
+          .def("clear_static_boxes",
+               [](PyBroadphase& inSelf) {
+                 inSelf.alone([](sb::Broadphase& ioEngine) { ioEngine.clearStaticBoxes(); });
+               })
+          .def("reset",
+               [](PyBroadphase& inSelf) {
+                 inSelf.alone([](sb::Broadphase& ioEngine) { ioEngine.reset(); });
+               })
+          .def_property_readonly("stats", &PyBroadphase::stats, "The last update()'s report.")
+          .def_property_readonly("config", &PyBroadphase::config, "The configuration in force.")
+          .def_property_readonly("static_box_count", &PyBroadphase::staticBoxCount);
+#ifdef SAP_HAS_CONTACT_EVENTS
+  broadphase.def("events", &PyBroadphase::events,
+                 R"doc(The contacts that began and ended at the last update(): (began, ended), two
+uint32 arrays of shape (k, 2) sorted as update()'s pairs. began: the pairs of the last list absent
+from the one before; ended: those of the one before absent from the last. After construction or
+reset() every pair of the first frame begins; a frame that raised has none.)doc");
+#endif
 }
