@@ -293,7 +293,6 @@ class PyBroadphase {
         args.view());  // checks the boxes: a bad one leaves the scenery as it was
   }
 
-#ifdef SAP_HAS_CONTACT_EVENTS
   // (began, ended): copies of the engine's lists, which the next update() replaces.
   py::tuple events() const {
     sb::PairList began, ended;
@@ -306,7 +305,6 @@ class PyBroadphase {
     }
     return py::make_tuple(pairArray(std::move(began)), pairArray(std::move(ended)));
   }
-#endif
 
   template <typename Change>
   void alone(Change&& inChange) {
@@ -407,11 +405,9 @@ reuse_unchanged_frames, skin, exact_final_test); see the config property.)doc")
           .def_property_readonly("stats", &PyBroadphase::stats, "The last update()'s report.")
           .def_property_readonly("config", &PyBroadphase::config, "The configuration in force.")
           .def_property_readonly("static_box_count", &PyBroadphase::staticBoxCount);
-#ifdef SAP_HAS_CONTACT_EVENTS
   broadphase.def("events", &PyBroadphase::events,
                  R"doc(The contacts that began and ended at the last update(): (began, ended), two
 uint32 arrays of shape (k, 2) sorted as update()'s pairs. began: the pairs of the last list absent
 from the one before; ended: those of the one before absent from the last. After construction or
 reset() every pair of the first frame begins; a frame that raised has none.)doc");
-#endif
 }

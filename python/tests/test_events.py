@@ -8,9 +8,6 @@ import pytest
 import sap_broadphase
 from box_oracle import assert_same, lattice_boxes, random_boxes
 
-pytestmark = pytest.mark.skipif(not hasattr(sap_broadphase.Broadphase, "events"),
-                                reason="this build's engine has no contact events")
-
 EMPTY_PAIRS = np.zeros((0, 2), np.uint32)
 
 
