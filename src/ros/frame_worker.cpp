@@ -246,8 +246,8 @@ bool FrameWorker::takeScenery() {
   static_frame_ = ingest_.fixedFrame().empty() ? message->header.frame_id : ingest_.fixedFrame();
   if (scenery->size() == 0) static_frame_.clear();  // no scenery: no frame to agree with
   status_.setStaticBoxes(scenery->size());
-  ROS_INFO("sap_broadphase: static_boxes: %zu boxes indexed (frame '%s')", scenery->size(),
-           message->header.frame_id.c_str());
+  ROS_INFO("sap_broadphase: static_boxes: %zu %s indexed (frame '%s')", scenery->size(),
+           scenery->size() == 1 ? "box" : "boxes", message->header.frame_id.c_str());
   scenery_ = std::move(scenery);
   return true;
 }
