@@ -317,9 +317,7 @@ class PyBroadphase {
     std::shared_lock<std::shared_mutex> lock(mutex_);
     return statsDict(engine_.stats());
   }
-  py::dict config() const {
-    return configDict(engine_.config());
-  }
+  py::dict config() const { return configDict(engine_.config()); }
   std::size_t staticBoxCount() const {
     std::shared_lock<std::shared_mutex> lock(mutex_);
     return engine_.staticBoxCount();
