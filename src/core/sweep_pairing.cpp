@@ -335,6 +335,22 @@ inline std::size_t counterStride(uint32_t inPartitions) {
   return true;
 }
 
+// Calls inVisit(endpoint, first, last) for each endpoint of slice inSlice of the secondary
+// stream, in stream order, with the partitions [first, last] it matters to: the counting and
+// the placement passes of the counted scatter visit the same endpoints the same way.
+template <class Visit>
+void forEachEndpointOfSlice(const PairingInput& inInput, const uint64_t* inStream, int inSlice,
+                            int inSlices, const RankPartitions& inSplit, Visit&& inVisit) {
+  std::size_t begin = 0, end = 0;
+  sliceOf(inInput.objects, inSlice, inSlices, begin, end);
+  uint32_t first = 0, last = 0;
+  for (std::size_t k = begin; k < end; ++k) {
+    const Endpoint endpoint = endpointOfStream(inStream, k);
+    partitionsOf(endpoint, inSplit, first, last);
+    inVisit(endpoint, first, last);
+  }
+}
+
 // Scatter from the exact counts: the secondary stream, a counting pass over it, then the
 // placement pass. Segments are packed without gaps. Also estimates each partition's work, its
 // entries plus the candidate ranks its low entries span, into ioWork.partition_work.
@@ -348,21 +364,18 @@ void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
   counts.assign(std::size_t(inSlices) * stride, 0);
   ioWork.partition_work.assign(partitions, 0);
   runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
-    const int slice = static_cast<int>(inSlice);
-    uint32_t first = 0, last = 0;
-    std::size_t begin = 0, end = 0;
-    sliceOf(inInput.objects, slice, inSlices, begin, end);
     // Entry counts at [0, partitions), work at [partitions, 2 * partitions).
-    std::size_t* my_counts = &counts[std::size_t(slice) * stride];
+    std::size_t* my_counts = &counts[inSlice * stride];
     std::size_t* my_work = my_counts + partitions;
-    for (std::size_t k = begin; k < end; ++k) {
-      const Endpoint endpoint = endpointOfStream(stream, k);
-      partitionsOf(endpoint, inSplit, first, last);
-      ++my_counts[first];
-      for (uint32_t p = first + 1; p <= last; ++p) ++my_counts[p];  // rare: ranges are short
-      // A low endpoint's candidate ranks, charged to the partition where its range starts.
-      my_work[first] += (endpoint.high - endpoint.low) & ~highMask(endpoint.rank_and_kind);
-    }
+    forEachEndpointOfSlice(inInput, stream, static_cast<int>(inSlice), inSlices, inSplit,
+                           [&](const Endpoint& inEndpoint, uint32_t inFirst, uint32_t inLast) {
+                             for (uint32_t p = inFirst; p <= inLast; ++p)
+                               ++my_counts[p];  // rare: ranges are short
+                             // A low endpoint's candidate ranks, charged to the partition where its
+                             // range starts.
+                             my_work[inFirst] += (inEndpoint.high - inEndpoint.low) &
+                                                 ~highMask(inEndpoint.rank_and_kind);
+                           });
   });
   std::size_t offset = 0;
   for (uint32_t p = 0; p < partitions; ++p) {
@@ -382,15 +395,12 @@ void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
   uint64_t* out = ioWork.partition_entries.data();
   runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
     const int slice = static_cast<int>(inSlice);
-    uint32_t first = 0, last = 0;
-    std::size_t begin = 0, end = 0;
-    sliceOf(inInput.objects, slice, inSlices, begin, end);
-    std::size_t* my_counts = &counts[std::size_t(slice) * stride];
-    for (std::size_t k = begin; k < end; ++k) {
-      const Endpoint endpoint = endpointOfStream(stream, k);
-      partitionsOf(endpoint, inSplit, first, last);
-      for (uint32_t p = first; p <= last; ++p) out[my_counts[p]++] = entryFor(endpoint, p, inSplit);
-    }
+    std::size_t* my_counts = &counts[inSlice * stride];
+    forEachEndpointOfSlice(inInput, stream, slice, inSlices, inSplit,
+                           [&](const Endpoint& inEndpoint, uint32_t inFirst, uint32_t inLast) {
+                             for (uint32_t p = inFirst; p <= inLast; ++p)
+                               out[my_counts[p]++] = entryFor(inEndpoint, p, inSplit);
+                           });
     for (uint32_t p = 0; p < partitions; ++p)
       ioWork.segment_end[std::size_t(p) * inSlices + slice] = my_counts[p];
   });

@@ -83,12 +83,6 @@ int unitsForThreads(int inThreads) {
   return inThreads <= 1 ? 1 : kUnitsPerThread * inThreads;
 }
 
-int openTeam(std::size_t inUnits, int inThreads) {
-  const int team = teamForUnits(inUnits, inThreads);
-  if (team > 1) regions_opened.fetch_add(1, std::memory_order_relaxed);
-  return team;
-}
-
 namespace detail {
 bool runningAUnit() {
   return running_a_unit;

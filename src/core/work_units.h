@@ -66,11 +66,6 @@ int teamForUnits(std::size_t inUnits, int inThreads);
 /// Units of a pass cut by its thread count: kUnitsPerThread a thread, one on one thread.
 int unitsForThreads(int inThreads);
 
-/// The team of an OpenMP region of several phases opened outside the runner (skin_list.cpp's
-/// kept-candidate merge, not yet a runner pass), counted as opened when above one thread. Its
-/// closing barrier waits for every team thread: new passes go through the runner instead.
-int openTeam(std::size_t inUnits, int inThreads);
-
 /// Passes the runners of this process have handed to their workers (tests: a small frame
 /// hands out none).
 uint64_t parallelRegionsOpened();
