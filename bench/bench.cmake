@@ -85,6 +85,8 @@ endif()
 if(fcl_FOUND AND TARGET fcl)
   sap_bench_add_peer(fcl peer_fcl.cpp SAP_BENCH_WITH_FCL fcl)
 endif()
+# PhysX: only from a source checkout named with -DSAP_PHYSX_DIR (bench/physx.cmake).
+include(${SAP_BENCH_DIR}/physx.cmake)
 message(STATUS "sap_bench peers: ${SAP_BENCH_PEERS}")
 
 # ---- Google Benchmark microbenchmarks ----

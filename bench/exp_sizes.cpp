@@ -1,9 +1,10 @@
 // Frame time against box count, 2^8 to 2^20: the engine's default configuration (on the chosen
 // threads and on one thread) and the engine without skin, beside the peers' best-known
-// settings (FCL's dynamic AABB tree, CGAL, Bullet's dynamic tree: those built), on uniform
-// scenes at two densities whose boxes move 1 % of a mean edge a frame. Each frame is timed
-// one-shot (a fresh engine or structure) and steady (kept across frames), and every frame's
-// pairs are checked against the default's. Each contender runs the frames alone.
+// settings (FCL's dynamic AABB tree, CGAL, Bullet's dynamic tree, PhysX's ABP and PABP: those
+// built), on uniform scenes at two densities whose boxes move 1 % of a mean edge a frame. Each
+// frame is timed one-shot (a fresh engine or structure) and steady (kept across frames), and
+// every frame's pairs are checked against the default's. Each contender runs the frames alone
+// (a peer that asks for it in a process of its own).
 #include <algorithm>
 #include <functional>
 #include <limits>
@@ -66,7 +67,8 @@ Peers sizePeers(int inThreads) {
     const std::string name = peer->name();
     const bool cgal1000 = peer->family().rfind("cgal", 0) == 0 && name.size() > 6 &&
                           name.compare(name.size() - 6, 6, "_c1000") == 0;
-    if (name == "fcl_dynamic_aabb" || name == "bullet_dbvt" || cgal1000)
+    const bool physxAbp = peer->family() == "physx" && name != "physx_mbp";
+    if (name == "fcl_dynamic_aabb" || name == "bullet_dbvt" || cgal1000 || physxAbp)
       kept.push_back(std::move(peer));
   }
   return kept;
@@ -116,13 +118,9 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames,
       runOursFrame(engine, inOurs[k].config, boxes, truth[f], timed, contenders[k]);
     });
   }
-  for (std::size_t p = 0; p < ioPeers.size(); ++p) {
-    ioPeers[p]->begin();
-    pass([&](int f, const BoxSet& boxes, bool timed) {
-      runPeerFrame(*ioPeers[p], boxes, truth[f], timed, contenders[inOurs.size() + p], ioCosts[p]);
-    });
-    ioPeers[p]->begin();  // frees the steady state
-  }
+  for (std::size_t p = 0; p < ioPeers.size(); ++p)
+    runPeerPass(*ioPeers[p], inCase, inFrames, truth, contenders[inOurs.size() + p], ioCosts[p],
+                ioProgress);
   return contenders;
 }
 
@@ -146,7 +144,8 @@ void runSizes(const Options& inOptions) {
       "frame; every frame's pairs checked against the default's; ratio = contender / "
       "default",
       {"n", "density", "contender", "one_shot_ms", "ratio_one_shot", "steady_ms", "ratio_steady",
-       "pairs", "pairs_one_shot", "pairs_steady", "frames"});
+       "pairs", "pairs_one_shot", "pairs_steady", "frames", "steady_p99_ms", "steady_worst_ms",
+       "first_frame_ms"});
   std::vector<Panel> panels;
   for (double density : kDensities) {
     std::map<std::string, Series> once, kept;
@@ -168,7 +167,10 @@ void runSizes(const Options& inOptions) {
                       k == 0 ? "reference" : pairStatus(entry.wrong_steady, entry.frames_checked),
                       entry.skipped_slow ? "skipped (slow)"
                                          : std::to_string(entry.one_shot_ms.size()) +
-                                               (entry.stopped_slow ? " (slow)" : "")});
+                                               (entry.stopped_slow ? " (slow)" : ""),
+                      ran ? fmt(frameQuantile(entry.steady_ms, 0.99)) : "-",
+                      ran ? fmt(maximum(entry.steady_ms)) : "-",
+                      entry.first_frame_ms >= 0 ? fmt(entry.first_frame_ms) : "-"});
         if (!ran) continue;
         once[entry.name].add(static_cast<double>(n), oneShot);
         kept[entry.name].add(static_cast<double>(n), steady);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "bench_progress.h"
+#include "bench_scenes.h"
 #include "peers/peer.h"
 #include "sap_broadphase/core/broadphase.h"
 
@@ -26,6 +28,7 @@ struct Contender {
   std::size_t wrong_one_shot = 0, wrong_steady = 0, frames_checked = 0;
   std::size_t last_pairs = 0;
   std::size_t memory_bytes = 0;
+  double first_frame_ms = -1.0;  ///< the steady state's first frame (the build), -1 when not run
   bool stopped_slow = false;
   bool skipped_slow = false;  ///< not run: its cost per box on a smaller case predicts > limit
 };
@@ -58,5 +61,18 @@ void runOursFrame(sap_broadphase::Broadphase& ioSteady,
 void runPeerFrame(Peer& ioPeer, const sap_broadphase::BoxSet& inBoxes,
                   const sap_broadphase::PairList& inTruth, bool inTimed, Contender& ioEntry,
                   double& ioCostPerBox);
+
+/// Runs one peer over inFrames frames of inCase (frame 0 builds its steady state, untimed
+/// unless it is the only frame), each checked against inTruth[f], and sets ioEntry.memory_bytes
+/// to the growth of the peak resident memory over the first frame. A peer that asks for a
+/// process of its own (Peer::ownProcess) runs the whole pass in a forked child, which sends its
+/// Contender back: its allocations, page faults and peak memory are not the harness's.
+void runPeerPass(Peer& ioPeer, const BenchCase& inCase, int inFrames,
+                 const std::vector<sap_broadphase::PairList>& inTruth, Contender& ioEntry,
+                 double& ioCostPerBox, Progress& ioProgress);
+
+/// The inQuantile (0..1) of the frame times by nearest rank (0.99: the 99th percentile frame);
+/// 0 when empty.
+double frameQuantile(std::vector<double> inTimes, double inQuantile);
 
 }  // namespace sap_bench

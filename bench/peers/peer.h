@@ -45,6 +45,9 @@ class Peer {
   virtual void begin() {}
   /// True when step() keeps proxies across frames (else step() is oneShot()).
   virtual bool incremental() const { return false; }
+  /// True when the peer runs its frames in a child process of its own (peer_runs.h,
+  /// runPeerPass), so that its heap, page faults and peak memory are its own.
+  virtual bool ownProcess() const { return false; }
   /// How the peer's pairs relate to the exact closed-interval pairs.
   virtual std::string semantics() const = 0;
 };
@@ -52,7 +55,8 @@ class Peer {
 using Peers = std::vector<std::unique_ptr<Peer>>;
 
 /// Every exact peer compiled in, each knob setting its own peer: the grid always; CGAL,
-/// Bullet and FCL when found at configure time. inThreads: threads of the grid.
+/// Bullet and FCL when found at configure time; PhysX when built from SAP_PHYSX_DIR. inThreads:
+/// threads of the grid.
 Peers makePeers(int inThreads);
 /// The peers whose raw candidates differ from the exact pairs (Bullet's pair cache, FCL's
 /// managers), in raw mode, for the error chart.
@@ -72,6 +76,11 @@ void addBulletPeers(PeerOutput inOutput, Peers& ioPeers);
 /// FCL's broad-phase managers: dynamic AABB tree, its array variant, SaP, interval tree.
 void addFclPeers(PeerOutput inOutput, Peers& ioPeers);
 std::unique_ptr<Peer> makeFclPeer(PeerOutput inOutput);  ///< dynamic AABB tree
+#endif
+#ifdef SAP_BENCH_WITH_PHYSX
+/// PhysX 5's CPU broad phases: ABP (one thread), PABP on inThreads workers, MBP (one thread).
+/// Each runs in a process of its own.
+void addPhysxPeers(int inThreads, Peers& ioPeers);
 #endif
 
 /// What a batch of query boxes overlaps in a world, asked of FCL's dynamic AABB tree: the

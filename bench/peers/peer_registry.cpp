@@ -15,6 +15,9 @@ Peers makePeers(int inThreads) {
 #ifdef SAP_BENCH_WITH_FCL
   addFclPeers(PeerOutput::kExact, peers);
 #endif
+#ifdef SAP_BENCH_WITH_PHYSX
+  addPhysxPeers(inThreads, peers);
+#endif
   return peers;
 }
 
