@@ -3,7 +3,8 @@
 // Bullet's dynamic tree with a dispatcher, our uniform grid), against the engine with its
 // default configuration: one-shot (everything built from scratch each frame) and steady state
 // (state kept across frames), the peak memory per box of each, and every frame's pairs
-// compared with ours. The engine also runs without skin (every frame swept) on the chosen
+// compared with ours. PhysX's broad phases (ABP, PABP, MBP), when built, each run in a process
+// of their own. The engine also runs without skin (every frame swept) on the chosen
 // threads and on one thread, the per-core comparison with the single-threaded peers.
 #include <cctype>
 #include <cmath>
@@ -38,6 +39,13 @@ constexpr std::size_t kMostClusteredBoxesForQuadratic = std::size_t{1} << 14;
 
 bool quadraticOnClusters(const std::string& inPeerName) {
   return inPeerName.rfind("fcl_sap", 0) == 0 || inPeerName.rfind("fcl_interval_tree", 0) == 0;
+}
+
+/// How many peers run in processes of their own (each a pass of its own over a case's frames).
+std::size_t ownProcessPeers(const Peers& inPeers) {
+  std::size_t count = 0;
+  for (const auto& peer : inPeers) count += peer->ownProcess();
+  return count;
 }
 
 std::string sceneKey(const BenchCase& inCase) {
@@ -99,7 +107,8 @@ void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
     ioContenders[0].memory_bytes = meter.grownBytes();
   }
   for (std::size_t p = 0; p < ioPeers.size(); ++p) {
-    if (ioContenders[inFirstPeer + p].skipped_slow) continue;
+    // A peer in a process of its own measures its memory there (runPeerPass).
+    if (ioContenders[inFirstPeer + p].skipped_slow || ioPeers[p]->ownProcess()) continue;
     meter.start();
     ioPeers[p]->begin();
     { const PeerResult result = ioPeers[p]->step(boxes); }
@@ -108,7 +117,9 @@ void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
   }
 }
 
-/// Runs every contender over the case's frames; frame 0 only builds the steady state.
+/// Runs every contender over the case's frames; frame 0 only builds the steady state. Peers
+/// that ask for a process of their own run each run's frames after the others, in a child,
+/// checked against the frames' pairs kept from the reference.
 std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns, int inThreads,
                                Peers& ioPeers, PeerCosts& ioCosts, Progress& ioProgress) {
   std::vector<double>& costs = ioCosts[sceneKey(inCase)];
@@ -135,6 +146,7 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
     for (const OursVariant& variant : variants) variant_engines.emplace_back(variant.config);
     for (auto& peer : ioPeers) peer->begin();
     for (Contender& entry : contenders) entry.stopped_slow = false;
+    std::vector<PairList> truths;  // every frame's, for the peers in processes of their own
     for (int f = 0; f < inFrames; ++f) {
       if (f > 0) feed.step();
       const BoxSet& boxes = feed.boxes();
@@ -144,9 +156,17 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
       for (std::size_t v = 0; v < variants.size(); ++v)
         runOursFrame(variant_engines[v], variants[v].config, boxes, truth, timed,
                      contenders[1 + v]);
-      for (std::size_t p = 0; p < ioPeers.size(); ++p)
-        runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[first_peer + p], costs[p]);
+      for (std::size_t p = 0; p < ioPeers.size(); ++p) {
+        if (!ioPeers[p]->ownProcess())
+          runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[first_peer + p], costs[p]);
+      }
+      if (ownProcessPeers(ioPeers) > 0) truths.push_back(truth);
       ioProgress.step(inCase.name);
+    }
+    for (std::size_t p = 0; p < ioPeers.size(); ++p) {
+      if (ioPeers[p]->ownProcess())
+        runPeerPass(*ioPeers[p], inCase, inFrames, truths, contenders[first_peer + p], costs[p],
+                    ioProgress);
     }
   }
   return contenders;
@@ -199,7 +219,8 @@ void runPeers(const Options& inOptions) {
       "Peers: ms per frame (median of frames >= 1), every frame's pairs checked "
       "against ours; ratio = ours / peer",
       {"case", "contender", "one_shot_ms", "ratio_one_shot", "steady_ms", "ratio_steady", "pairs",
-       "pairs_one_shot", "pairs_steady", "bytes_per_box", "frames", "semantics"});
+       "pairs_one_shot", "pairs_steady", "bytes_per_box", "frames", "semantics", "steady_p99_ms",
+       "steady_worst_ms", "first_frame_ms"});
   Table summary(
       "Peers: our time / fastest peer's (any knob setting); one thread without skin "
       "against the fastest single-threaded peer",
@@ -217,7 +238,7 @@ void runPeers(const Options& inOptions) {
                     true,
                     PlotStyle::kPoints};
   std::map<std::string, Series> oneShotSeries, steadySeries;
-  Progress progress("peers", cases.size() * frames * runs);
+  Progress progress("peers", cases.size() * frames * runs * (1 + ownProcessPeers(peers)));
   PeerCosts costs;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const auto contenders = runCase(cases[c], frames, runs, threads, peers, costs, progress);
@@ -240,7 +261,10 @@ void runPeers(const Options& inOptions) {
            entry.skipped_slow
                ? "skipped (slow)"
                : std::to_string(entry.one_shot_ms.size()) + (entry.stopped_slow ? " (slow)" : ""),
-           k < firstPeer ? "exact, closed intervals" : peers[k - firstPeer]->semantics()});
+           k < firstPeer ? "exact, closed intervals" : peers[k - firstPeer]->semantics(),
+           ran ? fmt(frameQuantile(entry.steady_ms, 0.99)) : "-",
+           ran ? fmt(maximum(entry.steady_ms)) : "-",
+           entry.first_frame_ms >= 0 ? fmt(entry.first_frame_ms) : "-"});
       if (k < firstPeer || entry.one_shot_ms.empty()) continue;
       if (once < bestOnce) bestOnce = once, bestOnceName = entry.name;
       if (kept < bestKept) bestKept = kept, bestKeptName = entry.name;
