@@ -5,14 +5,17 @@
 # Benchmark microbenchmarks (microbench.csv) into the same folder; each run overwrites the
 # last. The tables go to stdout.
 #
-# Usage: scripts/bench.sh [--quick] [--out DIR] [--no-install] [--no-micro] [-- SAP_BENCH_ARGS...]
+# Usage: scripts/bench.sh [--quick] [--out DIR] [--no-install] [--no-micro] [--physx DIR]
+#                         [-- SAP_BENCH_ARGS...]
 #   --quick       small sizes and few frames (minutes); results go to build/bench_quick/<machine>/
 #   --out DIR     write results to DIR instead
 #   --no-install  do not apt-get the optional peers and gnuplot
 #   --no-micro    skip sap_microbench
+#   --physx DIR   also build PhysX 5's CPU broad phases (ABP, PABP, MBP) as peers, from the
+#                 PhysX source checkout DIR (never copied here; docs/BENCHMARKS.md, Peers)
 #   after --, arguments go to sap_bench (e.g. -- --max-n 2^19 --runs 5)
 # Environment: SAP_WS (catkin workspace, default build/ws), SAP_BENCH_MACHINE (folder name,
-# default: short host name plus core count).
+# default: short host name plus core count), SAP_PHYSX_DIR (as --physx).
 set -eo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 WS="${SAP_WS:-$ROOT/build/ws}"
@@ -23,6 +26,7 @@ quick=0
 install=1
 micro=1
 out=""
+physx="${SAP_PHYSX_DIR:-}"
 bench_args=()
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -30,8 +34,9 @@ while [ $# -gt 0 ]; do
     --no-install) install=0 ;;
     --no-micro) micro=0 ;;
     --out) out="$2"; shift ;;
+    --physx) physx="$2"; shift ;;
     --) shift; bench_args=("$@"); break ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
     *) echo "bench.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -61,7 +66,10 @@ install_optional_packages() {
 [ "$install" -eq 1 ] && install_optional_packages
 # The benchmarks are on by default in the catkin build; said here in case the workspace was
 # configured without them.
-SAP_WS="$WS" "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON
+# PhysX only when named: the workspace's cache keeps the last directory given.
+physx_flag=()
+[ -n "$physx" ] && physx_flag=("-DSAP_PHYSX_DIR=$(cd "$physx" && pwd)")
+SAP_WS="$WS" "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON "${physx_flag[@]}"
 bin="$WS/devel/lib/sap_broadphase"
 
 mkdir -p "$out"
