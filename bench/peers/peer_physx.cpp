@@ -20,13 +20,15 @@
 // Timed: converting the frame's boxes to float bounds (and finding those that changed), the
 // update and the fetch of found and lost pairs: what a PhysX user pays for a frame. Keeping the
 // pair set and the exact filter are the harness's, untimed.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <string>
 #include <unordered_set>
+#include <utility>
+#include <vector>
 
 #include "BpBroadPhase.h"
 #include "BpBroadPhaseUpdate.h"
