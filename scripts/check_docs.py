@@ -136,7 +136,8 @@ CSV_NAME = re.compile(r"[\w.*/-]*\w\.csv\b")
 def tables_with_context(text):
     """(first line number, table and the text before it since the last heading or table)."""
     context, table, first = [], [], 0
-    for number, line in enumerate(FENCE.sub("", text).splitlines(), 1):
+    unfenced = FENCE.sub(lambda block: "\n" * block.group(0).count("\n"), text)  # lines kept
+    for number, line in enumerate(unfenced.splitlines(), 1):
         if line.startswith("|"):
             if not table:
                 first = number
