@@ -89,7 +89,9 @@ if [ -z "$bin" ]; then
 fi
 
 mkdir -p "$out"
-rm -f "$out/machine.txt"
+# sap_bench appends a line per experiment to machine.txt: a whole run starts it afresh, a run
+# of some experiments adds to it.
+[ -z "$only" ] && rm -f "$out/machine.txt"
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "commit: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')$(git -C "$ROOT" diff --quiet 2>/dev/null || echo ' (with local changes)')"
@@ -97,7 +99,7 @@ rm -f "$out/machine.txt"
   lscpu 2>/dev/null | grep -E '^(Model name|CPU\(s\)|Thread|Core|Socket|L2|L3)' || true
   echo "memory: $(awk '/MemTotal/ {print $2 " kB"}' /proc/meminfo)"
   echo "load at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
-} > "$out/machine.txt"
+} >> "$out/machine.txt"
 
 quick_flag=()
 [ "$quick" -eq 1 ] && quick_flag=(--quick)
