@@ -222,6 +222,8 @@ struct DistributedBroadphase::Impl {
   void exchangeBoxes(const BoxSet& inBoxes);
   void placeInSlabs(const BoxSet& inBoxes);
   SlabDeltas deltasSinceLastFrame(const BoxSet& inBoxes);
+  // Box inIndex (last frame's index inLastIndex, -1 when new) into the slabs' lists, and its
+  // record as sent into ioSent[inIndex] (ioSent may be sent_boxes itself: read first).
   void addBoxDelta(const BoxSet& inBoxes, std::size_t inIndex, int64_t inLastIndex,
                    std::vector<BoxRecord>& ioSent, SlabDeltas& ioDeltas) const;
   void forgetGoneBoxes(const std::vector<char>& inStillHere, SlabDeltas& ioDeltas) const;
