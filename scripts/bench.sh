@@ -1,18 +1,28 @@
 #!/usr/bin/env bash
-# The benchmarks (docs/BENCHMARKS.md). Installs the optional peers (CGAL, Bullet, FCL) and
-# gnuplot when missing, builds the workspace, runs every sap_bench experiment into
-# bench/results/<machine>/ (a CSV and the PNGs per experiment, machine.txt) and the Google
-# Benchmark microbenchmarks (microbench.csv) into the same folder; each run overwrites the
-# last. The tables go to stdout.
+# The benchmarks (docs/BENCHMARKS.md): one script regenerates every CSV and plot the page reads.
 #
-# Usage: scripts/bench.sh [--quick] [--out DIR] [--no-install] [--no-micro] [--physx DIR]
-#                         [-- SAP_BENCH_ARGS...]
-#   --quick       small sizes and few frames (minutes); results go to build/bench_quick/<machine>/
-#   --out DIR     write results to DIR instead
-#   --no-install  do not apt-get the optional peers and gnuplot
-#   --no-micro    skip sap_microbench
-#   --physx DIR   also build PhysX 5's CPU broad phases (ABP, PABP, MBP) as peers, from the
-#                 PhysX source checkout DIR (never copied here; docs/BENCHMARKS.md, Peers)
+#   scripts/bench.sh --all     every sap_bench experiment the page reads (a CSV and the PNGs
+#                              each), memory in a process of its own, the Python module's
+#                              script when the module is built, sap_microbench, and the runs
+#                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
+#                              used; into bench/results/<machine>/ with machine.txt (minutes on
+#                              2 cores, not hours). The default.
+#   scripts/bench.sh --quick   the same, smallest sizes, a few frames and runs, no ROS and no
+#                              microbenchmarks (under a minute); into build/bench_quick/<machine>/.
+#                              The test command runs it as a smoke test (scripts/test_no_ros.sh).
+# Each run overwrites the last; the tables go to stdout.
+#
+# Usage: scripts/bench.sh [--all|--quick] [--bin DIR] [--out DIR] [--no-install] [--no-micro]
+#                         [--no-ros] [--experiments A,B] [-- SAP_BENCH_ARGS...]
+#   --bin DIR          sap_bench (and sap_microbench, the Python module in DIR/python) from DIR,
+#                      e.g. build/no_ros: nothing is built or installed, nothing through ROS
+#   --out DIR          write results to DIR instead
+#   --no-install       do not apt-get the optional peers and gnuplot
+#   --no-micro         skip sap_microbench
+#   --no-ros           skip the runs through ROS
+#   --experiments A,B  only these sap_bench experiments (and nothing else)
+#   --physx DIR        also build PhysX 5's CPU broad phases (ABP, PABP, MBP) as peers, from the
+#                      PhysX source checkout DIR (never copied here; docs/BENCHMARKS.md, Peers)
 #   after --, arguments go to sap_bench (e.g. -- --max-n 2^19 --runs 5)
 # Environment: SAP_WS (catkin workspace, default build/ws), SAP_BENCH_MACHINE (folder name,
 # default: short host name plus core count), SAP_PHYSX_DIR (as --physx).
@@ -20,23 +30,31 @@ set -eo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 WS="${SAP_WS:-$ROOT/build/ws}"
 OPTIONAL_PACKAGES=(libcgal-dev libtbb-dev libbullet-dev libfcl-dev gnuplot-nox)
-EXPERIMENTS=fig1_sort,fig23_phases,fig4_stacked,dispersion,fig5_ball,fig6_plane,threads,pareto,peers,coherence
+# Every experiment whose CSV docs/BENCHMARKS.md reads; memory runs on its own (below).
+EXPERIMENTS=fig1_sort,fig23_phases,fig4_stacked,dispersion,fig5_ball,fig6_plane,sizes,busy,threads,pareto,peers,coherence,skips,query,events
 
 quick=0
 install=1
 micro=1
+ros=1
+bin=""
 out=""
 physx="${SAP_PHYSX_DIR:-}"
+only=""
 bench_args=()
 while [ $# -gt 0 ]; do
   case "$1" in
+    --all) quick=0 ;;
     --quick) quick=1 ;;
+    --bin) bin=$(cd "$2" && pwd); shift ;;
     --no-install) install=0 ;;
     --no-micro) micro=0 ;;
+    --no-ros) ros=0 ;;
+    --experiments) only="$2"; shift ;;
     --out) out="$2"; shift ;;
     --physx) physx="$2"; shift ;;
     --) shift; bench_args=("$@"); break ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,29p' "$0"; exit 0 ;;
     *) echo "bench.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -46,6 +64,9 @@ machine="${SAP_BENCH_MACHINE:-$(hostname -s)-$(nproc)c}"
 if [ -z "$out" ]; then
   if [ "$quick" -eq 1 ]; then out="$ROOT/build/bench_quick/$machine"; else out="$ROOT/bench/results/$machine"; fi
 fi
+# Quick: a smoke test of every experiment, not a measurement.
+if [ "$quick" -eq 1 ]; then micro=0; ros=0; fi
+if [ -n "$bin" ]; then install=0; ros=0; fi
 
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 
@@ -64,35 +85,57 @@ install_optional_packages() {
 }
 
 [ "$install" -eq 1 ] && install_optional_packages
-# The benchmarks are on by default in the catkin build; said here in case the workspace was
-# configured without them.
-# PhysX only when named: the workspace's cache keeps the last directory given.
-physx_flag=()
-[ -n "$physx" ] && physx_flag=("-DSAP_PHYSX_DIR=$(cd "$physx" && pwd)")
-SAP_WS="$WS" "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON "${physx_flag[@]}"
-bin="$WS/devel/lib/sap_broadphase"
+if [ -z "$bin" ]; then
+  # The benchmarks are on by default in the catkin build; said here in case the workspace was
+  # configured without them. PhysX only when named: the workspace's cache keeps the last
+  # directory given.
+  physx_flag=()
+  [ -n "$physx" ] && physx_flag=("-DSAP_PHYSX_DIR=$(cd "$physx" && pwd)")
+  SAP_WS="$WS" "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON "${physx_flag[@]}"
+  bin="$WS/devel/lib/sap_broadphase"
+fi
 
 mkdir -p "$out"
-rm -f "$out/machine.txt"
+# sap_bench appends a line per experiment to machine.txt: a whole run starts it afresh, a run
+# of some experiments adds to it.
+[ -z "$only" ] && rm -f "$out/machine.txt"
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "commit: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo '?')$(git -C "$ROOT" diff --quiet 2>/dev/null || echo ' (with local changes)')"
   echo "kernel: $(uname -sr)"
   lscpu 2>/dev/null | grep -E '^(Model name|CPU\(s\)|Thread|Core|Socket|L2|L3)' || true
   echo "memory: $(awk '/MemTotal/ {print $2 " kB"}' /proc/meminfo)"
-} > "$out/machine.txt"
+  echo "load at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
+} >> "$out/machine.txt"
 
 quick_flag=()
 [ "$quick" -eq 1 ] && quick_flag=(--quick)
 echo "bench.sh: results in $out"
-"$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e "$EXPERIMENTS" "${bench_args[@]}"
+"$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e "${only:-$EXPERIMENTS}" "${bench_args[@]}"
+[ -n "$only" ] && { echo "bench.sh: done; results in $out"; exit 0; }
 # Memory in a process of its own, so earlier experiments' heap does not hide the peak.
 "$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e memory "${bench_args[@]}"
 
+# The Python module beside rtree, when the module is built (the plain CMake build's python/
+# folder, or the catkin workspace's) and rtree is installed.
+python_path="$bin/python"
+[ -d "$python_path/sap_broadphase" ] || python_path="$WS/devel/lib/python3/dist-packages"
+if PYTHONPATH="$python_path" python3 -c 'import sap_broadphase, rtree' 2>/dev/null; then
+  PYTHONPATH="$python_path" python3 "$ROOT/python/bench/bench_python.py" "${quick_flag[@]}" --out "$out"
+else
+  echo "bench.sh: the Python module or rtree is missing: no python_*.csv"
+fi
+
 if [ "$micro" -eq 1 ] && [ -x "$bin/sap_microbench" ]; then
-  micro_args=(--benchmark_out="$out/microbench.csv" --benchmark_out_format=csv)
-  # Quick: the small sizes only, briefly.
-  [ "$quick" -eq 1 ] && micro_args+=(--benchmark_min_time=0.01 "--benchmark_filter=[/:](1024|8192|32768|65536|131072)(/|$)|SuccTreeRange")
-  "$bin/sap_microbench" "${micro_args[@]}"
+  "$bin/sap_microbench" --benchmark_out="$out/microbench.csv" --benchmark_out_format=csv
+fi
+
+# Through ROS: the node against a nodelet at 2^20, the nodelet alone, small frames.
+if [ "$ros" -eq 1 ]; then
+  "$ROOT/scripts/bench_ros.sh" --out "$out" -- --n 2^17,2^20 --density 0.05,0.35 --frames 10 \
+    --no-throughput
+  "$ROOT/scripts/bench_ros.sh" --out "$out/nodelet" -- --transport nodelet --n 2^17,2^20 \
+    --density 0.05,0.35 --frames 20 --no-throughput
+  "$ROOT/scripts/bench_ros.sh" --quick --out "$out/small_frames"
 fi
 echo "bench.sh: done; results in $out"

@@ -12,6 +12,13 @@
   first on PATH and must exit 0. Without --bin they are only listed.
 * The README's C++ example is examples/find_package/main.cpp verbatim (that file is built
   and run against the installed package by scripts/test_no_ros.sh).
+* Every table of docs/BENCHMARKS.md cites the CSV it comes from (a `name.csv` in the table or
+  in the text since the heading or table before it), and every CSV the page names exists
+  under bench/results/<machine>/.
+* docs/ARCHITECTURE.md's import rule holds for every `#include` of src/core/ and
+  include/sap_broadphase/core/: the parts' includes form no cycle, only the facade's .cpp
+  and the oracle's header include the facade, API headers include only API headers, the
+  floor's headers include only the floor, and every part is named in the page's drawing.
 
 Usage: scripts/check_docs.py [--bin DIR]   exits 1 and lists the problems when any.
 """
@@ -121,6 +128,119 @@ def example_problems():
             yield "README.md: the C++ example differs from examples/find_package/main.cpp"
 
 
+BENCHMARKS = ROOT / "docs" / "BENCHMARKS.md"
+RESULTS = ROOT / "bench" / "results"
+CSV_NAME = re.compile(r"[\w.*/-]*\w\.csv\b")
+
+
+def tables_with_context(text):
+    """(first line number, table and the text before it since the last heading or table)."""
+    context, table, first = [], [], 0
+    unfenced = FENCE.sub(lambda block: "\n" * block.group(0).count("\n"), text)  # lines kept
+    for number, line in enumerate(unfenced.splitlines(), 1):
+        if line.startswith("|"):
+            if not table:
+                first = number
+            table.append(line)
+            continue
+        if table:
+            yield first, "\n".join(context + table)
+            context, table = [], []
+        if line.startswith("#"):
+            context = []
+        context.append(line)
+    if table:
+        yield first, "\n".join(context + table)
+
+
+def result_exists(name):
+    return any(any(machine.glob(name)) for machine in RESULTS.iterdir() if machine.is_dir())
+
+
+def benchmark_table_problems():
+    text = BENCHMARKS.read_text(encoding="utf-8")
+    for line, block in tables_with_context(text):
+        if not CSV_NAME.search(block):
+            yield f"docs/BENCHMARKS.md:{line}: a table that cites no CSV of bench/results/"
+    for name in sorted(set(CSV_NAME.findall(FENCE.sub("", text)))):
+        if not result_exists(name):
+            yield f"docs/BENCHMARKS.md: {name} is in no folder of bench/results/"
+
+
+CORE = ROOT / "src" / "core"
+API = ROOT / "include" / "sap_broadphase" / "core"
+INCLUDE = re.compile(r'^\s*#\s*include\s+"(?:sap_broadphase/)?core/(\w+)\.h"', re.M)
+FACADE = "broadphase"
+ALLOWED_FACADE_INCLUDERS = {CORE / "broadphase.cpp", API / "brute_force.h"}
+
+
+def core_includes():
+    """{file: [part it includes]} over the engine's sources and API headers."""
+    files = sorted(CORE.glob("*.h")) + sorted(CORE.glob("*.cpp")) + sorted(API.glob("*.h"))
+    return {f: INCLUDE.findall(f.read_text(encoding="utf-8")) for f in files}
+
+
+def part_cycle(includes):
+    """A cycle of parts (a part: a file name without extension), or None."""
+    graph = {}
+    for source, parts in includes.items():
+        graph.setdefault(source.stem, set()).update(p for p in parts if p != source.stem)
+    done, on_path = set(), []
+
+    def visit(part):
+        if part in on_path:
+            return on_path[on_path.index(part):] + [part]
+        if part in done:
+            return None
+        on_path.append(part)
+        for successor in sorted(graph.get(part, ())):
+            cycle = visit(successor)
+            if cycle:
+                return cycle
+        on_path.pop()
+        done.add(part)
+        return None
+
+    for part in sorted(graph):
+        cycle = visit(part)
+        if cycle:
+            return cycle
+    return None
+
+
+def drawing_of_parts(architecture):
+    """The fenced drawing under "The parts and their imports": its text and its floor's parts."""
+    section = architecture.split("## The parts and their imports", 1)[1]
+    drawing = FENCE.search(section).group(2)
+    lines = drawing.splitlines()
+    floor_at = next(i for i, line in enumerate(lines) if "the floor" in line)
+    floor_line = next(line for line in lines[floor_at + 1:] if "[api]" in line)
+    return drawing, set(re.findall(r"(\w+)(?: \[api\])?", floor_line))
+
+
+def import_problems():
+    includes = core_includes()
+    architecture = (ROOT / "docs" / "ARCHITECTURE.md").read_text(encoding="utf-8")
+    drawing, floor = drawing_of_parts(architecture)
+    api_parts = {f.stem for f in API.glob("*.h")}
+    cycle = part_cycle(includes)
+    if cycle:
+        yield "src/core: an include runs back up: " + " -> ".join(cycle)
+    for source, parts in includes.items():
+        where = source.relative_to(ROOT)
+        if FACADE in parts and source.stem != FACADE and source not in ALLOWED_FACADE_INCLUDERS:
+            yield f"{where}: includes the facade (broadphase.h)"
+        if source.parent == API:
+            for part in sorted(set(parts) - api_parts):
+                yield f"{where}: an API header includes the private core/{part}.h"
+        if source.suffix == ".h" and source.stem in floor:
+            for part in sorted(set(parts) - floor):
+                yield f"{where}: a floor header includes core/{part}.h, above the floor"
+    named = set(re.findall(r"\w+", drawing))
+    for part in sorted({f.stem for f in includes} - named):
+        yield f"docs/ARCHITECTURE.md: the drawing of the parts does not name {part}"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bin", help="folder holding sap_scene and sap_pairs")
@@ -138,6 +258,8 @@ def main():
                 else:
                     print(f"not run (no --bin): {line}")
     problems += example_problems()
+    problems += benchmark_table_problems()
+    problems += import_problems()
     for problem in problems:
         print(problem, file=sys.stderr)
     print(f"check_docs: {len(DOCUMENTS)} documents, {ran} quick commands run, "

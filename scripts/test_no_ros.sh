@@ -5,7 +5,8 @@
 # -DSAP_BUILD_BENCHMARKS=ON, off in a consumer's plain build), runs
 # the tests, installs the engine, builds examples/find_package against the installed package
 # config (find_package(sap_broadphase_core)) and checks the README and docs/ (links, commands,
-# the C++ example: scripts/check_docs.py), and runs the core tests a second time with the
+# the C++ example, the benchmarks' CSVs, the engine's import rule: scripts/check_docs.py),
+# smoke-runs every benchmark (scripts/bench.sh --quick), and runs the core tests a second time with the
 # engine's invariants checked (-DSAP_ASSERTS=ON, in BUILD_DIR/asserts). Exits non-zero when
 # anything fails.
 #
@@ -64,6 +65,20 @@ cmake --build "$BUILD/example" > /dev/null
 "$BUILD/example/broadphase_example"
 echo "test_no_ros: examples/find_package built against $PREFIX and ran"
 python3 "$ROOT/scripts/check_docs.py" --bin "$BUILD"
+
+# Every benchmark at its smallest size, with this build's tools, so that no experiment rots
+# (scripts/bench.sh --quick: a smoke test, its figures not read); one JUnit case.
+bench_junit="$BUILD/test_results/bench_quick.xml"
+mkdir -p "$BUILD/test_results"
+if "$ROOT/scripts/bench.sh" --quick --bin "$BUILD" --out "$BUILD/bench_quick" \
+    > "$BUILD/bench_quick.log" 2>&1; then
+  echo '<?xml version="1.0"?><testsuite name="bench" tests="1" failures="0"><testcase classname="bench" name="quick"/></testsuite>' > "$bench_junit"
+  echo "test_no_ros: scripts/bench.sh --quick ran every experiment"
+else
+  echo '<?xml version="1.0"?><testsuite name="bench" tests="1" failures="1"><testcase classname="bench" name="quick"><failure message="scripts/bench.sh --quick failed: see bench_quick.log in the build folder"/></testcase></testsuite>' > "$bench_junit"
+  echo "test_no_ros: scripts/bench.sh --quick FAILED, see $BUILD/bench_quick.log" >&2
+  test_status=1
+fi
 
 # Count test cases from the JUnit files, as scripts/test.sh does for the catkin build.
 read -r total failed skipped < <(python3 "$ROOT/scripts/junit_summary.py" "$BUILD/test_results")

@@ -59,6 +59,7 @@ target_link_libraries(test_query ${PROJECT_NAME}_core_internal)
 
 # The CLI contract, exercised through the real executables.
 sap_add_gtest(test_cli test/core/test_cli.cpp test/core/test_main.cpp)
+target_include_directories(test_cli PRIVATE test/core)
 target_link_libraries(test_cli ${PROJECT_NAME}_core_internal)
 add_dependencies(test_cli sap_pairs sap_scene)
 target_compile_definitions(test_cli PRIVATE

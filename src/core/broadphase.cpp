@@ -33,7 +33,6 @@
 #include "core/thread_choice.h"
 #include "core/tuning.h"
 #include "core/work_units.h"
-#include "sap_broadphase/core/brute_force.h"
 
 namespace sap_broadphase {
 
@@ -389,7 +388,12 @@ QueryHitList Broadphase::query(const BoxFrame& inQueries) const {
   BoxColumns queries;  // a query's own: queries may run concurrently
   copyFrame(inQueries, queries, threads);
   if (auto problem = checkColumns(queries, inQueries)) throw InvalidBoxes(std::move(*problem));
-  return answerQueries(queries, impl_->world, impl_->scenery, threads);
+  const PairList hits = answerQueries(queries, impl_->world, impl_->scenery, threads);
+  QueryHitList answer(hits.size());
+  std::transform(hits.begin(), hits.end(), answer.begin(), [](const IdPair& inHit) {
+    return QueryHit{inHit.a, inHit.b};
+  });
+  return answer;
 }
 
 }  // namespace sap_broadphase

@@ -2,7 +2,6 @@
 // found by one linear merge of the two, and the state that keeps the last list without copying it.
 #pragma once
 
-#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {

@@ -87,8 +87,8 @@ void FrameQuery::scan(const BoxColumns& inQueries, int inThreads, PairList& outH
   for (const PairList& part : parts) outHits.insert(outHits.end(), part.begin(), part.end());
 }
 
-QueryHitList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
-                           const StaticIndex& inScenery, int inThreads) {
+PairList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
+                       const StaticIndex& inScenery, int inThreads) {
   PairList hits;
   inFrame.query(inQueries, inThreads, hits);
   if (inScenery.size() > 0 && inQueries.size() > 0) {
@@ -97,11 +97,7 @@ QueryHitList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFram
   }
   PairSortScratch scratch;
   sortPairsByAThenB(hits, scratch);  // (query id, world id): either may be the larger
-  QueryHitList answer(hits.size());
-  std::transform(hits.begin(), hits.end(), answer.begin(), [](const IdPair& inHit) {
-    return QueryHit{inHit.a, inHit.b};
-  });
-  return answer;
+  return hits;
 }
 
 }  // namespace sap_broadphase

@@ -18,7 +18,6 @@
 
 #include "core/box_columns.h"
 #include "core/static_index.h"
-#include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -57,8 +56,9 @@ class FrameQuery {
 
 /// Broadphase::query() for valid inQueries: the hits in the last frame (inFrame) and in the
 /// declared scenery (inScenery; its ids differ from the frame's), sorted by (query id, world
-/// id), on up to inThreads threads.
-QueryHitList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
-                           const StaticIndex& inScenery, int inThreads);
+/// id), on up to inThreads threads, each hit as {query id, world id} (the facade hands them out
+/// as QueryHits).
+PairList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
+                       const StaticIndex& inScenery, int inThreads);
 
 }  // namespace sap_broadphase

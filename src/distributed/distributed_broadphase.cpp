@@ -74,6 +74,84 @@ std::size_t sum(const std::vector<int>& inCounts) {
   return total;
 }
 
+/// What this rank tells each other rank in a frame, indexed by rank: boxes new to its slab or
+/// changed there, and ids of boxes that left it.
+struct SlabDeltas {
+  std::vector<std::vector<BoxRecord>> upserts;
+  std::vector<std::vector<uint32_t>> removals;
+  explicit SlabDeltas(int inRanks)
+      : upserts(static_cast<std::size_t>(inRanks)), removals(static_cast<std::size_t>(inRanks)) {}
+};
+
+/// The bytes of one all-to-all exchange: per rank its count and offset in `bytes`.
+struct WireBytes {
+  std::vector<int> counts;
+  std::vector<int> offsets;
+  std::vector<unsigned char> bytes;
+};
+
+/// Box inIndex of inBoxes as it travels.
+BoxRecord recordOf(const BoxSet& inBoxes, std::size_t inIndex) {
+  BoxRecord box{inBoxes.ids[inIndex], inBoxes.group(inIndex), inBoxes.mask(inIndex), 0, {}, {}};
+  for (int axis = 0; axis < 3; ++axis) {
+    box.lo[axis] = inBoxes.lo(axis, inIndex);
+    box.hi[axis] = inBoxes.hi(axis, inIndex);
+  }
+  return box;
+}
+
+/// Writes the header, the box records and the ids to outBytes (room for all of them).
+void packDelta(const std::vector<BoxRecord>& inUpserts, const std::vector<uint32_t>& inRemovals,
+               unsigned char* outBytes) {
+  const DeltaHeader header{static_cast<uint32_t>(inUpserts.size()),
+                           static_cast<uint32_t>(inRemovals.size())};
+  std::memcpy(outBytes, &header, sizeof header);
+  outBytes += sizeof header;
+  std::memcpy(outBytes, inUpserts.data(), inUpserts.size() * sizeof(BoxRecord));
+  outBytes += inUpserts.size() * sizeof(BoxRecord);
+  std::memcpy(outBytes, inRemovals.data(), inRemovals.size() * sizeof(uint32_t));
+}
+
+/// Reads what packDelta wrote: the changed boxes and the gone ids, each sorted by id.
+void unpackDelta(const unsigned char* inBytes, std::vector<BoxRecord>& outChanged,
+                 std::vector<uint32_t>& outGone) {
+  DeltaHeader header;
+  std::memcpy(&header, inBytes, sizeof header);
+  inBytes += sizeof header;
+  outChanged.resize(header.upserts);
+  std::memcpy(outChanged.data(), inBytes, header.upserts * sizeof(BoxRecord));
+  inBytes += header.upserts * sizeof(BoxRecord);
+  outGone.resize(header.removals);
+  std::memcpy(outGone.data(), inBytes, header.removals * sizeof(uint32_t));
+  const auto byId = [](const BoxRecord& x, const BoxRecord& y) { return x.id < y.id; };
+  if (!std::is_sorted(outChanged.begin(), outChanged.end(), byId))
+    std::sort(outChanged.begin(), outChanged.end(), byId);
+  std::sort(outGone.begin(), outGone.end());
+}
+
+/// inHeld (sorted by id) with inChanged put in (replacing boxes of the same id) and the boxes
+/// of inGone left out, still sorted by id. inChanged and inGone are sorted.
+std::vector<BoxRecord> mergeById(const std::vector<BoxRecord>& inHeld,
+                                 const std::vector<BoxRecord>& inChanged,
+                                 const std::vector<uint32_t>& inGone) {
+  std::vector<BoxRecord> merged;
+  merged.reserve(inHeld.size() + inChanged.size());
+  std::size_t held = 0, changed = 0, gone = 0;
+  while (held < inHeld.size() || changed < inChanged.size()) {
+    const bool changedNext = changed < inChanged.size() &&
+                             (held == inHeld.size() || inChanged[changed].id <= inHeld[held].id);
+    if (changedNext) {
+      if (held < inHeld.size() && inHeld[held].id == inChanged[changed].id) ++held;  // replaced
+      merged.push_back(inChanged[changed++]);
+      continue;
+    }
+    while (gone < inGone.size() && inGone[gone] < inHeld[held].id) ++gone;
+    if (gone == inGone.size() || inGone[gone] != inHeld[held].id) merged.push_back(inHeld[held]);
+    ++held;
+  }
+  return merged;
+}
+
 }  // namespace
 
 struct DistributedBroadphase::Impl {
@@ -138,7 +216,20 @@ struct DistributedBroadphase::Impl {
   int slabOf(double inX) const { return slabOfCoordinate(cuts, inX); }
 
   void cutSlabs(const BoxSet& inBoxes);
+  // The exchange of a frame's boxes, one job each: place every own box in the slabs its
+  // range reaches, list what each other slab must add or forget since the last frame, pack
+  // the lists, send and receive them, merge what was received into the slab's store.
   void exchangeBoxes(const BoxSet& inBoxes);
+  void placeInSlabs(const BoxSet& inBoxes);
+  SlabDeltas deltasSinceLastFrame(const BoxSet& inBoxes);
+  // Box inIndex (last frame's index inLastIndex, -1 when new) into the slabs' lists, and its
+  // record as sent into ioSent[inIndex] (ioSent may be sent_boxes itself: read first).
+  void addBoxDelta(const BoxSet& inBoxes, std::size_t inIndex, int64_t inLastIndex,
+                   std::vector<BoxRecord>& ioSent, SlabDeltas& ioDeltas) const;
+  void forgetGoneBoxes(const std::vector<char>& inStillHere, SlabDeltas& ioDeltas) const;
+  WireBytes packForRanks(const SlabDeltas& inDeltas);
+  WireBytes exchangeWithRanks(const WireBytes& inSend);
+  void mergeReceived(const WireBytes& inReceived);
   void matchPrevious(const std::vector<uint32_t>& inIds, std::vector<int64_t>& outPrevious,
                      std::vector<char>& outStillHere) const;
   void assembleBorderSet(const BoxSet& inBoxes);
@@ -235,6 +326,13 @@ void DistributedBroadphase::Impl::matchPrevious(const std::vector<uint32_t>& inI
 }
 
 void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
+  placeInSlabs(inBoxes);
+  const SlabDeltas deltas = deltasSinceLastFrame(inBoxes);
+  const WireBytes received = exchangeWithRanks(packForRanks(deltas));
+  mergeReceived(received);
+}
+
+void DistributedBroadphase::Impl::placeInSlabs(const BoxSet& inBoxes) {
   const int axis = config.slab_axis;
   const std::size_t n = inBoxes.size();
   first_slab.resize(n);
@@ -246,7 +344,9 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
                    last_slab[i] = slabOf(inBoxes.hi(axis, i));
                  }
                });
+}
 
+SlabDeltas DistributedBroadphase::Impl::deltasSinceLastFrame(const BoxSet& inBoxes) {
   // Which own box was which last frame: the same ids in the same order (a simulation's usual
   // frame) match by index; ids in increasing order (bodies kept sorted, some joining or
   // leaving) by a merge; anything else by a hash of the ids.
@@ -255,47 +355,16 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
   std::vector<char> stillHere;
   if (have_sent && !sameOrder) matchPrevious(inBoxes.ids, previous, stillHere);
 
-  std::vector<std::vector<BoxRecord>> upserts(static_cast<std::size_t>(ranks));
-  std::vector<std::vector<uint32_t>> removals(static_cast<std::size_t>(ranks));
+  SlabDeltas deltas(ranks);
   // The bounds the other slabs hold, per box with a slab other than this one in its range
   // (entries of boxes that stay home are never read). Same order: updated in place.
   std::vector<BoxRecord>& nowSent = sameOrder ? sent_boxes : sent_boxes_scratch;
-  nowSent.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const int t0 = first_slab[i];
-    const int t1 = last_slab[i];
-    const int64_t j = !have_sent ? -1 : sameOrder ? static_cast<int64_t>(i) : previous[i];
-    if (t0 == rank && t1 == rank && (j < 0 || (sent_first[j] == rank && sent_last[j] == rank)))
-      continue;  // lives in this slab only, now and before: nothing to tell anyone
-    BoxRecord box{inBoxes.ids[i], inBoxes.group(i), inBoxes.mask(i), 0, {}, {}};
-    for (int a = 0; a < 3; ++a) {
-      box.lo[a] = inBoxes.lo(a, i);
-      box.hi[a] = inBoxes.hi(a, i);
-    }
-    int u0 = 1;
-    int u1 = 0;  // empty range: nobody holds it yet
-    bool changed = true;
-    if (j >= 0) {
-      u0 = sent_first[j];
-      u1 = sent_last[j];
-      // Bit for bit: a slab that holds old bounds would miss or invent pairs. (Read only
-      // when another slab holds the box, i.e. when the entry was written.)
-      changed = std::memcmp(&box, &sent_boxes[j], sizeof(BoxRecord)) != 0;
-    }
-    for (int s = t0; s <= t1; ++s) {
-      if (s != rank && (changed || s < u0 || s > u1)) upserts[s].push_back(box);
-    }
-    for (int s = u0; s <= u1; ++s) {
-      if (s != rank && (s < t0 || s > t1)) removals[s].push_back(box.id);
-    }
-    nowSent[i] = box;
+  nowSent.resize(inBoxes.size());
+  for (std::size_t i = 0; i < inBoxes.size(); ++i) {
+    const int64_t lastIndex = !have_sent ? -1 : sameOrder ? static_cast<int64_t>(i) : previous[i];
+    addBoxDelta(inBoxes, i, lastIndex, nowSent, deltas);
   }
-  for (std::size_t j = 0; j < stillHere.size(); ++j) {
-    if (stillHere[j]) continue;  // a box that is gone: every slab that held it forgets it
-    for (int s = sent_first[j]; s <= sent_last[j]; ++s) {
-      if (s != rank) removals[s].push_back(sent_ids[j]);
-    }
-  }
+  forgetGoneBoxes(stillHere, deltas);
   if (!sameOrder) {
     sent_ids = inBoxes.ids;
     sent_boxes.swap(sent_boxes_scratch);
@@ -303,74 +372,95 @@ void DistributedBroadphase::Impl::exchangeBoxes(const BoxSet& inBoxes) {
   sent_first = first_slab;
   sent_last = last_slab;
   have_sent = true;
+  return deltas;
+}
 
-  // Pack, exchange sizes, exchange bytes.
-  std::vector<int> sendCounts(static_cast<std::size_t>(ranks), 0);
-  for (int s = 0; s < ranks; ++s) {
-    if (upserts[s].empty() && removals[s].empty()) continue;
-    sendCounts[s] = mpiCount(sizeof(DeltaHeader) + upserts[s].size() * sizeof(BoxRecord) +
-                                 removals[s].size() * sizeof(uint32_t),
-                             "the boxes sent");
-    report.boxes_sent += upserts[s].size();
-    report.removals_sent += removals[s].size();
-    report.box_bytes_sent += static_cast<uint64_t>(sendCounts[s]);
+void DistributedBroadphase::Impl::addBoxDelta(const BoxSet& inBoxes, std::size_t inIndex,
+                                              int64_t inLastIndex, std::vector<BoxRecord>& ioSent,
+                                              SlabDeltas& ioDeltas) const {
+  const int firstNow = first_slab[inIndex];
+  const int lastNow = last_slab[inIndex];
+  const bool homeBefore =
+      inLastIndex < 0 || (sent_first[inLastIndex] == rank && sent_last[inLastIndex] == rank);
+  if (firstNow == rank && lastNow == rank && homeBefore)
+    return;  // lives in this slab only, now and before: nothing to tell anyone
+  const BoxRecord box = recordOf(inBoxes, inIndex);
+  int firstBefore = 1;
+  int lastBefore = 0;  // empty range: nobody holds it yet
+  bool changed = true;
+  if (inLastIndex >= 0) {
+    firstBefore = sent_first[inLastIndex];
+    lastBefore = sent_last[inLastIndex];
+    // Bit for bit: a slab that holds old bounds would miss or invent pairs. (Read only when
+    // another slab holds the box, i.e. when the entry was written.)
+    changed = std::memcmp(&box, &sent_boxes[inLastIndex], sizeof(BoxRecord)) != 0;
   }
-  const std::vector<int> sendOffsets = displacements(sendCounts);
-  std::vector<unsigned char> sendBytes(sum(sendCounts));
-  for (int s = 0; s < ranks; ++s) {
-    if (sendCounts[s] == 0) continue;
-    unsigned char* out = sendBytes.data() + sendOffsets[s];
-    const DeltaHeader header{static_cast<uint32_t>(upserts[s].size()),
-                             static_cast<uint32_t>(removals[s].size())};
-    std::memcpy(out, &header, sizeof header);
-    out += sizeof header;
-    std::memcpy(out, upserts[s].data(), upserts[s].size() * sizeof(BoxRecord));
-    out += upserts[s].size() * sizeof(BoxRecord);
-    std::memcpy(out, removals[s].data(), removals[s].size() * sizeof(uint32_t));
+  for (int slab = firstNow; slab <= lastNow; ++slab) {
+    const bool heldBefore = slab >= firstBefore && slab <= lastBefore;
+    if (slab != rank && (changed || !heldBefore)) ioDeltas.upserts[slab].push_back(box);
   }
-  std::vector<int> receiveCounts(static_cast<std::size_t>(ranks), 0);
-  checkMpi(MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm),
+  for (int slab = firstBefore; slab <= lastBefore; ++slab) {
+    const bool heldNow = slab >= firstNow && slab <= lastNow;
+    if (slab != rank && !heldNow) ioDeltas.removals[slab].push_back(box.id);
+  }
+  ioSent[inIndex] = box;
+}
+
+void DistributedBroadphase::Impl::forgetGoneBoxes(const std::vector<char>& inStillHere,
+                                                  SlabDeltas& ioDeltas) const {
+  for (std::size_t last = 0; last < inStillHere.size(); ++last) {
+    if (inStillHere[last]) continue;  // a box that is gone: every slab that held it forgets it
+    for (int slab = sent_first[last]; slab <= sent_last[last]; ++slab) {
+      if (slab != rank) ioDeltas.removals[slab].push_back(sent_ids[last]);
+    }
+  }
+}
+
+WireBytes DistributedBroadphase::Impl::packForRanks(const SlabDeltas& inDeltas) {
+  WireBytes wire;
+  wire.counts.assign(static_cast<std::size_t>(ranks), 0);
+  for (int to = 0; to < ranks; ++to) {
+    const std::size_t upserts = inDeltas.upserts[to].size();
+    const std::size_t removals = inDeltas.removals[to].size();
+    if (upserts == 0 && removals == 0) continue;
+    wire.counts[to] =
+        mpiCount(sizeof(DeltaHeader) + upserts * sizeof(BoxRecord) + removals * sizeof(uint32_t),
+                 "the boxes sent");
+    report.boxes_sent += upserts;
+    report.removals_sent += removals;
+    report.box_bytes_sent += static_cast<uint64_t>(wire.counts[to]);
+  }
+  wire.offsets = displacements(wire.counts);
+  wire.bytes.resize(sum(wire.counts));
+  for (int to = 0; to < ranks; ++to) {
+    if (wire.counts[to] > 0)
+      packDelta(inDeltas.upserts[to], inDeltas.removals[to], wire.bytes.data() + wire.offsets[to]);
+  }
+  return wire;
+}
+
+WireBytes DistributedBroadphase::Impl::exchangeWithRanks(const WireBytes& inSend) {
+  WireBytes received;
+  received.counts.assign(static_cast<std::size_t>(ranks), 0);
+  checkMpi(MPI_Alltoall(inSend.counts.data(), 1, MPI_INT, received.counts.data(), 1, MPI_INT, comm),
            "MPI_Alltoall");
   report.control_bytes_sent += static_cast<uint64_t>(ranks - 1) * sizeof(int);
-  const std::vector<int> receiveOffsets = displacements(receiveCounts);
-  std::vector<unsigned char> receiveBytes(sum(receiveCounts));
-  checkMpi(MPI_Alltoallv(sendBytes.data(), sendCounts.data(), sendOffsets.data(), MPI_BYTE,
-                         receiveBytes.data(), receiveCounts.data(), receiveOffsets.data(), MPI_BYTE,
-                         comm),
+  received.offsets = displacements(received.counts);
+  received.bytes.resize(sum(received.counts));
+  checkMpi(MPI_Alltoallv(inSend.bytes.data(), inSend.counts.data(), inSend.offsets.data(), MPI_BYTE,
+                         received.bytes.data(), received.counts.data(), received.offsets.data(),
+                         MPI_BYTE, comm),
            "MPI_Alltoallv");
+  return received;
+}
 
-  // Merge each sender's changes into what this slab holds from it, keeping id order.
-  for (int p = 0; p < ranks; ++p) {
-    if (receiveCounts[p] == 0) continue;
-    const unsigned char* in = receiveBytes.data() + receiveOffsets[p];
-    DeltaHeader header;
-    std::memcpy(&header, in, sizeof header);
-    in += sizeof header;
-    std::vector<BoxRecord> changedBoxes(header.upserts);
-    std::memcpy(changedBoxes.data(), in, header.upserts * sizeof(BoxRecord));
-    in += header.upserts * sizeof(BoxRecord);
-    std::vector<uint32_t> gone(header.removals);
-    std::memcpy(gone.data(), in, header.removals * sizeof(uint32_t));
-    const auto byId = [](const BoxRecord& x, const BoxRecord& y) { return x.id < y.id; };
-    if (!std::is_sorted(changedBoxes.begin(), changedBoxes.end(), byId))
-      std::sort(changedBoxes.begin(), changedBoxes.end(), byId);
-    std::sort(gone.begin(), gone.end());
-
-    const std::vector<BoxRecord>& held = resident[p];
-    std::vector<BoxRecord> merged;
-    merged.reserve(held.size() + changedBoxes.size());
-    std::size_t h = 0, c = 0, g = 0;
-    while (h < held.size() || c < changedBoxes.size()) {
-      if (c < changedBoxes.size() && (h == held.size() || changedBoxes[c].id <= held[h].id)) {
-        if (h < held.size() && held[h].id == changedBoxes[c].id) ++h;  // replaced
-        merged.push_back(changedBoxes[c++]);
-        continue;
-      }
-      while (g < gone.size() && gone[g] < held[h].id) ++g;
-      if (g == gone.size() || gone[g] != held[h].id) merged.push_back(held[h]);
-      ++h;
-    }
-    resident[p].swap(merged);
+void DistributedBroadphase::Impl::mergeReceived(const WireBytes& inReceived) {
+  for (int from = 0; from < ranks; ++from) {
+    if (inReceived.counts[from] == 0) continue;
+    std::vector<BoxRecord> changedBoxes;
+    std::vector<uint32_t> gone;
+    unpackDelta(inReceived.bytes.data() + inReceived.offsets[from], changedBoxes, gone);
+    resident[from] = mergeById(resident[from], changedBoxes, gone);
   }
 }
 

@@ -16,71 +16,21 @@
 #include "sap_broadphase/core/config.h"
 #include "sap_broadphase/core/scenes.h"
 #include "sap_broadphase/core/text_io.h"
+#include "test_files.h"
 
 namespace sap_broadphase {
 namespace {
 
-/// What one run of a tool left behind.
-struct RunResult {
-  int status = -1;  ///< exit status, or -1 when it did not exit normally
-  std::string out;
-  std::string err;
-};
-
-/// A temporary folder for one test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/sap_cli_test_XXXXXX";
-    const char* made = mkdtemp(pattern);
-    path_ = made ? made : "/tmp";
-  }
-  ~TempDir() {
-    const std::string command = "rm -rf '" + path_ + "'";
-    if (path_ != "/tmp") (void)std::system(command.c_str());
-  }
-  const std::string& path() const { return path_; }
-  /// Path of a file inside the folder.
-  std::string file(const std::string& inName) const { return path_ + "/" + inName; }
-
- private:
-  std::string path_;
-};
-
-std::string readFile(const std::string& inPath) {
-  std::ifstream file(inPath, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-void writeFile(const std::string& inPath, const std::string& inText) {
-  std::ofstream file(inPath, std::ios::binary);
-  file << inText;
-}
-
-/// Single-quotes inText for the shell.
-std::string shellQuote(const std::string& inText) {
-  std::string quoted = "'";
-  for (char c : inText) quoted += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
+using test_files::readFile;
+using test_files::RunResult;
+using test_files::shellQuote;
+using test_files::TempDir;
+using test_files::writeFile;
 
 /// Runs inExe with inArgs, stdin from inStdinPath (or /dev/null), capturing stdout and stderr.
 RunResult runTool(const TempDir& inDir, const std::string& inExe,
                   const std::vector<std::string>& inArgs, const std::string& inStdinPath = "") {
-  std::string command = shellQuote(inExe);
-  for (const std::string& arg : inArgs) command += " " + shellQuote(arg);
-  const std::string outPath = inDir.file("stdout.txt");
-  const std::string errPath = inDir.file("stderr.txt");
-  command += " < " + shellQuote(inStdinPath.empty() ? "/dev/null" : inStdinPath) + " > " +
-             shellQuote(outPath) + " 2> " + shellQuote(errPath);
-  const int raw = std::system(command.c_str());
-  RunResult result;
-  result.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-  result.out = readFile(outPath);
-  result.err = readFile(errPath);
-  return result;
+  return test_files::runCommand(inDir, test_files::commandLine(inExe, inArgs), inStdinPath);
 }
 
 RunResult runPairs(const TempDir& inDir, const std::vector<std::string>& inArgs,

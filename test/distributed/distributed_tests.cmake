@@ -11,6 +11,7 @@ add_executable(distributed_check test/distributed/distributed_check_main.cpp)
 target_link_libraries(distributed_check ${PROJECT_NAME}_distributed)
 
 sap_add_gtest(test_distributed test/distributed/test_distributed.cpp test/core/test_main.cpp)
+target_include_directories(test_distributed PRIVATE test/core)
 add_dependencies(test_distributed distributed_check sap_pairs_mpi sap_pairs)
 target_compile_definitions(test_distributed PRIVATE
   SAP_MPIEXEC="${MPIEXEC_EXECUTABLE}"

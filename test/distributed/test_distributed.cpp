@@ -13,50 +13,16 @@
 #include <tuple>
 #include <vector>
 
+#include "test_files.h"
+
 namespace {
 
-/// What one run left behind.
-struct RunResult {
-  int status = -1;  ///< exit status, or -1 when it did not exit normally
-  std::string out;
-  std::string err;
-};
-
-/// A temporary folder for one test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/sap_mpi_test_XXXXXX";
-    const char* made = mkdtemp(pattern);
-    path_ = made ? made : "";
-  }
-  ~TempDir() {
-    if (!path_.empty()) (void)std::system(("rm -rf '" + path_ + "'").c_str());
-  }
-  std::string file(const std::string& inName) const { return path_ + "/" + inName; }
-
- private:
-  std::string path_;
-};
-
-std::string readFile(const std::string& inPath) {
-  std::ifstream file(inPath, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-void writeFile(const std::string& inPath, const std::string& inText) {
-  std::ofstream file(inPath, std::ios::binary);
-  file << inText;
-}
-
-/// Single-quotes inText for the shell.
-std::string shellQuote(const std::string& inText) {
-  std::string quoted = "'";
-  for (char c : inText) quoted += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
+using sap_broadphase::test_files::commandLine;
+using sap_broadphase::test_files::runCommand;
+using sap_broadphase::test_files::RunResult;
+using sap_broadphase::test_files::shellQuote;
+using sap_broadphase::test_files::TempDir;
+using sap_broadphase::test_files::writeFile;
 
 /// The mpirun prefix for inRanks local ranks: more ranks than cores allowed, no binding (the
 /// ranks' threads share the cores), shared memory only (no network needed), root allowed
@@ -69,30 +35,12 @@ std::string mpirunPrefix(int inRanks) {
          std::to_string(inRanks) + " ";
 }
 
-/// Runs inCommand (already quoted), stdout and stderr captured apart.
-RunResult runCommand(const TempDir& inDir, const std::string& inCommand) {
-  const std::string outPath = inDir.file("stdout.txt");
-  const std::string errPath = inDir.file("stderr.txt");
-  const std::string command =
-      inCommand + " < /dev/null > " + shellQuote(outPath) + " 2> " + shellQuote(errPath);
-  const int raw = std::system(command.c_str());
-  RunResult result;
-  result.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-  result.out = readFile(outPath);
-  result.err = readFile(errPath);
-  return result;
-}
-
 RunResult runPairs(const TempDir& inDir, const std::vector<std::string>& inArgs) {
-  std::string command = shellQuote(SAP_PAIRS_EXE);
-  for (const std::string& arg : inArgs) command += " " + shellQuote(arg);
-  return runCommand(inDir, command);
+  return runCommand(inDir, commandLine(SAP_PAIRS_EXE, inArgs));
 }
 
 RunResult runPairsMpi(const TempDir& inDir, int inRanks, const std::vector<std::string>& inArgs) {
-  std::string command = mpirunPrefix(inRanks) + shellQuote(SAP_PAIRS_MPI_EXE);
-  for (const std::string& arg : inArgs) command += " " + shellQuote(arg);
-  return runCommand(inDir, command);
+  return runCommand(inDir, mpirunPrefix(inRanks) + commandLine(SAP_PAIRS_MPI_EXE, inArgs));
 }
 
 /// Ranks and threads a rank.

@@ -1,4 +1,10 @@
-// The per-frame pipeline: keys -> parallel radix sort -> candidates -> pairing -> sorted pairs.
+// The broad phase, one frame at a time: update() loads the frame, plans it and runs one
+// strategy, which returns the sorted pairs. The plan's strategies: the last pairs again for an
+// unchanged frame; the candidates kept under a skin when every box is still inside its grown
+// box; the small-frame kernel (a grid of one-axis sweeps, one thread) for frames below
+// parallel_min_boxes and for every frame on one thread; else the paper's sweep (keys ->
+// parallel radix sort -> candidates -> pairing), sequential or parallel. Box queries, contact
+// events and declared scenery are answered beside the frame.
 #pragma once
 
 #include <cstddef>
@@ -14,28 +20,6 @@
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
-
-/// One answer of Broadphase::query(): the query box with id `query` overlaps the world box
-/// with id `world`.
-struct QueryHit {
-  uint32_t query;
-  uint32_t world;
-  friend bool operator==(const QueryHit& x, const QueryHit& y) {
-    return x.query == y.query && x.world == y.world;
-  }
-  friend bool operator<(const QueryHit& x, const QueryHit& y) {
-    return x.query < y.query || (x.query == y.query && x.world < y.world);
-  }
-};
-
-/// The answers of one Broadphase::query(), sorted by (query, world), none twice.
-using QueryHitList = std::vector<QueryHit>;
-
-/// The pairs that began and the pairs that ended at the last update(), each sorted as a PairList.
-struct ContactEvents {
-  PairList began;
-  PairList ended;
-};
 
 /// The stateful broad phase: keeps partition bounds B and the sweep axes across frames, owns
 /// every buffer (no allocation per frame once sizes are stable). Not thread-safe: one frame at

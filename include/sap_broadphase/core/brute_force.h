@@ -2,7 +2,7 @@
 #pragma once
 
 #include "sap_broadphase/core/box_set.h"
-#include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/broadphase.h"  // the engine the oracle checks, for its users
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {

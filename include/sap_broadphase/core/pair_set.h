@@ -1,4 +1,5 @@
-// Pairs of box ids as they leave the engine: each pair once, a < b, sorted by (a, b).
+// Pairs of box ids as they leave the engine: each pair once, a < b, sorted by (a, b); the
+// hits of a box query and the contact events of a frame, made of them.
 #pragma once
 
 #include <cstddef>
@@ -27,5 +28,27 @@ inline IdPair makeIdPair(uint32_t x, uint32_t y) {
 /// True when inPairs are in canonical order: a < b in every pair, sorted by (a, b), none twice
 /// (what Broadphase::update() returns).
 bool isCanonical(const PairList& inPairs);
+
+/// One answer of Broadphase::query(): the query box with id `query` overlaps the world box
+/// with id `world`.
+struct QueryHit {
+  uint32_t query;
+  uint32_t world;
+  friend bool operator==(const QueryHit& x, const QueryHit& y) {
+    return x.query == y.query && x.world == y.world;
+  }
+  friend bool operator<(const QueryHit& x, const QueryHit& y) {
+    return x.query < y.query || (x.query == y.query && x.world < y.world);
+  }
+};
+
+/// The answers of one Broadphase::query(), sorted by (query, world), none twice.
+using QueryHitList = std::vector<QueryHit>;
+
+/// The pairs that began and the pairs that ended at the last update(), each sorted as a PairList.
+struct ContactEvents {
+  PairList began;
+  PairList ended;
+};
 
 }  // namespace sap_broadphase
