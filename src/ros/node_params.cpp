@@ -119,18 +119,11 @@ std::string readNumber(const ros::NodeHandle& inPrivate, const std::string& inNa
 template <typename Value>
 std::string readLimited(const ros::NodeHandle& inPrivate, const std::string& inName,
                         Value& ioValue) {
-  const Limit* limit = findLimit("node parameter", "~" + inName);
-  if (!limit) throw std::logic_error("~" + inName + " has no row in the limits table");
   double value = static_cast<double>(ioValue);
-  std::string error = readNumber(inPrivate, inName, value);
-  if (!error.empty()) return error;
-  if (const auto problem = limitProblem(*limit, value)) return *problem;
-  if constexpr (std::is_integral_v<Value>) {
-    if (std::trunc(value) != value)
-      return "~" + inName + " must be an integer, not " + valueText(ConfigValue(value));
-  }
-  ioValue = static_cast<Value>(value);
-  return "";
+  const std::string error =
+      readLimitedParam(inPrivate, "node parameter", inName, std::is_integral_v<Value>, value);
+  if (error.empty()) ioValue = static_cast<Value>(value);
+  return error;
 }
 
 /// A YAML scalar as rospy's YAML loader types it: an unquoted integer, number or boolean is
@@ -208,6 +201,20 @@ std::string parseYamlParameter(const std::string& inText, XmlRpc::XmlRpcValue& o
   } catch (const YAML::Exception& exception) {
     return "'" + inText + "' is not YAML (" + exception.what() + ")";
   }
+}
+
+std::string readLimitedParam(const ros::NodeHandle& inPrivate, const char* inEntry,
+                             const std::string& inName, bool inInteger, double& ioValue) {
+  const Limit* limit = findLimit(inEntry, "~" + inName);
+  if (!limit) throw std::logic_error("~" + inName + " has no row in the limits table");
+  double value = ioValue;
+  std::string error = readNumber(inPrivate, inName, value);
+  if (!error.empty()) return error;
+  if (const auto problem = limitProblem(*limit, value)) return *problem;
+  if (inInteger && std::trunc(value) != value)
+    return "~" + inName + " must be an integer, not " + valueText(ConfigValue(value));
+  ioValue = value;
+  return "";
 }
 
 std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams) {

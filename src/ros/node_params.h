@@ -39,6 +39,12 @@ struct NodeParams {
 /// problem ("'...' is not YAML (...)") or an empty string.
 std::string parseYamlParameter(const std::string& inText, XmlRpc::XmlRpcValue& outValue);
 
+/// Reads the number parameter ~inName of inPrivate (an integer when inInteger) checked against
+/// its row of the limits table (inEntry, "~" + inName); keeps ioValue when absent. Returns the
+/// refusal ("~name must be ALLOWED, not VALUE", or of the wrong kind) or an empty string.
+std::string readLimitedParam(const ros::NodeHandle& inPrivate, const char* inEntry,
+                             const std::string& inName, bool inInteger, double& ioValue);
+
 /// Reads the private parameters of inPrivate over the defaults of NodeParams: the engine's
 /// fields by walking the core's table (configFields(): one parameter per field, same name),
 /// then the node's own. Returns the problem (a value of the wrong kind or out of range, equal
