@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <ros/node_handle.h>
@@ -33,6 +34,27 @@ struct NodeParams {
   std::string fixed_frame;         ///< ~fixed_frame: tf2 target frame; empty = no transforms
   double transform_timeout = 0.1;  ///< ~transform_timeout: seconds to wait for a transform
 };
+
+/// Where a node parameter lives in NodeParams, by the kind of value it holds.
+using NodeParamAccess =
+    std::variant<bool& (*)(NodeParams&), int& (*)(NodeParams&), std::size_t& (*)(NodeParams&),
+                 double& (*)(NodeParams&), std::string& (*)(NodeParams&),
+                 std::vector<SourceSpec>& (*)(NodeParams&)>;
+
+/// One of the node's own parameters (the engine's are the rows of configFields()): the table
+/// that loadNodeParams() walks. A number is checked against its row of the limits table ("node
+/// parameter", "~" + name). test_ros_units checks every row against docs/NODE.md,
+/// config/default.yaml and the launch files' arguments.
+struct NodeParamRow {
+  const char* name;          ///< without the "~"
+  const char* type;          ///< as docs/NODE.md names it: bool, int, double, string, list
+  const char* default_text;  ///< as config/default.yaml and docs/NODE.md write it
+  const char* doc;           ///< one line, the launch files' argument doc
+  NodeParamAccess access;    ///< its member of NodeParams
+};
+
+/// The node's own parameters, in the order they are read.
+const std::vector<NodeParamRow>& nodeParamRows();
 
 /// Reads inText as YAML into outValue, typed as the parameter server types a launch file's
 /// rosparam (unquoted integers, numbers and booleans as such, the rest strings). Returns the

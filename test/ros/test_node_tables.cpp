@@ -1,19 +1,29 @@
 // The node's tables against the copies that cannot be generated from them: msg/FrameStats.msg
 // (catkin generates it, C++ cannot) against the engine report's `topic` column
 // (frame_report.h), the node's counters and its own fields; the node's fill of the message
-// against the report's rows. Each failure names the field.
+// against the report's rows; the node's parameters (nodeParamRows()) against docs/NODE.md,
+// config/default.yaml, the launch files' arguments and every param the launch and rostest
+// files give the node. Each failure names the field or parameter.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <ros/serialization.h>
 
+#include "node_params.h"
 #include "node_status.h"
+#include "sap_broadphase/core/config.h"
 
 namespace sap_broadphase {
 namespace {
@@ -118,6 +128,146 @@ TEST(NodeTables, EveryReportFieldOnTheTopicReachesTheMessage) {
     EXPECT_NE(serialized(stats), unchanged)
         << "report field " << field.name << " does not reach FrameStats." << field.topic;
   }
+}
+
+// ---- The node's parameters ----
+
+/// A row's default in NodeParams, as default.yaml writes it (a number compared as a number).
+::testing::AssertionResult defaultIsTheRows(const NodeParamRow& inRow) {
+  NodeParams params;
+  const std::string expected = inRow.default_text;
+  const bool same = std::visit(
+      [&](auto inAccess) {
+        const auto& value = inAccess(params);
+        using Value = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<Value, bool>)
+          return expected == (value ? "true" : "false");
+        else if constexpr (std::is_same_v<Value, std::string>)
+          return expected == "\"" + value + "\"";
+        else if constexpr (std::is_same_v<Value, std::vector<SourceSpec>>)
+          return value.size() == 1 && expected == "[" + value.front().topic + "]";
+        else
+          return static_cast<double>(value) == std::strtod(expected.c_str(), nullptr);
+      },
+      inRow.access);
+  if (same) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "~" << inRow.name << ": NodeParams' default is not the table's " << expected;
+}
+
+TEST(NodeTables, ParameterDefaultsAreTheStructs) {
+  for (const NodeParamRow& row : nodeParamRows()) EXPECT_TRUE(defaultIsTheRows(row));
+}
+
+TEST(NodeTables, NumberParametersHaveALimitsRow) {
+  NodeParams params;
+  for (const NodeParamRow& row : nodeParamRows()) {
+    const bool number = std::visit(
+        [&](auto inAccess) {
+          return std::is_arithmetic_v<std::decay_t<decltype(inAccess(params))>>;
+        },
+        row.access);
+    const bool flag = std::holds_alternative<bool& (*)(NodeParams&)>(row.access);
+    if (!number || flag) continue;  // switches, text and lists have no range
+    EXPECT_NE(findLimit("node parameter", std::string("~") + row.name), nullptr)
+        << "~" << row.name << " has no row in the limits table (src/core/config.cpp)";
+  }
+}
+
+TEST(NodeTables, NodeDocListsEveryParameterAsTheTable) {
+  std::string doc = readSource("docs/NODE.md");
+  // The node's own section: its Parameters up to Dynamic reconfigure (scene_publisher's come
+  // later).
+  const std::size_t from = doc.find("### Parameters");
+  const std::size_t to = doc.find("### Dynamic reconfigure", from);
+  ASSERT_NE(to, std::string::npos) << "docs/NODE.md has no node Parameters section";
+  doc = doc.substr(from, to - from);
+  const std::regex entry(R"(\n\* \*\*`~([a-z_0-9]+)`\*\* \(([^\n]*)\))");
+  std::map<std::string, std::string> entries;
+  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), entry); it != std::sregex_iterator();
+       ++it)
+    entries[(*it)[1]] = (*it)[2];
+  for (const NodeParamRow& row : nodeParamRows()) {
+    const auto found = entries.find(row.name);
+    ASSERT_NE(found, entries.end()) << "no `~" << row.name << "` entry in docs/NODE.md";
+    EXPECT_EQ(found->second, std::string(row.type) + ", default: " + row.default_text)
+        << "~" << row.name;
+  }
+  for (const auto& [name, text] : entries)
+    EXPECT_TRUE(findConfigField(name) ||
+                std::any_of(nodeParamRows().begin(), nodeParamRows().end(),
+                            [&](const NodeParamRow& inRow) { return name == inRow.name; }))
+        << "docs/NODE.md lists ~" << name << ", which no table has";
+}
+
+TEST(NodeTables, YamlDefaultsAreTheTables) {
+  std::istringstream yaml(readSource("config/default.yaml"));
+  std::map<std::string, std::string> values;
+  const std::regex line(R"(^([a-z_0-9]+): *(.*?) *#.*$)");
+  std::smatch match;
+  for (std::string text; std::getline(yaml, text);)
+    if (std::regex_match(text, match, line)) values[match[1]] = match[2];
+  for (const NodeParamRow& row : nodeParamRows()) {
+    const auto found = values.find(row.name);
+    ASSERT_NE(found, values.end()) << "~" << row.name << " is missing from config/default.yaml";
+    EXPECT_EQ(found->second, row.default_text) << "~" << row.name;
+  }
+}
+
+TEST(NodeTables, LaunchArgumentsAreTheTables) {
+  const std::regex argument(R"re(<arg name="([a-z_0-9]+)" default="\(yaml\)" doc="([^"]*)"/>)re");
+  for (const char* path : {"launch/sap_broadphase.launch", "launch/sap_broadphase_nodelet.launch",
+                           "launch/include/sap_broadphase_params.launch.xml"}) {
+    const std::string launch = readSource(path);
+    std::map<std::string, std::string> arguments;
+    for (auto it = std::sregex_iterator(launch.begin(), launch.end(), argument);
+         it != std::sregex_iterator(); ++it)
+      arguments[(*it)[1]] = (*it)[2];
+    for (const NodeParamRow& row : nodeParamRows()) {
+      const auto found = arguments.find(row.name);
+      ASSERT_NE(found, arguments.end()) << path << " has no argument " << row.name;
+      EXPECT_EQ(found->second, row.doc) << path << ": " << row.name;
+    }
+  }
+}
+
+/// The names of the <param>s inside every node element of type inType in inText.
+std::vector<std::string> nodeParamNames(const std::string& inText, const std::string& inType) {
+  std::vector<std::string> names;
+  const std::regex node("<node\\b([^>]*)>([\\s\\S]*?)</node>");
+  const std::regex param(R"re(<param\b[^>]*\bname="([^"$]+)")re");
+  for (auto it = std::sregex_iterator(inText.begin(), inText.end(), node);
+       it != std::sregex_iterator(); ++it) {
+    const std::string attributes = (*it)[1];
+    if (attributes.find("type=\"" + inType + "\"") == std::string::npos &&
+        attributes.find("args=\"load sap_broadphase/BroadphaseNodelet") == std::string::npos)
+      continue;
+    const std::string body = (*it)[2];
+    for (auto p = std::sregex_iterator(body.begin(), body.end(), param);
+         p != std::sregex_iterator(); ++p)
+      names.push_back((*p)[1]);
+  }
+  return names;
+}
+
+TEST(NodeTables, LaunchAndTestFilesGiveTheNodeOnlyItsParameters) {
+  std::size_t checked = 0;
+  for (const char* folder : {"launch", "test/ros"}) {
+    for (const auto& file :
+         std::filesystem::directory_iterator(std::string(SAP_SOURCE_DIR) + "/" + folder)) {
+      const std::string extension = file.path().extension().string();
+      if (extension != ".launch" && extension != ".test") continue;
+      const std::string path = std::string(folder) + "/" + file.path().filename().string();
+      for (const std::string& name : nodeParamNames(readSource(path), "node")) {
+        ++checked;
+        EXPECT_TRUE(findConfigField(name) ||
+                    std::any_of(nodeParamRows().begin(), nodeParamRows().end(),
+                                [&](const NodeParamRow& inRow) { return name == inRow.name; }))
+            << path << " gives the node ~" << name << ", which no table has";
+      }
+    }
+  }
+  EXPECT_GT(checked, 0u) << "no <param> of the node found: the files were not read";
 }
 
 }  // namespace
