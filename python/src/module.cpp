@@ -15,6 +15,7 @@
 #include <mutex>
 #include <shared_mutex>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -222,35 +223,22 @@ py::dict configDict(const sb::BroadphaseConfig& inConfig) {
   return options;
 }
 
+// A report field as Python holds it: an axis by its letter, a path or a skin choice by its name.
+template <typename Value>
+py::object reportValue(const sb::ReportField& inField, Value inValue) {
+  if constexpr (std::is_same_v<Value, sb::FramePath> || std::is_same_v<Value, sb::SkinChoice>)
+    return py::str(sb::reportValueText(inField.unit, inValue));
+  else if constexpr (std::is_same_v<Value, int>)
+    if (inField.unit == sb::ReportUnit::kAxis) return py::str(sb::axisName(inValue));
+  return py::cast(inValue);
+}
+
+// Every field of the report's table (frame_report.h) by its name.
 py::dict statsDict(const sb::FrameReport& inReport) {
   py::dict stats;
-  stats["boxes"] = inReport.boxes;
-  stats["boxes_filtered_out"] = inReport.boxes_filtered_out;
-  stats["pairs"] = inReport.pairs;
-  stats["path"] = sb::framePathName(inReport.path);
-  stats["threads"] = inReport.threads;
-  stats["primary_axis"] = sb::axisName(inReport.primary_axis);
-  stats["secondary_axis"] = sb::axisName(inReport.secondary_axis);
-  stats["dispersion_primary"] = inReport.dispersion_primary;
-  stats["dispersion_secondary"] = inReport.dispersion_secondary;
-  stats["axes_swapped"] = inReport.axes_swapped;
-  stats["slabs"] = inReport.slabs;
-  stats["skin"] = inReport.skin;
-  stats["skin_choice"] = sb::skinChoiceName(inReport.skin_choice);
-  stats["skin_candidates"] = inReport.skin_candidates;
-  stats["static_boxes"] = inReport.static_boxes;
-  stats["moved_boxes"] = inReport.moved_boxes;
-  stats["max_displacement"] = inReport.max_displacement;
-  stats["ms_plan"] = inReport.ms_plan;
-  stats["ms_history"] = inReport.ms_history;
-  stats["ms_keys"] = inReport.ms_keys;
-  stats["ms_sort"] = inReport.ms_sort;
-  stats["ms_candidates"] = inReport.ms_candidates;
-  stats["ms_pairing"] = inReport.ms_pairing;
-  stats["ms_skin"] = inReport.ms_skin;
-  stats["ms_static"] = inReport.ms_static;
-  stats["ms_output"] = inReport.ms_output;
-  stats["ms_total"] = inReport.ms_total;
+  sb::forEachReportField(inReport, [&](const sb::ReportField& inField, auto inValue) {
+    stats[inField.name] = reportValue(inField, inValue);
+  });
   return stats;
 }
 
@@ -355,6 +343,36 @@ double oneShotMs(const py::handle& inBoxes, int inThreads) {
       .count();
 }
 
+// A field's default as Python writes it: True, 0.25, 'auto'.
+std::string pythonDefault(const sb::ConfigField& inField) {
+  const std::string text = inField.default_text;
+  switch (inField.type) {
+    case sb::ConfigFieldType::kBool:
+      return text == "true" ? "True" : "False";
+    case sb::ConfigFieldType::kInteger:
+    case sb::ConfigFieldType::kNumber:
+      return text;
+    default:
+      return "'" + text + "'";
+  }
+}
+
+// The class's docstring: its keywords are the rows of configFields(), each with its default,
+// what it takes and what it does.
+const char* broadphaseDoc() {
+  static const std::string doc = [] {
+    std::string text =
+        "The stateful broad phase, frame after frame.\n\n"
+        "Broadphase(**config): every BroadphaseConfig field by its name; see the config "
+        "property. Keywords:\n";
+    for (const sb::ConfigField& field : sb::configFields())
+      text += std::string("\n") + field.name + " (default " + pythonDefault(field) +
+              "): " + field.allowed + ". " + field.doc + ".";
+    return text;
+  }();
+  return doc.c_str();
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_sap_broadphase, m) {
@@ -375,11 +393,7 @@ naming the first bad box and why, or what was expected of an argument.)doc");
         "Milliseconds of find_pairs' work in C++ alone (for benchmarks).");
 
   auto broadphase =
-      py::class_<PyBroadphase>(m, "Broadphase", R"doc(The stateful broad phase, frame after frame.
-
-Broadphase(**config): every BroadphaseConfig field by its name (threads, method, primary_axis,
-secondary_axis, axis_swapping, axis_swap_threshold, parallel_min_boxes, third_axis_slabs,
-reuse_unchanged_frames, skin, exact_final_test); see the config property.)doc")
+      py::class_<PyBroadphase>(m, "Broadphase", broadphaseDoc())
           .def(py::init<const py::kwargs&>())
           .def("update", &PyBroadphase::update, "boxes"_a, "ids"_a = py::none(),
                "groups"_a = py::none(), "masks"_a = py::none(),

@@ -35,27 +35,19 @@ const char* const kUsage =
     "                kernel on one thread, else the parallel sweep-and-prune\n"
     "                sequential: the sequential sweep;  brute: test every pair (oracle)\n"
     "  --count       print only the number of pairs\n"
-    "  --stats       print phase times (ms), sweep axes, third-axis slabs and the\n"
-    "                dispersion D of each sorted axis to stderr\n"
+    "  --stats       print the frame's report to stderr, one 'name value' line a field\n"
+    "                (ms_read, then path, counts, sweep axes, dispersion D, ms per phase)\n"
     "  --help        print this help\n"
     "\n"
     "Exit status: 0 success; 2 bad input (then nothing on stdout and 'FILE:LINE: reason' on\n"
     "stderr; FILE is '<stdin>' for standard input, LINE 0 when the file cannot be read) or bad\n"
     "usage; 1 unexpected failure (e.g. output not writable).\n";
 
-/// Prints the frame statistics to stderr.
+// The engine's report, one "name value" line a field of its table, after the reading's time.
 void printStats(const FrameReport& inStats, double inReadMs) {
-  std::fprintf(stderr,
-               "boxes %zu pairs %zu path %s threads %d\n"
-               "axes primary %s secondary %s swapped %s slabs %d\n"
-               "dispersion primary %.6f secondary %.6f\n"
-               "ms read %.3f keys %.3f sort %.3f candidates %.3f pairing %.3f output %.3f "
-               "total %.3f\n",
-               inStats.boxes, inStats.pairs, framePathName(inStats.path), inStats.threads,
-               axisName(inStats.primary_axis), axisName(inStats.secondary_axis),
-               inStats.axes_swapped ? "yes" : "no", inStats.slabs, inStats.dispersion_primary,
-               inStats.dispersion_secondary, inReadMs, inStats.ms_keys, inStats.ms_sort,
-               inStats.ms_candidates, inStats.ms_pairing, inStats.ms_output, inStats.ms_total);
+  const std::string lines = "ms_read " + reportValueText(ReportUnit::kMilliseconds, inReadMs) +
+                            "\n" + reportLines(inStats);
+  std::fputs(lines.c_str(), stderr);
 }
 
 int run(int inArgc, char** inArgv) {

@@ -385,11 +385,16 @@ constexpr const char* kEngineViolation =
 constexpr const char* kNodeViolation = "FATAL naming it at start-up, the node exits 1";
 constexpr const char* kReconfigureViolation =
     "refused with a warning naming it; the returned config holds the settings in force";
+constexpr const char* kScenePublisherEntry = "scene_publisher parameter";
+constexpr const char* kScenePublisherViolation =
+    "FATAL naming it at start-up, scene_publisher exits 1 (the nodelet publishes nothing)";
 constexpr const char* kCliViolation = "exit 2, the flag and its range on stderr, nothing on stdout";
 
 // ros::Duration keeps whole seconds in an int32: the longest span it holds.
 constexpr double kLongestDuration = 2147483647.0;
 constexpr double kLargestInt32 = 2147483647.0;
+// The most boxes one BoxArray without ids carries under roscpp's 10^9-byte message limit.
+constexpr double kMostBoxArrayBoxes = 20833333.0;
 
 // The engine's fields as rows of the limits table.
 void addEngineLimits(std::vector<Limit>& ioLimits) {
@@ -432,6 +437,29 @@ std::vector<Limit> makeLimits() {
        "as ~max_marker_boxes", kReconfigureViolation},
       {kReconfigureEntry, "marker_line_width", 0.0, 1e6, false,
        "0 (10 % of the mean edge) or up to 1e6 m", "as ~marker_line_width", kReconfigureViolation},
+      {kScenePublisherEntry, "~n", 0.0, kMostBoxArrayBoxes, false, "an integer from 0 to 20833333",
+       "a frame is one BoxArray, and roscpp refuses a message over 10^9 bytes (48 bytes a box "
+       "without ids)",
+       kScenePublisherViolation},
+      {kScenePublisherEntry, "~density", std::numeric_limits<double>::denorm_min(),
+       std::numeric_limits<double>::max(), false, "a finite number > 0",
+       "a volume fraction; 0 has no box size", kScenePublisherViolation},
+      {kScenePublisherEntry, "~rate", 1e-9, 1e6, false, "1e-9..1e6 Hz",
+       "the period 1 / rate is slept as a duration; 0 has none", kScenePublisherViolation},
+      {kScenePublisherEntry, "~seed", 0.0, kLargestInt32, false, "an integer from 0 to 2147483647",
+       "the parameter server's integers are 32 bits; a negative seed names no seed",
+       kScenePublisherViolation},
+      {kScenePublisherEntry, "~plane_axis", 0.0, 2.0, false, "0, 1 or 2", "three axes",
+       kScenePublisherViolation},
+      {kScenePublisherEntry, "~scene_frames", 1.0, kLargestInt32, false, "an integer >= 1",
+       "the motion is timed over this many frames", kScenePublisherViolation},
+      {kScenePublisherEntry, "~speed", -std::numeric_limits<double>::max(),
+       std::numeric_limits<double>::max(), false, "a finite number",
+       "mean box edges a frame; NaN or infinity would move every box to NaN or infinity",
+       kScenePublisherViolation},
+      {kScenePublisherEntry, "~max_frames", 0.0, kLargestInt32, false,
+       "0 (until shut down) or up to 2147483647", "an int count of frames",
+       kScenePublisherViolation},
       {"sap_pairs, sap_pairs_mpi", "--threads", 1.0, static_cast<double>(maxThreads()), false,
        "an integer from 1 to 4 a processor", "as the engine's threads", kCliViolation},
       {"sap_scene", "--n", 0.0, 2147483647.0, false, "an integer from 0 to 2147483647",

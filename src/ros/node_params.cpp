@@ -1,7 +1,9 @@
-// The node's private parameters. The engine's settings are not listed here: they are the
-// core's table of BroadphaseConfig fields (configFields()), walked for rosparam, for
-// dynamic_reconfigure and for the start-up log, and checked by configProblem(). Adding an
-// engine field is a row in that table and a line in cfg/BroadphaseNode.cfg.
+// The node's private parameters. The node's own are a table (nodeParamRows()) that reading
+// walks; the engine's settings are the core's table of BroadphaseConfig fields (configFields()),
+// walked for rosparam, for dynamic_reconfigure and for the start-up log, and checked by
+// configProblem(). Adding an engine field is a row in that table and a line in
+// cfg/BroadphaseNode.cfg; adding a node parameter is a row of nodeParamRows() (and, for a
+// number, of the limits table), its member of NodeParams, and the copies test_ros_units checks.
 #include "node_params.h"
 
 #include <algorithm>
@@ -119,18 +121,11 @@ std::string readNumber(const ros::NodeHandle& inPrivate, const std::string& inNa
 template <typename Value>
 std::string readLimited(const ros::NodeHandle& inPrivate, const std::string& inName,
                         Value& ioValue) {
-  const Limit* limit = findLimit("node parameter", "~" + inName);
-  if (!limit) throw std::logic_error("~" + inName + " has no row in the limits table");
   double value = static_cast<double>(ioValue);
-  std::string error = readNumber(inPrivate, inName, value);
-  if (!error.empty()) return error;
-  if (const auto problem = limitProblem(*limit, value)) return *problem;
-  if constexpr (std::is_integral_v<Value>) {
-    if (std::trunc(value) != value)
-      return "~" + inName + " must be an integer, not " + valueText(ConfigValue(value));
-  }
-  ioValue = static_cast<Value>(value);
-  return "";
+  const std::string error =
+      readLimitedParam(inPrivate, "node parameter", inName, std::is_integral_v<Value>, value);
+  if (error.empty()) ioValue = static_cast<Value>(value);
+  return error;
 }
 
 /// A YAML scalar as rospy's YAML loader types it: an unquoted integer, number or boolean is
@@ -187,16 +182,23 @@ std::string readSources(const ros::NodeHandle& inPrivate, std::vector<SourceSpec
       ioSources, [&](const std::string& inTopic) { return topics.resolveName(inTopic); });
 }
 
-/// Reads the marker settings (the node's own, not the engine's).
-std::string readMarkers(const ros::NodeHandle& inPrivate, NodeParams& ioParams) {
-  MarkerOptions& markers = ioParams.markers;
-  inPrivate.param("publish_markers", ioParams.publish_markers, ioParams.publish_markers);
-  std::string error = readLimited(inPrivate, "max_marker_boxes", markers.max_boxes);
-  if (!error.empty()) return error;
-  inPrivate.param("show_non_colliding", markers.show_non_colliding, markers.show_non_colliding);
-  inPrivate.param("show_pair_links", markers.show_pair_links, markers.show_pair_links);
-  inPrivate.param("show_names", markers.show_names, markers.show_names);
-  return readLimited(inPrivate, "marker_line_width", markers.line_width);
+/// Reads the parameter of inRow into its member of ioParams; returns the refusal.
+std::string readNodeParam(const ros::NodeHandle& inPrivate, const NodeParamRow& inRow,
+                          NodeParams& ioParams) {
+  return std::visit(
+      [&](auto inAccess) -> std::string {
+        auto& value = inAccess(ioParams);
+        using Value = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<Value, std::vector<SourceSpec>>) {
+          return readSources(inPrivate, value);
+        } else if constexpr (std::is_same_v<Value, bool> || std::is_same_v<Value, std::string>) {
+          inPrivate.param<Value>(inRow.name, value, value);
+          return "";
+        } else {
+          return readLimited(inPrivate, inRow.name, value);
+        }
+      },
+      inRow.access);
 }
 
 }  // namespace
@@ -210,25 +212,68 @@ std::string parseYamlParameter(const std::string& inText, XmlRpc::XmlRpcValue& o
   }
 }
 
-std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams) {
-  std::string error;
-  if (!(error = readEngine(inPrivate, outParams.engine)).empty()) return error;
-  if (!(error = readMarkers(inPrivate, outParams)).empty()) return error;
-  if (!(error = readLimited(inPrivate, "boxes_queue_size", outParams.boxes_queue_size)).empty())
-    return error;
-  if (!(error = readLimited(inPrivate, "pairs_queue_size", outParams.pairs_queue_size)).empty())
-    return error;
-  if (!(error = readLimited(inPrivate, "refusal_log_period", outParams.refusal_log_period)).empty())
-    return error;
+std::string readLimitedParam(const ros::NodeHandle& inPrivate, const char* inEntry,
+                             const std::string& inName, bool inInteger, double& ioValue) {
+  const Limit* limit = findLimit(inEntry, "~" + inName);
+  if (!limit) throw std::logic_error("~" + inName + " has no row in the limits table");
+  double value = ioValue;
+  std::string error = readNumber(inPrivate, inName, value);
+  if (!error.empty()) return error;
+  if (const auto problem = limitProblem(*limit, value)) return *problem;
+  if (inInteger && std::trunc(value) != value)
+    return "~" + inName + " must be an integer, not " + valueText(ConfigValue(value));
+  ioValue = value;
+  return "";
+}
 
-  if (!(error = readSources(inPrivate, outParams.sources)).empty()) return error;
-  if (!(error = readLimited(inPrivate, "source_timeout", outParams.source_timeout)).empty())
-    return error;
-  if (!(error = readLimited(inPrivate, "rate", outParams.rate)).empty()) return error;
-  inPrivate.param<std::string>("fixed_frame", outParams.fixed_frame, outParams.fixed_frame);
+// Each row's member of NodeParams, for the table.
+#define SAP_NODE_PARAM(type, member) +[](NodeParams& ioParams) -> type& { return ioParams.member; }
+
+const std::vector<NodeParamRow>& nodeParamRows() {
+  static const std::vector<NodeParamRow> rows = {
+      {"publish_markers", "bool", "true", "build markers when 'markers' has subscribers",
+       SAP_NODE_PARAM(bool, publish_markers)},
+      {"max_marker_boxes", "int", "5000", "boxes drawn at most per frame",
+       SAP_NODE_PARAM(std::size_t, markers.max_boxes)},
+      {"show_non_colliding", "bool", "false", "also draw boxes without a pair",
+       SAP_NODE_PARAM(bool, markers.show_non_colliding)},
+      {"show_pair_links", "bool", "false", "draw a line between the centres of each pair",
+       SAP_NODE_PARAM(bool, markers.show_pair_links)},
+      {"show_names", "bool", "true",
+       "write each drawn colliding box's name (from id_names) above it",
+       SAP_NODE_PARAM(bool, markers.show_names)},
+      {"marker_line_width", "double", "0.0", "metres; 0 = 10 % of the mean edge of the drawn boxes",
+       SAP_NODE_PARAM(double, markers.line_width)},
+      {"boxes_queue_size", "int", "10", "subscriber queue of each source topic",
+       SAP_NODE_PARAM(int, boxes_queue_size)},
+      {"pairs_queue_size", "int", "10", "publisher queue of 'pairs'",
+       SAP_NODE_PARAM(int, pairs_queue_size)},
+      {"refusal_log_period", "int", "1", "seconds between two error messages about refused frames",
+       SAP_NODE_PARAM(int, refusal_log_period)},
+      {"sources", "list", "[boxes]",
+       "YAML list of topics or {topic, type, id_offset, group, mask, timeout} dicts",
+       SAP_NODE_PARAM(std::vector<SourceSpec>, sources)},
+      {"source_timeout", "double", "1.0", "seconds of silence before a source drops out; 0 = never",
+       SAP_NODE_PARAM(double, source_timeout)},
+      {"rate", "double", "0.0", "Hz of fixed-rate frames; 0 = a frame whenever a source delivers",
+       SAP_NODE_PARAM(double, rate)},
+      {"fixed_frame", "string", "\"\"", "tf2 frame the sources are transformed into",
+       SAP_NODE_PARAM(std::string, fixed_frame)},
+      {"transform_timeout", "double", "0.1", "seconds to wait for a source's transform",
+       SAP_NODE_PARAM(double, transform_timeout)},
+  };
+  return rows;
+}
+
+#undef SAP_NODE_PARAM
+
+std::string loadNodeParams(const ros::NodeHandle& inPrivate, NodeParams& outParams) {
+  std::string error = readEngine(inPrivate, outParams.engine);
+  for (auto row = nodeParamRows().begin(); error.empty() && row != nodeParamRows().end(); ++row)
+    error = readNodeParam(inPrivate, *row, outParams);
   if (!outParams.fixed_frame.empty() && outParams.fixed_frame.front() == '/')
     outParams.fixed_frame.erase(0, 1);  // tf2 frame ids carry no leading slash
-  return readLimited(inPrivate, "transform_timeout", outParams.transform_timeout);
+  return error;
 }
 
 std::string describeNodeParams(const NodeParams& inParams) {

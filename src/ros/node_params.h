@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <ros/node_handle.h>
@@ -34,10 +35,37 @@ struct NodeParams {
   double transform_timeout = 0.1;  ///< ~transform_timeout: seconds to wait for a transform
 };
 
+/// Where a node parameter lives in NodeParams, by the kind of value it holds.
+using NodeParamAccess =
+    std::variant<bool& (*)(NodeParams&), int& (*)(NodeParams&), std::size_t& (*)(NodeParams&),
+                 double& (*)(NodeParams&), std::string& (*)(NodeParams&),
+                 std::vector<SourceSpec>& (*)(NodeParams&)>;
+
+/// One of the node's own parameters (the engine's are the rows of configFields()): the table
+/// that loadNodeParams() walks. A number is checked against its row of the limits table ("node
+/// parameter", "~" + name). test_ros_units checks every row against docs/NODE.md,
+/// config/default.yaml and the launch files' arguments.
+struct NodeParamRow {
+  const char* name;          ///< without the "~"
+  const char* type;          ///< as docs/NODE.md names it: bool, int, double, string, list
+  const char* default_text;  ///< as config/default.yaml and docs/NODE.md write it
+  const char* doc;           ///< one line, the launch files' argument doc
+  NodeParamAccess access;    ///< its member of NodeParams
+};
+
+/// The node's own parameters, in the order they are read.
+const std::vector<NodeParamRow>& nodeParamRows();
+
 /// Reads inText as YAML into outValue, typed as the parameter server types a launch file's
 /// rosparam (unquoted integers, numbers and booleans as such, the rest strings). Returns the
 /// problem ("'...' is not YAML (...)") or an empty string.
 std::string parseYamlParameter(const std::string& inText, XmlRpc::XmlRpcValue& outValue);
+
+/// Reads the number parameter ~inName of inPrivate (an integer when inInteger) checked against
+/// its row of the limits table (inEntry, "~" + inName); keeps ioValue when absent. Returns the
+/// refusal ("~name must be ALLOWED, not VALUE", or of the wrong kind) or an empty string.
+std::string readLimitedParam(const ros::NodeHandle& inPrivate, const char* inEntry,
+                             const std::string& inName, bool inInteger, double& ioValue);
 
 /// Reads the private parameters of inPrivate over the defaults of NodeParams: the engine's
 /// fields by walking the core's table (configFields(): one parameter per field, same name),

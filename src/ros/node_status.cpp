@@ -2,6 +2,10 @@
 #include "node_status.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
+#include <type_traits>
+#include <variant>
 
 #include <boost/make_shared.hpp>
 
@@ -9,34 +13,98 @@ namespace sap_broadphase {
 
 namespace {
 
-/// Copies the engine's account of a frame into the stats message.
-void fillEngineStats(const FrameReport& inEngine, FrameStats& outStats) {
-  outStats.boxes = static_cast<uint32_t>(inEngine.boxes);
-  outStats.pairs = static_cast<uint32_t>(inEngine.pairs);
-  outStats.primary_axis = static_cast<uint8_t>(inEngine.primary_axis);
-  outStats.secondary_axis = static_cast<uint8_t>(inEngine.secondary_axis);
-  outStats.dispersion_primary = inEngine.dispersion_primary;
-  outStats.dispersion_secondary = inEngine.dispersion_secondary;
-  outStats.axes_swapped = inEngine.axes_swapped;
-  outStats.path = framePathName(inEngine.path);
-  outStats.threads = static_cast<uint32_t>(inEngine.threads);
-  outStats.slabs = static_cast<uint32_t>(inEngine.slabs);
-  outStats.skin = inEngine.skin;
-  outStats.skin_choice = skinChoiceName(inEngine.skin_choice);
-  outStats.moved_boxes = static_cast<uint32_t>(inEngine.moved_boxes);
-  outStats.max_displacement = inEngine.max_displacement;
-  outStats.static_boxes = static_cast<uint32_t>(inEngine.static_boxes);
-  // FrameStats keeps its fields: the engine's own flow (ms_plan) counts with the history, and
-  // skin reuse (growing, keeping, the kept candidates' pass) with pairing, as the message says.
-  outStats.ms_history = inEngine.ms_history + inEngine.ms_plan;
-  outStats.ms_sort = inEngine.ms_keys + inEngine.ms_sort;
-  outStats.ms_candidates = inEngine.ms_candidates;
-  outStats.ms_pairing = inEngine.ms_pairing + inEngine.ms_skin;
-  outStats.ms_static = inEngine.ms_static;
-  outStats.ms_output = inEngine.ms_output;
+/// A field of FrameStats that the engine's report feeds.
+using StatsMember = std::variant<uint32_t FrameStats::*, uint8_t FrameStats::*,
+                                 double FrameStats::*, std::string FrameStats::*>;
+
+/// The FrameStats fields the report's `topic` column may name: the message's side of the
+/// table (C++ has no names of members; test_ros_units checks both sides agree).
+const std::map<std::string, StatsMember>& engineStatsMembers() {
+  static const std::map<std::string, StatsMember> members = {
+      {"boxes", &FrameStats::boxes},
+      {"pairs", &FrameStats::pairs},
+      {"primary_axis", &FrameStats::primary_axis},
+      {"secondary_axis", &FrameStats::secondary_axis},
+      {"dispersion_primary", &FrameStats::dispersion_primary},
+      {"dispersion_secondary", &FrameStats::dispersion_secondary},
+      {"axes_swapped", &FrameStats::axes_swapped},
+      {"path", &FrameStats::path},
+      {"threads", &FrameStats::threads},
+      {"slabs", &FrameStats::slabs},
+      {"skin", &FrameStats::skin},
+      {"skin_choice", &FrameStats::skin_choice},
+      {"moved_boxes", &FrameStats::moved_boxes},
+      {"max_displacement", &FrameStats::max_displacement},
+      {"static_boxes", &FrameStats::static_boxes},
+      {"ms_history", &FrameStats::ms_history},
+      {"ms_sort", &FrameStats::ms_sort},
+      {"ms_candidates", &FrameStats::ms_candidates},
+      {"ms_pairing", &FrameStats::ms_pairing},
+      {"ms_static", &FrameStats::ms_static},
+      {"ms_output", &FrameStats::ms_output},
+      {"ms_total", &FrameStats::ms_total},
+  };
+  return members;
+}
+
+/// Writes one report value into its message field: names as text, numbers converted to the
+/// field's type; a field fed by several rows (a phase folded into a coarser one) adds them.
+/// A `topic` the message side does not know writes nothing (test_ros_units names it).
+template <typename Value>
+void writeStatsValue(const ReportField& inField, Value inValue, bool inAdd, FrameStats& ioStats) {
+  const auto member = engineStatsMembers().find(inField.topic);
+  if (member == engineStatsMembers().end()) return;
+  std::visit(
+      [&](auto inMember) {
+        auto& target = ioStats.*inMember;
+        using Target = std::decay_t<decltype(target)>;
+        if constexpr (std::is_same_v<Target, std::string>) {
+          target = reportValueText(inField.unit, inValue);
+        } else if constexpr (std::is_arithmetic_v<Value>) {
+          const Target value = static_cast<Target>(inValue);
+          target = inAdd ? static_cast<Target>(target + value) : value;
+        }
+      },
+      member->second);
 }
 
 }  // namespace
+
+const std::vector<NodeCounterRow>& nodeCounterRows() {
+  static const std::vector<NodeCounterRow> rows = {
+      {"frames_computed", "frames computed", &NodeCounters::computed, &FrameStats::frames_computed},
+      {"frames_received", "source frames received", &NodeCounters::received,
+       &FrameStats::frames_received},
+      {"frames_dropped", "source frames dropped", &NodeCounters::dropped,
+       &FrameStats::frames_dropped},
+      {"frames_refused", "refusals", &NodeCounters::refused, &FrameStats::frames_refused},
+      {"frames_skipped", "frames skipped (no transform)", &NodeCounters::skipped,
+       &FrameStats::frames_skipped},
+      {"sources_timed_out", "sources timed out", &NodeCounters::timed_out,
+       &FrameStats::sources_timed_out},
+      {"messages_lost", "MarkerArray messages lost", &NodeCounters::lost,
+       &FrameStats::messages_lost},
+      {"frames_processed", "", &NodeCounters::processed, &FrameStats::frames_processed},
+  };
+  return rows;
+}
+
+const std::vector<std::string>& nodeStatsFields() {
+  static const std::vector<std::string> fields = {
+      "header",       "static_world_boxes", "ms_conversion",        "sources",
+      "last_refusal", "marker_boxes",       "marker_boxes_omitted",
+  };
+  return fields;
+}
+
+void fillEngineStats(const FrameReport& inEngine, FrameStats& outStats) {
+  std::set<std::string> written;
+  forEachReportField(inEngine, [&](const ReportField& inField, auto inValue) {
+    if (*inField.topic == '\0') return;  // a field the topic leaves out
+    const bool add = !written.insert(inField.topic).second;
+    writeStatsValue(inField, inValue, add, outStats);
+  });
+}
 
 NodeStatus::NodeStatus(ros::NodeHandle& ioNode, const ros::NodeHandle& inPrivate,
                        const BroadphaseConfig& inEngine, int inLogPeriod)
@@ -173,15 +241,8 @@ FrameStats NodeStatus::makeStats(const std_msgs::Header& inHeader, std::size_t i
   stats.secondary_axis = static_cast<uint8_t>(engine_.secondary_axis);
   stats.threads = static_cast<uint32_t>(resolveThreadCount(engine_.threads));
   stats.static_world_boxes = counters_.static_boxes;
-  stats.frames_received = counters_.received;
-  stats.frames_processed = counters_.processed;
-  stats.frames_dropped = counters_.dropped;
-  stats.frames_refused = counters_.refused;
-  stats.frames_skipped = counters_.skipped;
-  stats.frames_computed = counters_.computed;
+  for (const NodeCounterRow& row : nodeCounterRows()) stats.*row.field = counters_.*row.counter;
   stats.sources = counters_.live_sources;
-  stats.sources_timed_out = counters_.timed_out;
-  stats.messages_lost = counters_.lost;
   stats.last_refusal = counters_.last_refusal;
   return stats;
 }
@@ -225,13 +286,8 @@ void NodeStatus::diagnose(diagnostic_updater::DiagnosticStatusWrapper& ioStatus)
   ioStatus.add("live sources", counters_.held_sources);
   ioStatus.add("configured sources", counters_.configured_sources);
   ioStatus.add("static boxes", counters_.static_boxes);
-  ioStatus.add("frames computed", counters_.computed);
-  ioStatus.add("source frames received", counters_.received);
-  ioStatus.add("source frames dropped", counters_.dropped);
-  ioStatus.add("refusals", counters_.refused);
-  ioStatus.add("frames skipped (no transform)", counters_.skipped);
-  ioStatus.add("sources timed out", counters_.timed_out);
-  ioStatus.add("MarkerArray messages lost", counters_.lost);
+  for (const NodeCounterRow& row : nodeCounterRows())
+    if (*row.diagnostics_key != '\0') ioStatus.add(row.diagnostics_key, counters_.*row.counter);
   ioStatus.add("refused publishers", counters_.refused_publishers);
   ioStatus.add("last error", counters_.last_error);
   reported_ = counters_;

@@ -18,6 +18,49 @@
 
 namespace sap_broadphase {
 
+/// What the node has counted since start-up, as NodeStatus keeps it.
+struct NodeCounters {
+  uint64_t received = 0;            // source frames received
+  uint64_t processed = 0;           // source frames taken into the world
+  uint64_t dropped = 0;             // source frames replaced before the worker took them
+  uint64_t refused = 0;             // invalid frames, and sources left out of a frame
+  uint64_t skipped = 0;             // source frames without a transform into ~fixed_frame
+  uint64_t timed_out = 0;           // sources dropped after ~source_timeout of silence
+  uint64_t lost = 0;                // MarkerArray messages lost in a subscriber queue
+  uint64_t computed = 0;            // frames computed
+  std::string last_refusal;         // why the last frame or source was refused
+  std::string last_error;           // the last refusal, skip or time-out, for /diagnostics
+  std::string refused_publishers;   // publishers of another type or MD5 sum, now
+  uint32_t live_sources = 0;        // sources of the last computed frame's world (stats)
+  uint32_t held_sources = 0;        // sources held now, each within its time-out
+  uint32_t configured_sources = 0;  // topics of ~sources
+  uint32_t static_boxes = 0;        // boxes of the scenery in force
+  double last_ms_total = 0.0;       // latency of the last computed frame
+  double max_ms_total = 0.0;        // largest latency since the last diagnostics report
+};
+
+/// One counter of the node: its FrameStats field and /diagnostics key ("" where it is not
+/// shown). The table drives both; adding a counter is a row and a member of NodeCounters (and
+/// its field in FrameStats.msg, which test_ros_units checks).
+struct NodeCounterRow {
+  const char* stats_field;
+  const char* diagnostics_key;
+  uint64_t NodeCounters::*counter;
+  uint64_t FrameStats::*field;
+};
+
+/// The counters' table, in the order /diagnostics lists them.
+const std::vector<NodeCounterRow>& nodeCounterRows();
+
+/// The FrameStats fields the node fills from its own state besides the counters (header,
+/// sources, marker counts, the gathering's time, ...): with the counters' rows and the engine
+/// report's `topic` column (frame_report.h) they are every field of the message.
+const std::vector<std::string>& nodeStatsFields();
+
+/// Copies the engine's account of a frame into the stats message: every row of the report's
+/// table whose `topic` names a field, phases folded into the message's coarser ones.
+void fillEngineStats(const FrameReport& inEngine, FrameStats& outStats);
+
 /// Times and counts of one computed frame that only the worker knows.
 struct FrameAccount {
   std_msgs::Header header;
@@ -70,25 +113,6 @@ class NodeStatus {
   void updateDiagnostics() { diagnostics_.update(); }
 
  private:
-  struct Counters {
-    uint64_t received = 0;            // source frames received
-    uint64_t processed = 0;           // source frames taken into the world
-    uint64_t dropped = 0;             // source frames replaced before the worker took them
-    uint64_t refused = 0;             // invalid frames, and sources left out of a frame
-    uint64_t skipped = 0;             // source frames without a transform into ~fixed_frame
-    uint64_t timed_out = 0;           // sources dropped after ~source_timeout of silence
-    uint64_t lost = 0;                // MarkerArray messages lost in a subscriber queue
-    uint64_t computed = 0;            // frames computed
-    std::string last_refusal;         // why the last frame or source was refused
-    std::string last_error;           // the last refusal, skip or time-out, for /diagnostics
-    std::string refused_publishers;   // publishers of another type or MD5 sum, now
-    uint32_t live_sources = 0;        // sources of the last computed frame's world (stats)
-    uint32_t held_sources = 0;        // sources held now, each within its time-out
-    uint32_t configured_sources = 0;  // topics of ~sources
-    uint32_t static_boxes = 0;        // boxes of the scenery in force
-    double last_ms_total = 0.0;       // latency of the last computed frame
-    double max_ms_total = 0.0;        // largest latency since the last diagnostics report
-  };
   /// Stats of the counters as they are now (called with mutex_ held).
   FrameStats makeStats(const std_msgs::Header& inHeader, std::size_t inBoxes) const;
   /// The level and summary of /diagnostics (called with mutex_ held): WARN for new problems
@@ -100,9 +124,9 @@ class NodeStatus {
   ros::Publisher stats_pub_;
   int log_period_;
   std::mutex mutex_;
-  Counters counters_;
+  NodeCounters counters_;
   BroadphaseConfig engine_;  // settings in force: axes and threads of every stats message
-  Counters reported_;        // counters at the last /diagnostics report
+  NodeCounters reported_;    // counters at the last /diagnostics report
   ros::Time reported_at_;    // ROS time: the frame rate follows /clock under use_sim_time
   diagnostic_updater::Updater diagnostics_;
 };

@@ -2,14 +2,29 @@
 #include "scene_publisher.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include <boost/make_shared.hpp>
 
+#include "node_params.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
 
 namespace {
+
+constexpr const char* kLimitsEntry = "scene_publisher parameter";
+
+/// Reads the number parameter ~inName into ioValue, refused outside its row of the limits table.
+template <typename Value>
+std::string readLimited(const ros::NodeHandle& inPrivate, const std::string& inName,
+                        Value& ioValue) {
+  double value = static_cast<double>(ioValue);
+  const std::string error =
+      readLimitedParam(inPrivate, kLimitsEntry, inName, std::is_integral_v<Value>, value);
+  if (error.empty()) ioValue = static_cast<Value>(value);
+  return error;
+}
 
 /// Reads the scene's own parameters; returns the problem or an empty string.
 std::string loadSceneConfig(const ros::NodeHandle& inPrivate, SceneConfig& outConfig) {
@@ -17,31 +32,23 @@ std::string loadSceneConfig(const ros::NodeHandle& inPrivate, SceneConfig& outCo
   inPrivate.param<std::string>("scene", scene, scene);
   if (!parseSceneKind(scene, outConfig.kind))
     return "~scene must be uniform, ball or plane, not '" + scene + "'";
-  int count = static_cast<int>(outConfig.n);
-  inPrivate.param("n", count, count);
-  if (count < 0) return "~n must not be negative";
-  outConfig.n = static_cast<std::size_t>(count);
-  inPrivate.param("density", outConfig.density, outConfig.density);
-  int seed = static_cast<int>(outConfig.seed);
-  inPrivate.param("seed", seed, seed);
-  outConfig.seed = static_cast<uint64_t>(seed);
-  inPrivate.param("plane_axis", outConfig.plane_axis, outConfig.plane_axis);
-  if (outConfig.plane_axis < 0 || outConfig.plane_axis > 2) return "~plane_axis must be 0, 1 or 2";
-  inPrivate.param("scene_frames", outConfig.frames, outConfig.frames);
-  if (outConfig.frames < 1) return "~scene_frames must be at least 1";
-  inPrivate.param("speed", outConfig.speed, outConfig.speed);
-  return "";
+  std::string error;
+  if (!(error = readLimited(inPrivate, "n", outConfig.n)).empty()) return error;
+  if (!(error = readLimited(inPrivate, "density", outConfig.density)).empty()) return error;
+  if (!(error = readLimited(inPrivate, "seed", outConfig.seed)).empty()) return error;
+  if (!(error = readLimited(inPrivate, "plane_axis", outConfig.plane_axis)).empty()) return error;
+  if (!(error = readLimited(inPrivate, "scene_frames", outConfig.frames)).empty()) return error;
+  return readLimited(inPrivate, "speed", outConfig.speed);
 }
 
 }  // namespace
 
 std::string loadScenePublisherParams(const ros::NodeHandle& inPrivate,
                                      ScenePublisherParams& outParams) {
-  const std::string error = loadSceneConfig(inPrivate, outParams.scene);
+  std::string error = loadSceneConfig(inPrivate, outParams.scene);
   if (!error.empty()) return error;
-  inPrivate.param("rate", outParams.rate_hz, outParams.rate_hz);
-  if (!(outParams.rate_hz > 0.0)) return "~rate must be positive";
-  inPrivate.param("max_frames", outParams.max_frames, outParams.max_frames);
+  if (!(error = readLimited(inPrivate, "rate", outParams.rate_hz)).empty()) return error;
+  if (!(error = readLimited(inPrivate, "max_frames", outParams.max_frames)).empty()) return error;
   inPrivate.param<std::string>("frame_id", outParams.frame_id, outParams.frame_id);
   return "";
 }

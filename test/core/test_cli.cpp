@@ -14,6 +14,7 @@
 
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/config.h"
+#include "sap_broadphase/core/frame_report.h"
 #include "sap_broadphase/core/scenes.h"
 #include "sap_broadphase/core/text_io.h"
 #include "test_files.h"
@@ -162,10 +163,18 @@ TEST(Cli, StatsGoToStandardError) {
     const RunResult result = runPairs(dir, {"--stats", "--threads", "2", "--method", method, path});
     EXPECT_EQ(result.status, 0);
     EXPECT_EQ(result.out, oracleText(path));
-    EXPECT_NE(result.err.find("axes primary x secondary y"), std::string::npos) << result.err;
-    EXPECT_NE(result.err.find("dispersion"), std::string::npos);
-    EXPECT_NE(result.err.find("ms read"), std::string::npos);
-    EXPECT_NE(result.err.find("pairing"), std::string::npos);
+    EXPECT_NE(result.err.find("\nprimary_axis x\nsecondary_axis y\n"), std::string::npos)
+        << result.err;
+    EXPECT_EQ(result.err.rfind("ms_read ", 0), 0u) << result.err;
+    // One "name value" line a field of the report's table, in its order.
+    std::size_t at = 0;
+    for (const ReportField& field : kReportFields) {
+      const std::size_t line = result.err.find(std::string("\n") + field.name + " ", at);
+      EXPECT_NE(line, std::string::npos) << "no " << field.name << " line (after the one before) "
+                                         << "in --stats:\n"
+                                         << result.err;
+      if (line != std::string::npos) at = line + 1;
+    }
   }
 }
 

@@ -4,7 +4,8 @@ subscribes to them, resolved in its namespace and through its remappings. One to
 two ways (`boxes` and `/ns/boxes` in /ns), two names remapped onto one topic, or a source that
 is the scenery topic `static_boxes` stop the node at start-up (exit status 1) with a FATAL
 naming both spellings, as docs/NODE.md says for a topic listed twice; read twice, every message
-would be refused as its own duplicate on every frame.
+would be refused as its own duplicate on every frame. scene_publisher's numbers out of their
+rows of the limits table stop it alike.
 
 Each node is run to its end; WAIT only bounds a node that wrongly keeps running.
 """
@@ -51,6 +52,23 @@ class StartupTest(unittest.TestCase):
         self.assert_refused(
             "scenery", "[boxes, {topic: /ns/static_boxes, type: sap_broadphase/BoxArray}]",
             "~sources lists '/ns/static_boxes', which is the scenery topic static_boxes")
+
+    def test_scene_publisher_parameters_out_of_range_stop_it_naming_them(self):
+        """scene_publisher's numbers are rows of the limits table: outside, a FATAL naming the
+        parameter and exit status 1 (a negative ~n or ~max_frames, or a ~rate of 0, were
+        taken before)."""
+        for parameter, value in (("n", "-1"), ("n", "1e9"), ("rate", "0"), ("density", "0"),
+                                 ("seed", "-1"), ("scene_frames", "0"), ("max_frames", "-1"),
+                                 ("plane_axis", "3"), ("speed", "inf")):
+            command = ["rosrun", PACKAGE, "scene_publisher", "__ns:=/ns",
+                       "__name:=scene_limits_%s" % parameter, "_%s:=%s" % (parameter, value)]
+            node = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                  text=True, timeout=WAIT)
+            self.assertEqual(node.returncode, 1,
+                             "_%s:=%s: exit %s\n%s" % (parameter, value, node.returncode,
+                                                        node.stdout[-2000:]))
+            self.assertIn("FATAL", node.stdout, "_%s:=%s" % (parameter, value))
+            self.assertIn("~%s must be" % parameter, node.stdout)
 
 
 if __name__ == "__main__":
