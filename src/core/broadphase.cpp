@@ -178,13 +178,13 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         {
           PhaseTimer timer(report.ms_pairing);
-          pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs);
+          pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs, inPlan.threads);
         }
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
       } else {
         PhaseTimer timer(report.ms_pairing);
         skin.forget();
-        pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs);
+        pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs, inPlan.threads);
       }
       break;
     case FramePath::kSequential:

@@ -83,6 +83,10 @@ constexpr std::size_t kSceneryMostCellsPrefetched = 27;
 constexpr double kSmallFrameBoxesPerCell = 256.0;
 constexpr double kSmallFrameCellsPerExtent = 4.0;
 constexpr uint32_t kSmallFrameMaxCellsPerAxis = 64;
+/// The parallel cell sweep hands out runs of whole cells of at least kUnitBoxes / this many
+/// entries (work_units.h), and at most kUnitsPerThread runs a thread: the cells' sweeps differ
+/// in cost, so a thread whose runs came out dear is helped by the others.
+constexpr std::size_t kSmallFrameSweepUnitsPerBoxUnit = 4;
 
 // ---- Box queries against the last frame (frame_query.h) ----
 
