@@ -81,7 +81,6 @@ endif()
 # declared scenery, the automatic skin and large-world coordinates against the oracle.
 sap_add_gtest(test_frame_flow
   test/core/test_frame_plan.cpp
-  test/core/test_thread_choice.cpp
   test/core/test_work_units.cpp
   test/core/test_frame_flow.cpp
   test/core/test_support.cpp

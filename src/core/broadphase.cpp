@@ -11,7 +11,6 @@
 #include "sap_broadphase/core/broadphase.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <optional>
@@ -30,7 +29,6 @@
 #include "core/small_frame.h"
 #include "core/static_index.h"
 #include "core/sweep_and_prune.h"
-#include "core/thread_choice.h"
 #include "core/tuning.h"
 #include "core/work_units.h"
 
@@ -43,15 +41,13 @@ struct Broadphase::Impl {
   const BroadphaseConfig config;  // as the user set it
   mutable WorkRunner runner;      // the engine's workers: every parallel pass (work_units.h)
   FrameReport report;
-  FrameHistory history;        // the last frame, and what changed since
-  SweepAndPrune sweep;         // the paper's sweep, with its partition bounds and axes
-  SkinReuse skin;              // kept candidates, motion and learnt costs
-  StaticIndex scenery;         // boxes declared static (setStaticBoxes)
-  FrameQuery world;            // box queries against the last frame (the history's copy)
-  ThreadChoice thread_choice;  // all cores or one, measured (threads = 0, method auto)
-  int passes_threads = 0;      // threads of the history's passes: the last work's, learnt (0: all)
-  PairList pairs;              // the frame's one canonical pair list
-  bool pairs_valid = false;    // pairs hold the last frame's whole answer
+  FrameHistory history;               // the last frame, and what changed since
+  SweepAndPrune sweep;                // the paper's sweep, with its partition bounds and axes
+  SkinReuse skin;                     // kept candidates, motion and learnt costs
+  StaticIndex scenery;                // boxes declared static (setStaticBoxes)
+  FrameQuery world;                   // box queries against the last frame (the history's copy)
+  PairList pairs;                     // the frame's one canonical pair list
+  bool pairs_valid = false;           // pairs hold the last frame's whole answer
   std::vector<uint32_t> scenery_ids;  // the scenery's ids, sorted: a frame's ids must differ
   struct Buffers {
     SmallFrameWorkspace small_frame;  // the small-frame path's
@@ -67,18 +63,12 @@ struct Broadphase::Impl {
                                                    const BoxFrame& inFrame) const;
   void countBoxesThatPairWithNothing(const BoxColumns& inBoxes);
   FramePlan plan(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
-  std::optional<ThreadedWork> chooseThreads(FramePlan& ioPlan, std::size_t inBoxes);
   void execute(const FramePlan& inPlan, FrameSpread& ioSpread);
   void addSceneryPairs(const BoxColumns& inBoxes, int inThreads);
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
   void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
   void forgetFrames();
-  // The history's passes: as many threads as the last frame's work was learnt to pay on, never
-  // more than this frame may use.
-  int passThreads(int inThreads) const {
-    return passes_threads > 0 ? std::min(passes_threads, inThreads) : inThreads;
-  }
 };
 
 // A box with group 0 or mask 0 passes no filter: the strategies never pair it (each tests
@@ -136,22 +126,6 @@ FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& in
   return plan;
 }
 
-// With threads and method left to the engine, whether the planned threads beat one thread is
-// measured on this machine, now (thread_choice.h): the work the plan runs on several threads
-// may run on one. Returns the work whose cost the frame then teaches, if any.
-std::optional<ThreadedWork> Broadphase::Impl::chooseThreads(FramePlan& ioPlan,
-                                                            std::size_t inBoxes) {
-  if (config.threads != 0 || config.method != Method::kAuto || ioPlan.threads < 2) return {};
-  ThreadedWork work = ThreadedWork::kKeptCandidates;
-  if (isSweep(ioPlan.path))
-    work = ioPlan.sweep_skin > 0.0 ? ThreadedWork::kGrownSweep : ThreadedWork::kSweep;
-  else if (ioPlan.path != FramePath::kSkin)
-    return {};
-  ioPlan.threads = thread_choice.choose(work, ioPlan.threads, inBoxes);
-  if (ioPlan.threads == 1 && isSweep(ioPlan.path)) ioPlan.path = FramePath::kSequential;
-  return work;
-}
-
 // Runs the plan's strategy: this frame's pairs of the boxes of ioSpread go into pairs, in
 // canonical order. ioSpread (the boxes' spread) is measured by whichever strategy needs it
 // first and read again by the cost learning after it.
@@ -177,13 +151,13 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         {
           PhaseTimer timer(report.ms_pairing);
-          pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs);
+          pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs, inPlan.threads);
         }
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
       } else {
         PhaseTimer timer(report.ms_pairing);
         skin.forget();
-        pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs);
+        pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs, inPlan.threads);
       }
       break;
     case FramePath::kSequential:
@@ -267,22 +241,11 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta,
                                 int inThreads) {
   skin.startFrame(inDelta);
-  FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
-  const std::optional<ThreadedWork> measured = chooseThreads(frame_plan, inBoxes.size());
+  const FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
   FrameSpread spread(inBoxes);  // measured once, by the first part that needs it
   const bool reused = frame_plan.path == FramePath::kReused;
   if (!reused) events.keepLastList(pairs);  // the strategy writes the buffer of the list before
-  const auto work_start = std::chrono::steady_clock::now();
   execute(frame_plan, spread);
-  if (measured) {
-    thread_choice.record(
-        *measured, frame_plan.threads,
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - work_start)
-            .count());
-  }
-  // The next frame's passes over every box (memory-bound) run on as many threads as this work
-  // is learnt to pay on; probes of the other count do not move them.
-  passes_threads = measured ? thread_choice.preferred(*measured, inThreads) : 0;
   if (!config.skin) {  // the costs only feed the automatic skin's choice
     PhaseTimer timer(report.ms_plan);
     skin.learn(frame_plan, spread, pairs.size(), report);
@@ -306,9 +269,9 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
   Impl& impl = *impl_;
   const RunnerScope scope(impl.runner);
   impl.world.clear();  // the history's copy is about to change
-  // A small frame, loading included, runs on one thread (frame_plan.h, frameThreads).
-  const int threads =
-      frameThreads(impl.config, inFrame.size(), resolveThreadCount(impl.config.threads));
+  // The frame's threads, decided once (frame_plan.h, frameThreads): its loading and its plan's
+  // work run on them; the plan may only keep a sequential sweep to one of them.
+  const int threads = frameThreads(impl.config, inFrame.size(), impl.runner.threads());
   FrameReport& report = impl.report;
   report = FrameReport();
   impl.events.startFrame();
@@ -317,7 +280,7 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
     std::optional<ValidationError> problem;
     const FrameDelta delta = [&] {
       PhaseTimer timer(report.ms_history);
-      return impl.history.load(inFrame, impl.passThreads(threads), problem);
+      return impl.history.load(inFrame, threads, problem);
     }();
     const BoxColumns& boxes = impl.history.loaded();
     if (!problem && !delta.sameIds()) problem = impl.sceneryIdConflict(boxes, inFrame);
@@ -361,11 +324,11 @@ void Broadphase::reset() {
 void Broadphase::setStaticBoxes(const BoxFrame& inStaticBoxes) {
   const RunnerScope scope(impl_->runner);
   BoxColumns scenery;
-  copyFrame(inStaticBoxes, scenery, resolveThreadCount(impl_->config.threads));
+  copyFrame(inStaticBoxes, scenery, impl_->runner.threads());
   if (auto problem = checkColumns(scenery, inStaticBoxes)) throw InvalidBoxes(std::move(*problem));
   std::vector<uint32_t> every_box(scenery.size());
   std::iota(every_box.begin(), every_box.end(), 0u);
-  impl_->scenery.build(scenery, every_box, resolveThreadCount(impl_->config.threads));
+  impl_->scenery.build(scenery, every_box, impl_->runner.threads());
   impl_->scenery_ids = scenery.ids;
   std::sort(impl_->scenery_ids.begin(), impl_->scenery_ids.end());
   impl_->pairs_valid = false;  // the last pairs were computed against other scenery
@@ -384,7 +347,7 @@ std::size_t Broadphase::staticBoxCount() const {
 
 QueryHitList Broadphase::query(const BoxFrame& inQueries) const {
   const RunnerScope scope(impl_->runner);  // a concurrent query finds it busy: runs inline
-  const int threads = resolveThreadCount(impl_->config.threads);
+  const int threads = impl_->runner.threads();
   BoxColumns queries;  // a query's own: queries may run concurrently
   copyFrame(inQueries, queries, threads);
   if (auto problem = checkColumns(queries, inQueries)) throw InvalidBoxes(std::move(*problem));

@@ -133,11 +133,12 @@ double chooseSkin(double inMotion, std::size_t inBoxes, const SkinCosts& inCosts
 bool takesSmallFrameKernel(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads) {
   const bool skin_fixed = inConfig.skin && *inConfig.skin > 0.0;
   return inConfig.method == Method::kAuto && !skin_fixed &&
-         (inBoxes < inConfig.parallel_min_boxes || inThreads == 1);
+         (inBoxes < inConfig.parallel_min_boxes || inThreads <= tuning::kKernelMostThreads);
 }
 
 int frameThreads(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads) {
-  return takesSmallFrameKernel(inConfig, inBoxes, inThreads) ? 1 : inThreads;
+  const bool small = inConfig.method == Method::kAuto && inBoxes < inConfig.parallel_min_boxes;
+  return small && takesSmallFrameKernel(inConfig, inBoxes, inThreads) ? 1 : inThreads;
 }
 
 bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta,
@@ -180,11 +181,10 @@ FramePlan planFrame(const PlanInputs& inInputs) {
     return plan;
   }
   if (takesSmallFrameKernel(config, inInputs.boxes, inInputs.threads)) {
-    // The small-frame kernel, on one thread (a frame of one work unit); grown by the automatic
-    // skin when its cycle pays, as a sweep is: what the paper's coherence (§4.2) is to the
-    // sweep, the kept candidates are to the kernel, which keeps nothing of its own.
+    // The small-frame kernel, on the frame's threads (one below the cut-off); grown by the
+    // automatic skin when its cycle pays, as a sweep is: what the paper's coherence (§4.2) is
+    // to the sweep, the kept candidates are to the kernel, which keeps nothing of its own.
     plan.path = FramePath::kSmallFrame;
-    plan.threads = 1;
     if (!skin_off) chooseAutomaticSkin(inInputs, plan);
     return plan;
   }

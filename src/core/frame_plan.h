@@ -52,7 +52,7 @@ struct PlanInputs {
   const BroadphaseConfig* config = nullptr;
   FrameDelta delta;
   std::size_t boxes = 0;  ///< boxes that can pair (filtered)
-  int threads = 1;
+  int threads = 1;        ///< the frame's threads (frameThreads, decided before the loading)
   bool last_pairs_valid = false;  ///< the output still holds the last frame's pairs
   bool kept_candidates = false;   ///< a kept-candidate list exists for these boxes
   bool kept_covers = false;       ///< every box is inside its grown box of that list (asked
@@ -78,14 +78,15 @@ FramePath sweepPath(const BroadphaseConfig& inConfig, std::size_t inBoxes, int i
 /// True when a frame of inBoxes boxes on inThreads threads goes to the small-frame kernel
 /// (Method::kAuto, no fixed skin; grown by an automatic skin when one pays) rather than the
 /// sweep: below parallel_min_boxes, the one cut-off of Method::kAuto (sweepPath's too), on any
-/// thread count; and every frame on one thread, where the kernel beats the sequential sweep at
-/// every size measured (2^15 to 2^20, uniform, d = 0.05 and 0.35: first frames 1.7-2.3x, steady
-/// frames with their skins 1.1-1.35x on average).
+/// thread count; and every frame on up to tuning::kKernelMostThreads threads, where the kernel,
+/// its cells run in parallel, beats the paper's sweep at every size measured (tuning.h).
 bool takesSmallFrameKernel(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
 
-/// Threads a frame of inBoxes boxes may use when inThreads are configured: one for a small frame
-/// (whichever work answers it, the kernel or its kept candidates: a frame of one work unit, that
-/// no other core's availability may delay), inThreads otherwise.
+/// The one decision of a frame's threads, made once per frame before anything runs: the
+/// frame's loading, its plan's work and the passes after it run on these (the plan may only
+/// keep a sequential sweep to one of them), and nothing changes the count afterwards. One for
+/// a small frame of Method::kAuto (below parallel_min_boxes: a frame of one work unit, that no
+/// other core's availability may delay), the inThreads of the engine's runner otherwise.
 int frameThreads(const BroadphaseConfig& inConfig, std::size_t inBoxes, int inThreads);
 
 /// True when the frame's pairs are the last frame's: identical boxes, reuse on, the last

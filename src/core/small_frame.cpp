@@ -17,6 +17,7 @@
 #include "core/radix_sort.h"
 #include "core/sort_keys.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1
@@ -120,7 +121,7 @@ inline bool provesOverlap(const SweepArrays& inArrays, uint32_t i, uint32_t j) {
 // exact boxes overlap: proven by the floats (most hits: no float64 bounds of two random boxes
 // fetched), else tested on the float64 input.
 inline void reportIfExact(const BoxColumns& inBoxes, const SweepArrays& inArrays, uint32_t i,
-                          uint32_t j, uint32_t inFirst, uint32_t inSecond, PairList& outPairs) {
+                          uint32_t j, uint32_t inFirst, uint32_t inSecond, PairChunks& outPairs) {
   if ((provesOverlap(inArrays, i, j) || boxesOverlap(inBoxes, inFirst, inSecond)) &&
       filtersAllow(inBoxes, inFirst, inSecond))
     outPairs.push_back(makeIdPair(inBoxes.ids[inFirst], inBoxes.ids[inSecond]));
@@ -193,9 +194,9 @@ void forEachCell(uint32_t inRange, uint32_t inCells1, Visit&& inVisit) {
 // coordinates would otherwise share their float32 values and all become candidates of one
 // another.
 void outwardBoundsPortable(const BoxColumns& inBoxes, const KeyOrigin& inOrigin,
-                           const int (&inAxes)[3], uint32_t inFirst, float* outBounds) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  for (uint32_t i = inFirst; i < n; ++i) {
+                           const int (&inAxes)[3], uint32_t inFirst, uint32_t inEnd,
+                           float* outBounds) {
+  for (uint32_t i = inFirst; i < inEnd; ++i) {
     float* bounds = outBounds + 6 * std::size_t{i};
     for (int slot = 0; slot < 3; ++slot) {
       const int axis = inAxes[slot];
@@ -241,10 +242,10 @@ __attribute__((target("avx2"))) __m128 outwardFloats(__m256d inValues, __m256d i
 // outwardBoundsPortable, four boxes at a time; the last few boxes on the portable loop.
 __attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxColumns& inBoxes,
                                                        const KeyOrigin& inOrigin,
-                                                       const int (&inAxes)[3], float* outBounds) {
-  const auto n = static_cast<uint32_t>(inBoxes.size());
-  uint32_t i = 0;
-  for (; i + 4 <= n; i += 4) {
+                                                       const int (&inAxes)[3], uint32_t inFirst,
+                                                       uint32_t inEnd, float* outBounds) {
+  uint32_t i = inFirst;
+  for (; i + 4 <= inEnd; i += 4) {
     alignas(16) float lanes[6][4];
     for (int slot = 0; slot < 3; ++slot) {
       const int axis = inAxes[slot];
@@ -258,115 +259,187 @@ __attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxColumns& inBoxes
       for (int bound = 0; bound < 6; ++bound)
         outBounds[6 * std::size_t{i + box} + bound] = lanes[bound][box];
   }
-  outwardBoundsPortable(inBoxes, inOrigin, inAxes, i, outBounds);
+  outwardBoundsPortable(inBoxes, inOrigin, inAxes, i, inEnd, outBounds);
 }
 #endif
 
-// One pass over the boxes in input order: their outward float bounds (six in a row, inAxis
-// first), the sort key of each low on inAxis, the cells each box reaches (packed as four
-// bytes: first and last cell on grid axis 0, then on grid axis 1) and each cell's count.
+// One pass over the boxes in input order, a unit of boxes at a time on the frame's threads:
+// their outward float bounds (six in a row, inAxis first), the sort key of each low on inAxis
+// and the cells each box reaches (packed as four bytes: first and last cell on grid axis 0,
+// then on grid axis 1).
 void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
-                  const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
+                  const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
+                  SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   resizeDiscarding(ioWork.order, n);
   resizeDiscarding(ioWork.scratch, n);
   resizeDiscarding(ioWork.bounds, 6 * std::size_t{n});
   resizeDiscarding(ioWork.cell_range, n);
-  ioWork.cell_start.assign(inGrid[0].cells * inGrid[1].cells + 1, 0);
   const int axes[3] = {inAxis, (inAxis + 1) % 3, (inAxis + 2) % 3};
+  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    const auto first = static_cast<uint32_t>(inBegin), end = static_cast<uint32_t>(inEnd);
 #if SAP_SMALL_FRAME_AVX2
-  if (inAvx2)
-    outwardBoundsAvx2(inBoxes, inOrigin, axes, ioWork.bounds.data());
-  else
+    if (inAvx2)
+      outwardBoundsAvx2(inBoxes, inOrigin, axes, first, end, ioWork.bounds.data());
+    else
 #endif
-    outwardBoundsPortable(inBoxes, inOrigin, axes, 0, ioWork.bounds.data());
+      outwardBoundsPortable(inBoxes, inOrigin, axes, first, end, ioWork.bounds.data());
+    for (uint32_t i = first; i < end; ++i) {
+      const float* bounds = ioWork.bounds.data() + 6 * std::size_t{i};
+      ioWork.order[i] = packKeyIndex(floatKeyFlat(bounds[0]), i);
+      ioWork.cell_range[i] = inGrid[0].of(bounds[2]) | inGrid[0].of(bounds[3]) << 8 |
+                             inGrid[1].of(bounds[4]) << 16 | inGrid[1].of(bounds[5]) << 24;
+    }
+  });
   (void)inAvx2;
-  for (uint32_t i = 0; i < n; ++i) {
-    const float* bounds = ioWork.bounds.data() + 6 * std::size_t{i};
-    ioWork.order[i] = packKeyIndex(floatKeyFlat(bounds[0]), i);
-    const uint32_t range = inGrid[0].of(bounds[2]) | inGrid[0].of(bounds[3]) << 8 |
-                           inGrid[1].of(bounds[4]) << 16 | inGrid[1].of(bounds[5]) << 24;
-    ioWork.cell_range[i] = range;
-    forEachCell(range, inGrid[1].cells, [&](uint32_t cell) { ++ioWork.cell_start[cell + 1]; });
+}
+
+// Where each unit of the sorted boxes writes into each cell: every unit counts the entries it
+// adds to each cell (its row of unit_cell_count), then, cell by cell and unit by unit in
+// order, the counts become the units' first entries (the same layout as one pass over the
+// boxes in sorted order would give, whatever the thread count), and cell_start each cell's run
+// (its entries and kBlock of padding).
+void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint32_t inCells,
+                       uint32_t inCells1, int inThreads, SmallFrameWorkspace& ioWork) {
+  Buffer<uint32_t>& counts = ioWork.unit_cell_count;
+  resizeDiscarding(counts, inUnits.count() * inCells);
+  runUnits(inUnits.count(), inThreads, [&](std::size_t inUnit) {
+    uint32_t* row = counts.data() + inUnit * inCells;
+    std::fill(row, row + inCells, 0u);
+    for (std::size_t k = inUnits.begin(inUnit); k < inUnits.end(inUnit); ++k)
+      forEachCell(ioWork.cell_range[static_cast<uint32_t>(inSorted[k])], inCells1,
+                  [&](uint32_t cell) { ++row[cell]; });
+  });
+  resizeDiscarding(ioWork.cell_start, std::size_t{inCells} + 1);
+  uint32_t next = 0;
+  for (uint32_t cell = 0; cell < inCells; ++cell) {
+    ioWork.cell_start[cell] = next;
+    for (std::size_t unit = 0; unit < inUnits.count(); ++unit) {
+      uint32_t& count = counts[unit * inCells + cell];
+      const uint32_t entries = count;
+      count = next;  // from now on the unit's next entry in the cell
+      next += entries;
+    }
+    next += kBlock;
   }
+  ioWork.cell_start[inCells] = next;
 }
 
 // Sorts the boxes by low key on the sweep axis and copies each, in that order, into every cell
-// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs.
+// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs. The copying
+// runs a unit of the sorted boxes at a time on the frame's threads, each unit into the entries
+// placeUnitsInCells gave it.
 void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
-               const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
+               const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
+               SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
-  measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, ioWork);
+  measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, inThreads, ioWork);
   const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
   const uint32_t cells = inGrid[0].cells * inGrid[1].cells;
-  Buffer<uint32_t>& start = ioWork.cell_start;
-  for (uint32_t cell = 0; cell < cells; ++cell) start[cell + 1] += start[cell] + kBlock;
-  const uint32_t entries = start[cells];
+  const WorkUnits units{n};
+  placeUnitsInCells(sorted, units, cells, inGrid[1].cells, inThreads, ioWork);
+  const uint32_t entries = ioWork.cell_start[cells];
   for (int slot = 0; slot < 3; ++slot) {
     resizeDiscarding(ioWork.lo[slot], entries);
     resizeDiscarding(ioWork.hi[slot], entries);
   }
   resizeDiscarding(ioWork.box_of, entries);
-  resizeDiscarding(ioWork.cell_cursor, cells);
-  std::copy(start.begin(), start.end() - 1, ioWork.cell_cursor.begin());
-  for (uint32_t k = 0; k < n; ++k) {
-    const auto box = static_cast<uint32_t>(sorted[k]);
-    const float* bounds = ioWork.bounds.data() + 6 * std::size_t{box};
-    forEachCell(ioWork.cell_range[box], inGrid[1].cells, [&](uint32_t cell) {
-      const uint32_t entry = ioWork.cell_cursor[cell]++;
-      for (int slot = 0; slot < 3; ++slot) {
-        ioWork.lo[slot][entry] = bounds[2 * slot];
-        ioWork.hi[slot][entry] = bounds[2 * slot + 1];
-      }
-      ioWork.box_of[entry] = box;
-    });
-  }
+  runUnits(units.count(), inThreads, [&](std::size_t inUnit) {
+    uint32_t* cursor = ioWork.unit_cell_count.data() + inUnit * cells;
+    for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
+      const auto box = static_cast<uint32_t>(sorted[k]);
+      const float* bounds = ioWork.bounds.data() + 6 * std::size_t{box};
+      forEachCell(ioWork.cell_range[box], inGrid[1].cells, [&](uint32_t cell) {
+        const uint32_t entry = cursor[cell]++;
+        for (int slot = 0; slot < 3; ++slot) {
+          ioWork.lo[slot][entry] = bounds[2 * slot];
+          ioWork.hi[slot][entry] = bounds[2 * slot + 1];
+        }
+        ioWork.box_of[entry] = box;
+      });
+    }
+  });
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (uint32_t cell = 0; cell < cells; ++cell) {
-    for (uint32_t entry = ioWork.cell_cursor[cell]; entry < start[cell + 1]; ++entry) {
+    for (uint32_t entry = ioWork.cell_start[cell + 1] - kBlock; entry < ioWork.cell_start[cell + 1];
+         ++entry) {
       for (int slot = 0; slot < 3; ++slot) ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
       ioWork.box_of[entry] = 0;
     }
   }
 }
 
-// Sweeps each cell of the grid; a float hit is reported only in the cell of the larger lows
+// Cuts the cells into runs of consecutive cells of about inEntries entries each (a cell is
+// never split): the units of the parallel sweep. outFirstCell holds each unit's first cell,
+// then the cell count.
+void cutCellsIntoUnits(const Buffer<uint32_t>& inCellStart, uint32_t inEntries,
+                       std::vector<uint32_t>& outFirstCell) {
+  const auto cells = static_cast<uint32_t>(inCellStart.size() - 1);
+  outFirstCell.assign(1, 0);
+  for (uint32_t cell = 1; cell < cells; ++cell)
+    if (inCellStart[cell] - inCellStart[outFirstCell.back()] >= inEntries)
+      outFirstCell.push_back(cell);
+  outFirstCell.push_back(cells);
+}
+
+// Sweeps one cell of the grid; a float hit is reported only in the cell of the larger lows
 // (the one cell both boxes reach that is a function of the pair alone), so a pair whose boxes
 // share several cells is reported once. Without a grid, the one cell holds every box.
-void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
-                const SmallFrameWorkspace& inWork, PairList& outPairs) {
+void sweepCell(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
+               const SmallFrameWorkspace& inWork, uint32_t inCell, PairChunks& outPairs) {
   const uint32_t cells1 = inGrid[1].cells;
-  for (uint32_t cell = 0; cell + 1 < inWork.cell_start.size(); ++cell) {
-    const uint32_t first = inWork.cell_start[cell];
-    SweepArrays arrays;
-    for (int slot = 0; slot < 3; ++slot) {
-      arrays.lo[slot] = inWork.lo[slot].data() + first;
-      arrays.hi[slot] = inWork.hi[slot].data() + first;
-    }
-    arrays.count = inWork.cell_start[cell + 1] - first - kBlock;
-    const uint32_t* box = inWork.box_of.data() + first;
-    sweepWith(inAvx2, arrays, [&](uint32_t i, uint32_t j) {
-      const uint32_t owner = inGrid[0].of(std::max(arrays.lo[1][i], arrays.lo[1][j])) * cells1 +
-                             inGrid[1].of(std::max(arrays.lo[2][i], arrays.lo[2][j]));
-      if (owner == cell) reportIfExact(inBoxes, arrays, i, j, box[i], box[j], outPairs);
-    });
+  const uint32_t first = inWork.cell_start[inCell];
+  SweepArrays arrays;
+  for (int slot = 0; slot < 3; ++slot) {
+    arrays.lo[slot] = inWork.lo[slot].data() + first;
+    arrays.hi[slot] = inWork.hi[slot].data() + first;
   }
+  arrays.count = inWork.cell_start[inCell + 1] - first - kBlock;
+  const uint32_t* box = inWork.box_of.data() + first;
+  sweepWith(inAvx2, arrays, [&](uint32_t i, uint32_t j) {
+    const uint32_t owner = inGrid[0].of(std::max(arrays.lo[1][i], arrays.lo[1][j])) * cells1 +
+                           inGrid[1].of(std::max(arrays.lo[2][i], arrays.lo[2][j]));
+    if (owner == inCell) reportIfExact(inBoxes, arrays, i, j, box[i], box[j], outPairs);
+  });
+}
+
+// Sweeps every cell, runs of cells (units) on the frame's threads, each worker into its own
+// list; the lists are merged into canonical order.
+void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
+                SmallFrameWorkspace& ioWork, PairList& outPairs) {
+  const uint32_t entries = ioWork.cell_start.back();
+  const auto unit_entries = static_cast<uint32_t>(
+      inThreads <= 1 ? entries
+                     : std::max<std::size_t>(kUnitBoxes / tuning::kSmallFrameSweepUnitsPerBoxUnit,
+                                             entries / (kUnitsPerThread * inThreads)));
+  cutCellsIntoUnits(ioWork.cell_start, unit_entries, ioWork.unit_first_cell);
+  const std::vector<uint32_t>& first_cell = ioWork.unit_first_cell;
+  const std::size_t units = first_cell.size() - 1;
+  const int team = teamForUnits(units, inThreads);
+  ioWork.pairs_per_worker.resize(std::max<std::size_t>(1, team));
+  for (PairChunks& pairs : ioWork.pairs_per_worker) pairs.clear();
+  runUnitsOnWorkers(units, team, [&](std::size_t inUnit, int inWorker) {
+    SAP_ASSERT(inWorker < team, "a worker beyond the sweep's lists");
+    for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell)
+      sweepCell(inBoxes, inGrid, inAvx2, ioWork, cell, ioWork.pairs_per_worker[inWorker]);
+  });
+  sortPairsCanonical(ioWork.pairs_per_worker, outPairs, ioWork.pair_scratch, team);
 }
 
 void pairWith(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-              PairList& outPairs, bool inAvx2) {
+              PairList& outPairs, int inThreads, bool inAvx2) {
   outPairs.clear();
   if (inBoxes.size() < 2) return;
   SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the small frame reads the spread of other boxes");
   const auto n = static_cast<uint32_t>(inBoxes.size());
+  for (int axis = 0; axis < 3; ++axis) ioSpread.axis(axis, inThreads);  // measured once, here
   const int axis = chooseSmallFrameAxis(ioSpread);
-  const KeyOrigin origin = keyOriginOf(ioSpread, 1);
+  const KeyOrigin origin = keyOriginOf(ioSpread, inThreads);
   const GridAxis grid[2] = {gridAxis(ioSpread, origin, (axis + 1) % 3, n),
                             gridAxis(ioSpread, origin, (axis + 2) % 3, n)};
   ioWork.grid_cells = grid[0].cells * grid[1].cells;
-  fillCells(inBoxes, origin, axis, grid, inAvx2, ioWork);
-  sweepCells(inBoxes, grid, inAvx2, ioWork, outPairs);
-  sortPairsCanonical(outPairs, ioWork.pair_scratch);
+  fillCells(inBoxes, origin, axis, grid, inAvx2, inThreads, ioWork);
+  sweepCells(inBoxes, grid, inAvx2, inThreads, ioWork, outPairs);
 }
 
 }  // namespace
@@ -385,19 +458,20 @@ int chooseSmallFrameAxis(FrameSpread& ioSpread) {
 }
 
 void pairSmallFrame(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-                    PairList& outPairs) {
-  pairWith(inBoxes, ioSpread, ioWork, outPairs, cpuHasAvx2());
+                    PairList& outPairs, int inThreads) {
+  pairWith(inBoxes, ioSpread, ioWork, outPairs, inThreads, cpuHasAvx2());
 }
 
-void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
+void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs,
+                    int inThreads) {
   FrameSpread spread(inBoxes);
-  pairSmallFrame(inBoxes, spread, ioWork, outPairs);
+  pairSmallFrame(inBoxes, spread, ioWork, outPairs, inThreads);
 }
 
 void pairSmallFramePortable(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork,
-                            PairList& outPairs) {
+                            PairList& outPairs, int inThreads) {
   FrameSpread spread(inBoxes);
-  pairWith(inBoxes, spread, ioWork, outPairs, false);
+  pairWith(inBoxes, spread, ioWork, outPairs, inThreads, false);
 }
 
 }  // namespace sap_broadphase

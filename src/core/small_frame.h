@@ -1,4 +1,5 @@
-// The small-frame path: one thread, no state kept between frames.
+// The small-frame path: no state kept between frames; its passes run a unit at a time on the
+// threads the frame's plan gave it (work_units.h).
 //
 // Below a few thousand boxes the bi-dimensional sweep's fixed costs (two endpoint sorts, the
 // candidate ranges of Algorithm 1, SuccTrees sized to n) outweigh what it saves. A plain
@@ -33,10 +34,14 @@ struct SmallFrameWorkspace {
   /// may read past its last box: NaN compares false, so padding never overlaps anything.
   Buffer<float> lo[3];
   Buffer<float> hi[3];
-  Buffer<uint32_t> box_of;       ///< box index of each entry of a run
-  Buffer<uint32_t> cell_start;   ///< first entry of each cell's run, then the total
-  Buffer<uint32_t> cell_cursor;  ///< next free entry of each cell while filling
-  Buffer<uint32_t> cell_range;   ///< the cells each box reaches (packed, input order)
+  Buffer<uint32_t> box_of;      ///< box index of each entry of a run
+  Buffer<uint32_t> cell_start;  ///< first entry of each cell's run, then the total
+  Buffer<uint32_t> cell_range;  ///< the cells each box reaches (packed, input order)
+  /// [unit of the sorted boxes][cell]: entries the unit adds to the cell, then the unit's next
+  /// entry there while filling.
+  Buffer<uint32_t> unit_cell_count;
+  std::vector<uint32_t> unit_first_cell;     ///< the sweep's units: first cell of each, then all
+  std::vector<PairChunks> pairs_per_worker;  ///< the sweep's pairs, one list per worker
   PairSortScratch pair_scratch;
   uint32_t grid_cells = 1;  ///< cells of the last frame's grid (1: one sweep of all boxes)
 };
@@ -47,16 +52,18 @@ struct SmallFrameWorkspace {
 int chooseSmallFrameAxis(FrameSpread& ioSpread);
 
 /// Every overlapping, filter-allowed pair of inBoxes (exactly bruteForcePairs' result), in
-/// canonical order, into outPairs (replaced). One thread; AVX2 blocks of 8 candidates where
-/// the CPU has them, a portable loop otherwise (chosen at run time). ioSpread is the spread of
-/// inBoxes: the sweep axis and the key origin are read from it.
+/// canonical order, into outPairs (replaced), on up to inThreads workers of the runner (the
+/// same pairs for any count). AVX2 blocks of 8 candidates where the CPU has them, a portable
+/// loop otherwise (chosen at run time). ioSpread is the spread of inBoxes: the sweep axis and
+/// the key origin are read from it.
 void pairSmallFrame(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-                    PairList& outPairs);
+                    PairList& outPairs, int inThreads = 1);
 /// The same, measuring the spread of inBoxes itself.
-void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
+void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs,
+                    int inThreads = 1);
 
 /// The same, forced onto the portable loop (for tests and benchmarks on AVX2 machines).
 void pairSmallFramePortable(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork,
-                            PairList& outPairs);
+                            PairList& outPairs, int inThreads = 1);
 
 }  // namespace sap_broadphase

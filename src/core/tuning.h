@@ -83,6 +83,21 @@ constexpr std::size_t kSceneryMostCellsPrefetched = 27;
 constexpr double kSmallFrameBoxesPerCell = 256.0;
 constexpr double kSmallFrameCellsPerExtent = 4.0;
 constexpr uint32_t kSmallFrameMaxCellsPerAxis = 64;
+/// The parallel cell sweep hands out runs of whole cells of at least kUnitBoxes / this many
+/// entries (work_units.h), and at most kUnitsPerThread runs a thread: the cells' sweeps differ
+/// in cost, so a thread whose runs came out dear is helped by the others.
+constexpr std::size_t kSmallFrameSweepUnitsPerBoxUnit = 4;
+/// Most threads on which Method::kAuto answers frames of every size with the small-frame
+/// kernel (its cells in parallel) rather than the paper's parallel sweep (frame_plan.h).
+/// Measured on the 2-core VM (uniform, d = 0.35, skin off, steady median, one run, other builds
+/// running, load 19-21): at 2^17 the kernel on two threads took 214-423 ms against the
+/// parallel sweep's 490-612 on two threads and 370-380 for the kernel on one; at 2^15 the
+/// kernel on two threads 50 ms against 108 on one, at 2^13 1.17 against 1.11 (one unit of
+/// boxes: nothing to share), so parallel_min_boxes (2^15) stays the cut-off below which a
+/// frame runs on one thread. Above two threads the kernel's serial key sort and prefix are
+/// unmeasured against the paper's sweep, which scales with cores (its §7): the sweep keeps
+/// them.
+constexpr int kKernelMostThreads = 2;
 
 // ---- Box queries against the last frame (frame_query.h) ----
 
@@ -133,21 +148,6 @@ constexpr std::size_t kPairRunChunk = 4096;
 /// second row of counts cost more (measured: 26k pairs of 2^17 boxes, 0.19 ms on one thread,
 /// 0.30 on two).
 constexpr std::size_t kParallelMergePairs = 65536;
-
-// ---- Thread choice (thread_choice.h) ----
-
-/// Frames of a work between two probes of the other thread count, at first and after a close
-/// probe.
-constexpr int kShortestProbeInterval = 16;
-/// The longest wait between probes (after probes that lost clearly, one after another).
-constexpr int kLongestProbeInterval = 256;
-/// A probe loses clearly when its count costs this many times the one in use, or more.
-constexpr double kClearLoss = 1.25;
-/// Frames whose size differs from the learnt one by more than this factor start afresh: the
-/// cost per box of a frame that no longer fits the same caches is another cost.
-constexpr double kSameSizeFactor = 2.0;
-/// Weight of a frame in the running cost of the count in use (a probe replaces its count's).
-constexpr double kRunningWeight = 0.25;
 
 // ---- Automatic skin (kept candidates, skin_list.h) ----
 

@@ -107,10 +107,10 @@ TEST(Filters, BoxesThatCollideWithNothingAreLeftOut) {
   }
 }
 
-// With threads and method left to the engine, the thread count of each frame's work is learnt
-// from measured times (thread_choice.h), so it varies with the machine's load: the pairs must
-// not, whatever it picks, over enough frames for probes and switches.
-TEST(DefaultThreads, ExactWhileTheThreadCountIsLearnt) {
+// With threads and method left to the engine, each frame's threads are the plan's (frameThreads:
+// one below the cut-off, every core above it), the kernel's cells and the sweep's passes handed
+// to whichever worker is free: the pairs are the oracle's on every frame, whatever ran where.
+TEST(DefaultThreads, ExactOnThePlannedThreads) {
   for (bool skin_off : {false, true}) {
     BroadphaseConfig config;  // threads 0, Method::kAuto
     config.parallel_min_boxes = 500;

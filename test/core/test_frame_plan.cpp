@@ -33,7 +33,7 @@ PlanInputs coherentFrame(const BroadphaseConfig& inConfig) {
   inputs.delta.moved_boxes = 100000;
   inputs.delta.max_displacement = 0.01;
   inputs.boxes = 100000;
-  inputs.threads = 2;
+  inputs.threads = tuning::kKernelMostThreads + 2;  // a machine where the sweep answers
   inputs.last_pairs_valid = true;
   inputs.motion = 0.01;
   inputs.costs = uniformCosts();
@@ -92,7 +92,7 @@ TEST(FramePlan, SlowMotionChoosesASkinAndKeptCandidatesAnswerWhileCovered) {
   EXPECT_EQ(sweep.path, FramePath::kParallel);
   EXPECT_EQ(sweep.skin_choice, SkinChoice::kChosen);
   EXPECT_GE(sweep.sweep_skin, 2 * inputs.motion);
-  EXPECT_EQ(sweep.threads, 2);
+  EXPECT_EQ(sweep.threads, inputs.threads);
   inputs.kept_candidates = true;
   inputs.kept_covers = true;
   inputs.kept_skin = sweep.sweep_skin;
@@ -190,28 +190,36 @@ TEST(FramePlan, SweepPathFollowsMethodSizeAndThreads) {
   EXPECT_EQ(planFrame(inputs).threads, 1);
 }
 
-// The small-frame kernel answers frames below the cut-off on any thread count, and every frame
-// of Method::kAuto on one thread (where it beats the sequential sweep at every size); with
-// several threads a large frame is swept in parallel, and a fixed skin or another method keeps
-// the sweep.
-TEST(FramePlan, TheKernelAnswersSmallFramesAndEveryFrameOnOneThread) {
+// The small-frame kernel answers frames below the cut-off on any thread count (on one thread),
+// and every frame of Method::kAuto on up to tuning::kKernelMostThreads threads (on all of
+// them); with more threads a large frame is swept in parallel, and a fixed skin or another
+// method keeps the sweep. The frame's threads are decided once, by frameThreads.
+TEST(FramePlan, TheKernelAnswersSmallFramesAndEveryFrameOnFewThreads) {
   BroadphaseConfig config;
   PlanInputs inputs = coherentFrame(config);  // 100000 boxes
   inputs.delta.relation = FrameRelation::kFirst;
-  inputs.threads = 1;
-  FramePlan plan = planFrame(inputs);
-  EXPECT_EQ(plan.path, FramePath::kSmallFrame);
-  EXPECT_EQ(plan.threads, 1);
-  EXPECT_EQ(frameThreads(config, inputs.boxes, 1), 1);
-  inputs.threads = 2;
+  for (int threads = 1; threads <= tuning::kKernelMostThreads; ++threads) {
+    inputs.threads = frameThreads(config, inputs.boxes, threads);
+    EXPECT_EQ(inputs.threads, threads);
+    const FramePlan plan = planFrame(inputs);
+    EXPECT_EQ(plan.path, FramePath::kSmallFrame) << threads;
+    EXPECT_EQ(plan.threads, threads);
+  }
+  const int many = tuning::kKernelMostThreads + 1;
+  inputs.threads = frameThreads(config, inputs.boxes, many);
+  EXPECT_EQ(inputs.threads, many);
   EXPECT_EQ(planFrame(inputs).path, FramePath::kParallel);
-  EXPECT_EQ(frameThreads(config, inputs.boxes, 2), 2);
+  EXPECT_EQ(planFrame(inputs).threads, many);
   inputs.boxes = config.parallel_min_boxes - 1;
-  EXPECT_EQ(planFrame(inputs).path, FramePath::kSmallFrame);
-  EXPECT_EQ(frameThreads(config, inputs.boxes, 2), 1);
+  for (int threads : {2, many}) {
+    inputs.threads = frameThreads(config, inputs.boxes, threads);
+    EXPECT_EQ(inputs.threads, 1) << threads;
+    EXPECT_EQ(planFrame(inputs).path, FramePath::kSmallFrame);
+  }
   inputs.boxes = 100000;
   inputs.threads = 1;
   config.method = Method::kSequential;
+  EXPECT_EQ(frameThreads(config, inputs.boxes - 90000, 2), 2) << "only kAuto's small frames";
   EXPECT_EQ(planFrame(inputs).path, FramePath::kSequential);
   config.method = Method::kAuto;
   config.skin = 0.5;

@@ -3,14 +3,17 @@
 // grid really ran (more than one cell) and that both sweeps give exactly the oracle's pairs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "core/key_origin.h"
 #include "core/small_frame.h"
 #include "core/sort_keys.h"
 #include "core/tuning.h"
+#include "core/work_units.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 
@@ -23,17 +26,21 @@ void addBox(BoxColumns& ioBoxes, const double (&inLow)[3], const double (&inHigh
   ioBoxes.add(static_cast<uint32_t>(ioBoxes.size()), inLow, inHigh);
 }
 
-// Both sweeps, twice each on one workspace (the second run reuses its buffers), on a grid.
+// Both sweeps, twice each on one workspace (the second run reuses its buffers), on a grid, on
+// one to four threads.
 void expectGridMatches(const BoxColumns& inBoxes, const std::string& inLabel) {
   const PairList oracle = bruteForcePairs(inBoxes);
   SmallFrameWorkspace work;
   PairList pairs;
-  for (int run = 0; run < 2; ++run) {
-    pairSmallFrame(inBoxes, work, pairs);
-    EXPECT_GT(work.grid_cells, 1u) << inLabel << ": the grid did not run";
-    EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << " (dispatched)";
-    pairSmallFramePortable(inBoxes, work, pairs);
-    EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << " (portable)";
+  for (int threads = 1; threads <= 4; ++threads) {
+    const std::string label = inLabel + ", " + std::to_string(threads) + " threads";
+    for (int run = 0; run < 2; ++run) {
+      pairSmallFrame(inBoxes, work, pairs, threads);
+      EXPECT_GT(work.grid_cells, 1u) << label << ": the grid did not run";
+      EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << label << " (dispatched)";
+      pairSmallFramePortable(inBoxes, work, pairs, threads);
+      EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << label << " (portable)";
+    }
   }
 }
 
@@ -49,6 +56,38 @@ TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
 
 // Boxes reaching across many cells, or infinitely far on a grid axis (first to last cell), and
 // boxes beyond the finite span: each pair once, however many cells the two boxes share.
+// Frames of several units of boxes (kUnitBoxes), so that every pass of the kernel hands units
+// to the runner's workers: the bounds, the per-unit cell counts and copies, and runs of cells
+// swept by different workers, on one to four threads, over several seeds and densities. The
+// layout of the cells is the same on every thread count, as are the pairs.
+TEST(SmallFrameGrid, ParallelPassesMatchTheOracleOnOneToFourThreads) {
+  const std::size_t n = 2 * kUnitBoxes + 2500;
+  const std::pair<uint64_t, double> cases[] = {{11, 1.0}, {12, 3.0}, {13, 2.0}};
+  for (const auto& [seed, edge] : cases) {
+    const BoxColumns boxes = columnsOf(test_support::randomBoxes(n, 200.0, edge, seed));
+    const std::string label = "seed " + std::to_string(seed) + ", edge " + std::to_string(edge);
+    const PairList oracle = bruteForcePairs(boxes);
+    SmallFrameWorkspace one_thread;
+    PairList pairs;
+    pairSmallFrame(boxes, one_thread, pairs, 1);
+    ASSERT_TRUE(test_support::samePairs(oracle, pairs)) << label << ", 1 thread";
+    for (int threads = 2; threads <= 4; ++threads) {
+      SmallFrameWorkspace work;
+      const uint64_t regions = parallelRegionsOpened();
+      pairSmallFrame(boxes, work, pairs, threads);
+      const std::string at = label + ", " + std::to_string(threads) + " threads";
+      EXPECT_GT(parallelRegionsOpened(), regions) << at << ": no pass was handed out";
+      EXPECT_GT(work.unit_first_cell.size(), 2u) << at << ": one run of cells";
+      EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << at;
+      EXPECT_TRUE(std::equal(one_thread.box_of.begin(), one_thread.box_of.end(),
+                             work.box_of.begin(), work.box_of.end()))
+          << at << ": the cells' layout depends on the threads";
+      pairSmallFramePortable(boxes, work, pairs, threads);
+      EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << at << " (portable)";
+    }
+  }
+}
+
 TEST(SmallFrameGrid, WideAndInfiniteBoxesReachEveryCell) {
   BoxColumns boxes = columnsOf(test_support::randomBoxes(4000, 100.0, 1.0, 41));
   for (int axis = 0; axis < 3; ++axis) {

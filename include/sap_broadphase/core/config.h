@@ -19,8 +19,9 @@ namespace sap_broadphase {
 
 /// Which algorithm computes a frame.
 enum class Method : uint8_t {
-  kAuto,  ///< one thread below BroadphaseConfig::parallel_min_boxes or with 1 thread, else parallel
-  kParallel,    ///< Algorithms 2, 3 and 4 of the paper
+  kAuto,      ///< one thread below BroadphaseConfig::parallel_min_boxes; the small-frame kernel on
+              ///< up to 2 threads, the parallel sweep on more
+  kParallel,  ///< Algorithms 2, 3 and 4 of the paper
   kSequential,  ///< Algorithm 1 of the paper
   kBruteForce,  ///< all pairs tested (the oracle); for checks and tiny frames
 };
@@ -94,9 +95,9 @@ struct BroadphaseConfig {
   /// false: the sweeps skip their exact float64 test and report every pair whose
   /// outward-rounded float32 keys overlap: a superset of the exact pairs, never missing one.
   /// That holds where a sweep answers the frame without a skin: Method::kParallel and
-  /// kSequential, and kAuto at or above parallel_min_boxes with more than one thread. The
+  /// kSequential, and kAuto at or above parallel_min_boxes with more than two threads. The
   /// other paths test in doubles whatever this says and return the exact pairs: kAuto's
-  /// small-frame path (below parallel_min_boxes, or one thread), kept candidates (a skin),
+  /// small-frame path (below parallel_min_boxes, or up to two threads), kept candidates (a skin),
   /// brute force. So a frame may bring extra pairs or none, depending on its path.
   bool exact_final_test = true;
 };

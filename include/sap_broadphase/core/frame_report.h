@@ -20,8 +20,8 @@ enum class FramePath : uint8_t {
   kBruteForce,  ///< the oracle
   kReused,      ///< same boxes as the previous frame: its pairs returned without a sweep
   kSkin,        ///< every box inside its skin: the kept candidates tested, no sweep
-  kSmallFrame,  ///< the small-frame kernel (small_frame.h), one thread: frames below
-                ///< parallel_min_boxes, and every frame of Method::kAuto on one thread
+  kSmallFrame,  ///< the small-frame kernel (small_frame.h): frames below parallel_min_boxes
+                ///< (one thread), and every frame of Method::kAuto on one or two threads
 };
 
 /// Human-readable name of a path: "empty", "sequential", "parallel", "brute", "reused", "skin",
