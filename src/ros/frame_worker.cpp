@@ -164,10 +164,10 @@ void FrameWorker::run() {
           // Before the frame: its boxes were named when their messages were converted, so
           // id_names reaches listeners before the pairs that use the names, and the frame's
           // markers label its new boxes.
-          ingest_.publishIdNames();
+          ingest_.upkeep().publishIdNames();
           if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
             computeFrame();
-          ingest_.countLostMessages();
+          ingest_.upkeep().countLostMessages();
           status_.updateDiagnostics();
         },
         [&](const std::string& inWhat) { recoverFrom(inWhat); });
@@ -182,7 +182,7 @@ void FrameWorker::restartClock(const ros::Time& inNow) {
       "of %zu sources start again",
       (last_now_ - inNow).toSec(), sources_.size());
   sources_.restartClock(inNow);
-  ingest_.restartClock(inNow);
+  ingest_.mailbox().restartClock(inNow);
   status_.restartClock();
 }
 
@@ -200,7 +200,8 @@ void FrameWorker::recoverFrom(const std::string& inWhat) {
 
 std_msgs::Header FrameWorker::sceneryHeader() const {
   std_msgs::Header header;
-  header.frame_id = ingest_.fixedFrame().empty() ? static_frame_ : ingest_.fixedFrame();
+  header.frame_id =
+      ingest_.placement().fixedFrame().empty() ? static_frame_ : ingest_.placement().fixedFrame();
   return header;
 }
 
@@ -227,14 +228,13 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
 
 bool FrameWorker::takeScenery() {
   BoxArrayConstPtr message;
-  ingest_.take(deliveries_, message);
+  ingest_.mailbox().take(deliveries_, message);
   if (!message) return false;
   auto scenery = std::make_shared<SourceFrame>();
   scenery->header = message->header;
   scenery->message = message;
   // An empty scenery (clearing it) needs no transform.
-  if (scenery->size() > 0 && !ingest_.placeFrame(kStaticSourceName, ros::Time(0), *scenery))
-    return false;
+  if (scenery->size() > 0 && !place(kStaticSourceName, ros::Time(0), *scenery)) return false;
   try {
     std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_.setStaticBoxes(scenery->span());
@@ -243,7 +243,8 @@ bool FrameWorker::takeScenery() {
                    std::string(kStaticSourceName) + ": " + refusal.error().message());
     return false;
   }
-  static_frame_ = ingest_.fixedFrame().empty() ? message->header.frame_id : ingest_.fixedFrame();
+  static_frame_ = ingest_.placement().fixedFrame().empty() ? message->header.frame_id
+                                                           : ingest_.placement().fixedFrame();
   if (scenery->size() == 0) static_frame_.clear();  // no scenery: no frame to agree with
   status_.setStaticBoxes(scenery->size());
   ROS_INFO("sap_broadphase: static_boxes: %zu %s indexed (frame '%s')", scenery->size(),
@@ -255,8 +256,7 @@ bool FrameWorker::takeScenery() {
 bool FrameWorker::takeDeliveries() {
   bool changed = false;
   for (auto& [key, delivery] : deliveries_) {
-    if (!ingest_.placeFrame(sourceName(key), delivery.frame->header.stamp, *delivery.frame))
-      continue;
+    if (!place(sourceName(key), delivery.frame->header.stamp, *delivery.frame)) continue;
     sources_.store(key, std::move(delivery.frame), delivery.received);
     changed = true;
   }
@@ -280,7 +280,7 @@ void FrameWorker::expireSources() {
     engine_header_ = sceneryHeader();
   }
   for (const auto& [key, frames] : expired) {
-    ingest_.forget(key);
+    ingest_.upkeep().forget(key);
     const bool own = timeout_of(key) != params_.source_timeout;
     const std::string timeout =
         (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +
@@ -299,7 +299,7 @@ void FrameWorker::expireSources() {
 
 void FrameWorker::computeFrame() {
   const auto start = std::chrono::steady_clock::now();
-  const std::string& fixed_frame = ingest_.fixedFrame();
+  const std::string& fixed_frame = ingest_.placement().fixedFrame();
   sources_.assemble(fixed_frame.empty() ? static_frame_ : fixed_frame, world_);
   for (const LeftOutSource& left_out : world_.left_out) refuseLeftOut(left_out);
   FrameAccount frame;
@@ -318,32 +318,38 @@ void FrameWorker::computeFrame() {
   // The boxes just loaded, read where the sources keep them, and the scenery they meet.
   const BoxFrame scenery = scenery_ ? BoxFrame(scenery_->span()) : BoxFrame();
   const MarkerCounts markers =
-      outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.idNames(), &scenery);
+      outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.upkeep().idNames(), &scenery);
   frame.marker_boxes = markers.drawn;
   frame.marker_boxes_omitted = markers.colliding_omitted;
   status_.frameComputed(frame, engine_.stats());
 }
 
 const PairList* FrameWorker::loadWorld() {
-  // Each refusal takes one source back to its last accepted frame or out of the world: the
-  // loop ends after at most two refusals a source.
-  while (!world_.members.empty()) {
-    spans_.clear();
-    for (const WorldMember& member : world_.members) spans_.push_back(member.frame->span());
+  const auto update = [this](const BoxFrame& inFrame) -> const PairList& {
+    std::lock_guard<EngineLock> lock(engine_mutex_);
     try {
-      std::lock_guard<EngineLock> lock(engine_mutex_);
-      const PairList& pairs = engine_.update(BoxFrame(spans_));
+      const PairList& pairs = engine_.update(inFrame);
       engine_header_ = world_.header();
-      return &pairs;
-    } catch (const InvalidBoxes& refusal) {
-      {
-        std::lock_guard<EngineLock> lock(engine_mutex_);
-        engine_header_ = sceneryHeader();  // an update that threw leaves the scenery alone
-      }
-      refuseMember(refusal.error());
+      return pairs;
+    } catch (const InvalidBoxes&) {
+      engine_header_ = sceneryHeader();  // an update that threw leaves the scenery alone
+      throw;
     }
-  }
-  return nullptr;
+  };
+  const auto refused = [this](const SourceFrame& inFrame, const std::string& inReason) {
+    status_.refuse(inFrame.header, inFrame.size(), inReason);
+  };
+  return sap_broadphase::loadWorld(world_, sources_, spans_, update, refused);
+}
+
+bool FrameWorker::place(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame) {
+  const std::optional<PlacementRefusal> refusal = ingest_.placement().place(inStamp, ioFrame);
+  if (!refusal) return true;
+  if (refusal->kind == PlacementRefusal::Kind::kNoTransform)
+    status_.skip(inName + " skipped: " + refusal->reason);
+  else  // the frame's own transform is wrong: refused, as a wrong box is
+    status_.refuse(ioFrame.header, ioFrame.size(), inName + ": " + refusal->reason);
+  return false;
 }
 
 void FrameWorker::refuseLeftOut(const LeftOutSource& inLeftOut) {
@@ -357,20 +363,6 @@ void FrameWorker::refuseLeftOut(const LeftOutSource& inLeftOut) {
     return;
   }
   status_.refuse(frame.header, frame.size(), inLeftOut.reason);
-}
-
-void FrameWorker::refuseMember(const ValidationError& inError) {
-  // The one problem of the whole frame rather than of a box, more boxes than the engine takes,
-  // goes to the newest source, as a shared id does.
-  ValidationError error = inError;
-  if (error.problem == BoxProblem::kShape) error.span = world_.members.size() - 1;
-  const std::size_t span = error.span;
-  WorldMember& member = world_.members.at(span);
-  status_.refuse(member.frame->header, member.frame->size(), worldRefusal(error, world_));
-  if (SourceFramePtr fallback = sources_.refuse(member.key))
-    member.frame = std::move(fallback);
-  else
-    world_.members.erase(world_.members.begin() + static_cast<std::ptrdiff_t>(span));
 }
 
 }  // namespace sap_broadphase

@@ -99,16 +99,17 @@ class FrameWorker {
   void recoverFrom(const std::string& inWhat);
   /// Hands the sources' frames to the engine, publishes the pairs and the frame's accounts.
   void computeFrame();
-  /// The engine on the spans of world_, which it checks as it loads them; a refused source
-  /// falls back on its last accepted frame or leaves, and the world is loaded again. The pairs,
-  /// or null when no source is left.
+  /// The engine on the spans of world_ (sources.h's loadWorld): a refused source falls back on
+  /// its last accepted frame or leaves, and the world is loaded again. The pairs, or null when
+  /// no source is left.
   const PairList* loadWorld();
+  /// Moves ioFrame (of the source or scenery named inName) into ~fixed_frame at inStamp. False,
+  /// with the frame skipped (no transform) or refused (one not finite) counted and named, when
+  /// it cannot be placed.
+  bool place(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame);
   /// Counts and names a source the world leaves out for its frame_id: for its boxes first, when
   /// they are no boxes (the frame then leaves as one the engine refuses), else for its frame.
   void refuseLeftOut(const LeftOutSource& inLeftOut);
-  /// Counts and names the problem inError of the world's frame, and takes the source that
-  /// holds it back to its last accepted frame, or out of world_ without one.
-  void refuseMember(const ValidationError& inError);
 
   NodeParams params_;  // the settings in force (worker thread only)
   SourceIngest& ingest_;

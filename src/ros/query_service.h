@@ -19,9 +19,9 @@ namespace sap_broadphase {
 
 class QueryService {
  public:
-  /// Advertises `query_boxes` on ioNode, served by its own spinner threads. ioIngest (for tf2)
-  /// and inWorker (the world) must outlive the service.
-  QueryService(ros::NodeHandle& ioNode, SourceIngest& ioIngest, const FrameWorker& inWorker,
+  /// Advertises `query_boxes` on ioNode, served by its own spinner threads. inIngest (its
+  /// placement in ~fixed_frame) and inWorker (the world) must outlive the service.
+  QueryService(ros::NodeHandle& ioNode, const SourceIngest& inIngest, const FrameWorker& inWorker,
                int inLogPeriod);
   /// Stops the spinner; a call in progress is answered first.
   ~QueryService();
@@ -35,7 +35,7 @@ class QueryService {
   /// Logs (throttled, INFO: the caller has the reason) and answers a refusal.
   void refuse(const std::string& inReason, QueryBoxes::Response& outResponse);
 
-  SourceIngest& ingest_;
+  const SourcePlacement& placement_;
   const FrameWorker& worker_;
   int log_period_;
   ros::CallbackQueue queue_;

@@ -19,10 +19,13 @@ add_rostest(test/ros/rviz.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}
 # rosbag record of boxes and pairs; rosbag play of the boxes gives the same pairs again.
 add_rostest(test/ros/rosbag.test DEPENDENCIES ${PROJECT_NAME}_node)
 
-# Unit tests of the ROS layer's pure functions (conversions, markers, sources): no roscore.
+# Unit tests of the ROS layer's pure functions (conversions, markers, sources) and of the
+# ingest's parts (placement against a tf2 buffer filled by hand, the mailbox on a fake clock,
+# the world's refusal and fall-back loop): no roscore.
 catkin_add_gtest(test_ros_units
   test/ros/test_conversions.cpp test/ros/test_frames.cpp test/ros/test_markers.cpp
-  test/ros/test_sources_units.cpp test/ros/test_units_main.cpp)
+  test/ros/test_sources_units.cpp test/ros/test_source_ingest_units.cpp
+  test/ros/test_units_main.cpp)
 target_include_directories(test_ros_units PRIVATE test/ros)
 target_link_libraries(test_ros_units ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_ros_units ${PROJECT_NAME}_generate_messages_cpp)
