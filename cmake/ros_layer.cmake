@@ -22,6 +22,7 @@ add_library(${PROJECT_NAME}_ros
   src/ros/source_upkeep.cpp
   src/ros/sources.cpp
   src/ros/wire_layout.cpp
+  src/ros/world_snapshot.cpp
 )
 # yaml-cpp: list and dict parameters given as YAML strings on the command line
 find_package(yaml-cpp REQUIRED)

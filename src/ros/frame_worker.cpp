@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
-#include <shared_mutex>
 #include <utility>
 
 #include "checked_callbacks.h"
@@ -27,45 +26,6 @@ double millisecondsSince(std::chrono::steady_clock::time_point inStart) {
 
 }  // namespace
 
-void EngineLock::lock() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  ++writers_waiting_;
-  writer_go_.wait(lock, [this] { return !writing_ && readers_ == 0; });
-  --writers_waiting_;
-  writing_ = true;
-}
-
-void EngineLock::unlock() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  writing_ = false;
-  if (readers_waiting_ > 0) {
-    // Every reader that waited for this frame goes before the next writer.
-    readers_ += readers_waiting_;
-    readers_waiting_ = 0;
-    ++phase_;
-    readers_go_.notify_all();
-  } else {
-    writer_go_.notify_one();
-  }
-}
-
-void EngineLock::lock_shared() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  if (!writing_ && writers_waiting_ == 0) {
-    ++readers_;
-    return;
-  }
-  ++readers_waiting_;
-  const uint64_t phase = phase_;
-  readers_go_.wait(lock, [&] { return phase_ != phase; });  // admitted (counted) by unlock()
-}
-
-void EngineLock::unlock_shared() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  assert(readers_ > 0 && "a reader unlocks the engine it locked");
-  if (--readers_ == 0) writer_go_.notify_one();
-}
-
 FrameWorker::FrameWorker(const NodeParams& inParams, SourceIngest& ioIngest,
                          FrameOutputs& ioOutputs, NodeStatus& ioStatus)
     : params_(inParams),
@@ -73,7 +33,11 @@ FrameWorker::FrameWorker(const NodeParams& inParams, SourceIngest& ioIngest,
       outputs_(ioOutputs),
       status_(ioStatus),
       engine_(inParams.engine),
-      thread_(&FrameWorker::run, this) {}
+      scenery_index_(std::make_shared<SceneryIndex>(nullptr, inParams.engine)),
+      thread_() {
+  publishWorld(sceneryHeader(), {});
+  thread_ = std::thread(&FrameWorker::run, this);
+}
 
 FrameWorker::~FrameWorker() {
   {
@@ -102,11 +66,30 @@ void FrameWorker::reconfigure(const NodeParams& inSettings) {
 }
 
 QueryAnswer FrameWorker::query(const BoxFrame& inQueries) const {
-  std::shared_lock<EngineLock> lock(engine_mutex_);
+  std::shared_ptr<const WorldSnapshot> world;
+  {
+    std::lock_guard<std::mutex> lock(snapshot_mutex_);
+    world = snapshot_;
+  }
   QueryAnswer answer;
-  answer.hits = engine_.query(inQueries);
-  answer.header = engine_header_;
+  answer.hits = world->query(inQueries);
+  answer.header = world->header();
   return answer;
+}
+
+void FrameWorker::publishWorld(const std_msgs::Header& inHeader,
+                               std::vector<SourceFramePtr> inFrames) {
+  snapshot_header_ = inHeader;
+  snapshot_frames_ = std::move(inFrames);
+  auto world = std::make_shared<const WorldSnapshot>(snapshot_header_, snapshot_frames_,
+                                                     scenery_index_, params_.engine);
+  std::lock_guard<std::mutex> lock(snapshot_mutex_);
+  snapshot_ = std::move(world);  // the one it replaces goes with its last query
+}
+
+void FrameWorker::publishScenery() {
+  scenery_index_ = std::make_shared<const SceneryIndex>(scenery_, params_.engine);
+  publishWorld(snapshot_header_, snapshot_frames_);
 }
 
 bool FrameWorker::waitUntil(const ros::Time& inDeadline, const ros::Duration& inPeriod) {
@@ -192,10 +175,11 @@ void FrameWorker::recoverFrom(const std::string& inWhat) {
   status_.refuse(std_msgs::Header(), 0,
                  "a frame could not be computed (" + inWhat + "): refused, new engine");
   outputs_.restartEvents();  // the last published pairs may have gone with the failure
-  std::lock_guard<EngineLock> lock(engine_mutex_);
   engine_ = Broadphase(params_.engine);
   if (scenery_) engine_.setStaticBoxes(scenery_->span());
-  engine_header_ = sceneryHeader();
+  snapshot_frames_.clear();  // the new engine's world is the scenery alone
+  snapshot_header_ = sceneryHeader();
+  publishScenery();
 }
 
 std_msgs::Header FrameWorker::sceneryHeader() const {
@@ -212,14 +196,17 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
     // temporal state (partition bounds, kept candidates, the last frame) and must be told
     // the scenery again.
     outputs_.holdLastPairs();  // pair_events still tells what changed since the last frame
-    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_ = Broadphase(inSettings.engine);
     if (scenery_) engine_.setStaticBoxes(scenery_->span());
-    engine_header_ = sceneryHeader();
     status_.setEngineConfig(inSettings.engine);
   }
   outputs_.setMarkers(inSettings.publish_markers, inSettings.markers);
   params_.engine = inSettings.engine;
+  if (new_engine) {
+    snapshot_frames_.clear();  // the new engine's world is the scenery alone
+    snapshot_header_ = sceneryHeader();
+    publishScenery();  // indexed with the new settings
+  }
   params_.publish_markers = inSettings.publish_markers;
   params_.markers = inSettings.markers;
   ROS_INFO("sap_broadphase: reconfigured%s: %s", new_engine ? " (new engine)" : "",
@@ -236,7 +223,6 @@ bool FrameWorker::takeScenery() {
   // An empty scenery (clearing it) needs no transform.
   if (scenery->size() > 0 && !place(kStaticSourceName, ros::Time(0), *scenery)) return false;
   try {
-    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_.setStaticBoxes(scenery->span());
   } catch (const InvalidBoxes& refusal) {  // the scenery in force stays
     status_.refuse(message->header, scenery->size(),
@@ -250,6 +236,7 @@ bool FrameWorker::takeScenery() {
   ROS_INFO("sap_broadphase: static_boxes: %zu %s indexed (frame '%s')", scenery->size(),
            scenery->size() == 1 ? "box" : "boxes", message->header.frame_id.c_str());
   scenery_ = std::move(scenery);
+  publishScenery();
   return true;
 }
 
@@ -275,9 +262,8 @@ void FrameWorker::expireSources() {
   if (!expired.empty() && sources_.size() == 0) {
     // No frame follows until a source comes back: the last one must not stay in the world.
     outputs_.holdLastPairs();  // this update is not published: its events are not the node's
-    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_.update(BoxFrame());
-    engine_header_ = sceneryHeader();
+    publishWorld(sceneryHeader(), {});
   }
   for (const auto& [key, frames] : expired) {
     ingest_.upkeep().forget(key);
@@ -326,20 +312,18 @@ void FrameWorker::computeFrame() {
 
 const PairList* FrameWorker::loadWorld() {
   const auto update = [this](const BoxFrame& inFrame) -> const PairList& {
-    std::lock_guard<EngineLock> lock(engine_mutex_);
-    try {
-      const PairList& pairs = engine_.update(inFrame);
-      engine_header_ = world_.header();
-      return pairs;
-    } catch (const InvalidBoxes&) {
-      engine_header_ = sceneryHeader();  // an update that threw leaves the scenery alone
-      throw;
-    }
+    return engine_.update(inFrame);
   };
   const auto refused = [this](const SourceFrame& inFrame, const std::string& inReason) {
     status_.refuse(inFrame.header, inFrame.size(), inReason);
   };
-  return sap_broadphase::loadWorld(world_, sources_, spans_, update, refused);
+  const PairList* pairs = sap_broadphase::loadWorld(world_, sources_, spans_, update, refused);
+  std::vector<SourceFramePtr> frames;
+  if (pairs)
+    for (const WorldMember& member : world_.members) frames.push_back(member.frame);
+  // An update that threw leaves the scenery alone in the engine.
+  publishWorld(pairs ? world_.header() : sceneryHeader(), std::move(frames));
+  return pairs;
 }
 
 bool FrameWorker::place(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame) {

@@ -8,8 +8,8 @@ namespace sap_broadphase {
 
 namespace {
 
-/// Threads that answer query_boxes: calls beyond them wait in the queue, and each of those waits
-/// for a frame more whenever a frame starts before a thread is free.
+/// Threads that answer query_boxes: calls beyond them wait in the queue for a free thread (never
+/// for a frame: each reads the last frame's snapshot).
 constexpr uint32_t kQueryThreads = 8;
 
 }  // namespace

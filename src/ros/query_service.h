@@ -1,7 +1,7 @@
 // QueryService: `query_boxes`, what overlaps given boxes in the node's current world (the last
-// frame of its sources and the scenery), answered on a thread of its own against the frame
-// worker's engine, so that a call waits at most for the frame in progress and a long frame never
-// holds up the node's other callbacks.
+// frame of its sources and the scenery), answered on threads of its own from the worker's
+// snapshot of its last frame (world_snapshot.h), so that a call never waits for the frame in
+// progress and a long frame never holds up the node's other callbacks.
 #pragma once
 
 #include <optional>

@@ -21,7 +21,7 @@ add_rostest(test/ros/rosbag.test DEPENDENCIES ${PROJECT_NAME}_node)
 
 # Unit tests of the ROS layer's pure functions (conversions, markers, sources) and of the
 # ingest's parts (placement against a tf2 buffer filled by hand, the mailbox on a fake clock,
-# the world's refusal and fall-back loop): no roscore.
+# the world's refusal and fall-back loop, the snapshot queries read): no roscore.
 catkin_add_gtest(test_ros_units
   test/ros/test_conversions.cpp test/ros/test_frames.cpp test/ros/test_markers.cpp
   test/ros/test_sources_units.cpp test/ros/test_source_ingest_units.cpp

@@ -12,9 +12,11 @@
 #include <boost/make_shared.hpp>
 
 #include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/brute_force.h"
 #include "source_mailbox.h"
 #include "source_placement.h"
 #include "sources.h"
+#include "world_snapshot.h"
 
 namespace sap_broadphase {
 namespace test {
@@ -343,6 +345,37 @@ TEST(LoadWorld, NoSourceLeftGivesNoPairs) {
   EXPECT_EQ(load.refused.size(), 1u);
   EXPECT_TRUE(world.members.empty());
   EXPECT_EQ(sources.size(), 0u);
+}
+
+// ---- WorldSnapshot: what queries read ----
+
+TEST(WorldSnapshot, AnswersAsTheEngineWouldOnItsFrameAndTheScenery) {
+  const auto a = frameOf(oneBoxMessage("world", 1, 0.0, 1.0));
+  const auto b = frameOf(oneBoxMessage("world", 2, 0.5, 1.5));
+  const auto scenery = frameOf(oneBoxMessage("world", 9, 1.2, 3.0));
+  const BroadphaseConfig config;
+  std_msgs::Header header;
+  header.frame_id = "world";
+  header.stamp = ros::Time(7, 0);
+  const WorldSnapshot world(header, {a, b}, std::make_shared<SceneryIndex>(scenery, config),
+                            config);
+  BoxSet queries;
+  const double lo0[3] = {0.9, 0.9, 0.9}, hi0[3] = {1.3, 1.3, 1.3};
+  const double lo1[3] = {5.0, 5.0, 5.0}, hi1[3] = {6.0, 6.0, 6.0};
+  queries.add(0, lo0, hi0);
+  queries.add(1, lo1, hi1);
+  const std::vector<BoxSpan> spans = {a->span(), b->span(), scenery->span()};
+  EXPECT_EQ(world.query(queries), bruteForceQuery(queries, BoxFrame(spans)));
+  EXPECT_EQ(world.query(queries), QueryHitList({{0, 1}, {0, 2}, {0, 9}}));
+  EXPECT_EQ(world.header().stamp, ros::Time(7, 0));
+  // The scenery alone, and a bad query box refused naming it.
+  const WorldSnapshot empty(header, {}, std::make_shared<SceneryIndex>(nullptr, config), config);
+  EXPECT_TRUE(empty.query(queries).empty());
+  BoxSet bad;
+  const double lo_bad[3] = {2.0, 0.0, 0.0}, hi_bad[3] = {1.0, 1.0, 1.0};
+  bad.add(4, lo_bad, hi_bad);
+  EXPECT_THROW(empty.query(bad), InvalidBoxes);
+  EXPECT_THROW(world.query(bad), InvalidBoxes);
 }
 
 }  // namespace
