@@ -11,6 +11,7 @@ sap_add_gtest(test_core
   test/core/test_config.cpp
   test/core/test_asserts.cpp
   test/core/test_box_set.cpp
+  test/core/test_box_transform.cpp
   test/core/test_succ_tree.cpp
   test/core/test_radix_sort.cpp
   test/core/test_sweep.cpp

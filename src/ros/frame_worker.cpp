@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
-#include <shared_mutex>
 #include <utility>
 
 #include "checked_callbacks.h"
@@ -27,45 +26,6 @@ double millisecondsSince(std::chrono::steady_clock::time_point inStart) {
 
 }  // namespace
 
-void EngineLock::lock() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  ++writers_waiting_;
-  writer_go_.wait(lock, [this] { return !writing_ && readers_ == 0; });
-  --writers_waiting_;
-  writing_ = true;
-}
-
-void EngineLock::unlock() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  writing_ = false;
-  if (readers_waiting_ > 0) {
-    // Every reader that waited for this frame goes before the next writer.
-    readers_ += readers_waiting_;
-    readers_waiting_ = 0;
-    ++phase_;
-    readers_go_.notify_all();
-  } else {
-    writer_go_.notify_one();
-  }
-}
-
-void EngineLock::lock_shared() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  if (!writing_ && writers_waiting_ == 0) {
-    ++readers_;
-    return;
-  }
-  ++readers_waiting_;
-  const uint64_t phase = phase_;
-  readers_go_.wait(lock, [&] { return phase_ != phase; });  // admitted (counted) by unlock()
-}
-
-void EngineLock::unlock_shared() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  assert(readers_ > 0 && "a reader unlocks the engine it locked");
-  if (--readers_ == 0) writer_go_.notify_one();
-}
-
 FrameWorker::FrameWorker(const NodeParams& inParams, SourceIngest& ioIngest,
                          FrameOutputs& ioOutputs, NodeStatus& ioStatus)
     : params_(inParams),
@@ -73,7 +33,11 @@ FrameWorker::FrameWorker(const NodeParams& inParams, SourceIngest& ioIngest,
       outputs_(ioOutputs),
       status_(ioStatus),
       engine_(inParams.engine),
-      thread_(&FrameWorker::run, this) {}
+      scenery_index_(std::make_shared<SceneryIndex>(nullptr, inParams.engine)),
+      thread_() {
+  publishWorld(sceneryHeader(), {});
+  thread_ = std::thread(&FrameWorker::run, this);
+}
 
 FrameWorker::~FrameWorker() {
   {
@@ -102,11 +66,30 @@ void FrameWorker::reconfigure(const NodeParams& inSettings) {
 }
 
 QueryAnswer FrameWorker::query(const BoxFrame& inQueries) const {
-  std::shared_lock<EngineLock> lock(engine_mutex_);
+  std::shared_ptr<const WorldSnapshot> world;
+  {
+    std::lock_guard<std::mutex> lock(snapshot_mutex_);
+    world = snapshot_;
+  }
   QueryAnswer answer;
-  answer.hits = engine_.query(inQueries);
-  answer.header = engine_header_;
+  answer.hits = world->query(inQueries);
+  answer.header = world->header();
   return answer;
+}
+
+void FrameWorker::publishWorld(const std_msgs::Header& inHeader,
+                               std::vector<SourceFramePtr> inFrames) {
+  snapshot_header_ = inHeader;
+  snapshot_frames_ = std::move(inFrames);
+  auto world = std::make_shared<const WorldSnapshot>(snapshot_header_, snapshot_frames_,
+                                                     scenery_index_, params_.engine);
+  std::lock_guard<std::mutex> lock(snapshot_mutex_);
+  snapshot_ = std::move(world);  // the one it replaces goes with its last query
+}
+
+void FrameWorker::publishScenery() {
+  scenery_index_ = std::make_shared<const SceneryIndex>(scenery_, params_.engine);
+  publishWorld(snapshot_header_, snapshot_frames_);
 }
 
 bool FrameWorker::waitUntil(const ros::Time& inDeadline, const ros::Duration& inPeriod) {
@@ -164,10 +147,10 @@ void FrameWorker::run() {
           // Before the frame: its boxes were named when their messages were converted, so
           // id_names reaches listeners before the pairs that use the names, and the frame's
           // markers label its new boxes.
-          ingest_.publishIdNames();
+          ingest_.upkeep().publishIdNames();
           if (sources_.size() > 0 && (fixed_rate ? tick : scenery_changed || sources_changed))
             computeFrame();
-          ingest_.countLostMessages();
+          ingest_.upkeep().countLostMessages();
           status_.updateDiagnostics();
         },
         [&](const std::string& inWhat) { recoverFrom(inWhat); });
@@ -182,7 +165,7 @@ void FrameWorker::restartClock(const ros::Time& inNow) {
       "of %zu sources start again",
       (last_now_ - inNow).toSec(), sources_.size());
   sources_.restartClock(inNow);
-  ingest_.restartClock(inNow);
+  ingest_.mailbox().restartClock(inNow);
   status_.restartClock();
 }
 
@@ -192,15 +175,17 @@ void FrameWorker::recoverFrom(const std::string& inWhat) {
   status_.refuse(std_msgs::Header(), 0,
                  "a frame could not be computed (" + inWhat + "): refused, new engine");
   outputs_.restartEvents();  // the last published pairs may have gone with the failure
-  std::lock_guard<EngineLock> lock(engine_mutex_);
   engine_ = Broadphase(params_.engine);
   if (scenery_) engine_.setStaticBoxes(scenery_->span());
-  engine_header_ = sceneryHeader();
+  snapshot_frames_.clear();  // the new engine's world is the scenery alone
+  snapshot_header_ = sceneryHeader();
+  publishScenery();
 }
 
 std_msgs::Header FrameWorker::sceneryHeader() const {
   std_msgs::Header header;
-  header.frame_id = ingest_.fixedFrame().empty() ? static_frame_ : ingest_.fixedFrame();
+  header.frame_id =
+      ingest_.placement().fixedFrame().empty() ? static_frame_ : ingest_.placement().fixedFrame();
   return header;
 }
 
@@ -211,14 +196,17 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
     // temporal state (partition bounds, kept candidates, the last frame) and must be told
     // the scenery again.
     outputs_.holdLastPairs();  // pair_events still tells what changed since the last frame
-    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_ = Broadphase(inSettings.engine);
     if (scenery_) engine_.setStaticBoxes(scenery_->span());
-    engine_header_ = sceneryHeader();
     status_.setEngineConfig(inSettings.engine);
   }
   outputs_.setMarkers(inSettings.publish_markers, inSettings.markers);
   params_.engine = inSettings.engine;
+  if (new_engine) {
+    snapshot_frames_.clear();  // the new engine's world is the scenery alone
+    snapshot_header_ = sceneryHeader();
+    publishScenery();  // indexed with the new settings
+  }
   params_.publish_markers = inSettings.publish_markers;
   params_.markers = inSettings.markers;
   ROS_INFO("sap_broadphase: reconfigured%s: %s", new_engine ? " (new engine)" : "",
@@ -227,36 +215,35 @@ void FrameWorker::applySettings(const NodeParams& inSettings) {
 
 bool FrameWorker::takeScenery() {
   BoxArrayConstPtr message;
-  ingest_.take(deliveries_, message);
+  ingest_.mailbox().take(deliveries_, message);
   if (!message) return false;
   auto scenery = std::make_shared<SourceFrame>();
   scenery->header = message->header;
   scenery->message = message;
   // An empty scenery (clearing it) needs no transform.
-  if (scenery->size() > 0 && !ingest_.placeFrame(kStaticSourceName, ros::Time(0), *scenery))
-    return false;
+  if (scenery->size() > 0 && !place(kStaticSourceName, ros::Time(0), *scenery)) return false;
   try {
-    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_.setStaticBoxes(scenery->span());
   } catch (const InvalidBoxes& refusal) {  // the scenery in force stays
     status_.refuse(message->header, scenery->size(),
                    std::string(kStaticSourceName) + ": " + refusal.error().message());
     return false;
   }
-  static_frame_ = ingest_.fixedFrame().empty() ? message->header.frame_id : ingest_.fixedFrame();
+  static_frame_ = ingest_.placement().fixedFrame().empty() ? message->header.frame_id
+                                                           : ingest_.placement().fixedFrame();
   if (scenery->size() == 0) static_frame_.clear();  // no scenery: no frame to agree with
   status_.setStaticBoxes(scenery->size());
   ROS_INFO("sap_broadphase: static_boxes: %zu %s indexed (frame '%s')", scenery->size(),
            scenery->size() == 1 ? "box" : "boxes", message->header.frame_id.c_str());
   scenery_ = std::move(scenery);
+  publishScenery();
   return true;
 }
 
 bool FrameWorker::takeDeliveries() {
   bool changed = false;
   for (auto& [key, delivery] : deliveries_) {
-    if (!ingest_.placeFrame(sourceName(key), delivery.frame->header.stamp, *delivery.frame))
-      continue;
+    if (!place(sourceName(key), delivery.frame->header.stamp, *delivery.frame)) continue;
     sources_.store(key, std::move(delivery.frame), delivery.received);
     changed = true;
   }
@@ -275,12 +262,11 @@ void FrameWorker::expireSources() {
   if (!expired.empty() && sources_.size() == 0) {
     // No frame follows until a source comes back: the last one must not stay in the world.
     outputs_.holdLastPairs();  // this update is not published: its events are not the node's
-    std::lock_guard<EngineLock> lock(engine_mutex_);
     engine_.update(BoxFrame());
-    engine_header_ = sceneryHeader();
+    publishWorld(sceneryHeader(), {});
   }
   for (const auto& [key, frames] : expired) {
-    ingest_.forget(key);
+    ingest_.upkeep().forget(key);
     const bool own = timeout_of(key) != params_.source_timeout;
     const std::string timeout =
         (own ? "the timeout of its ~sources entry (" : "~source_timeout (") +
@@ -299,7 +285,7 @@ void FrameWorker::expireSources() {
 
 void FrameWorker::computeFrame() {
   const auto start = std::chrono::steady_clock::now();
-  const std::string& fixed_frame = ingest_.fixedFrame();
+  const std::string& fixed_frame = ingest_.placement().fixedFrame();
   sources_.assemble(fixed_frame.empty() ? static_frame_ : fixed_frame, world_);
   for (const LeftOutSource& left_out : world_.left_out) refuseLeftOut(left_out);
   FrameAccount frame;
@@ -318,32 +304,36 @@ void FrameWorker::computeFrame() {
   // The boxes just loaded, read where the sources keep them, and the scenery they meet.
   const BoxFrame scenery = scenery_ ? BoxFrame(scenery_->span()) : BoxFrame();
   const MarkerCounts markers =
-      outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.idNames(), &scenery);
+      outputs_.publishMarkers(boxes, *pairs, frame.header, ingest_.upkeep().idNames(), &scenery);
   frame.marker_boxes = markers.drawn;
   frame.marker_boxes_omitted = markers.colliding_omitted;
   status_.frameComputed(frame, engine_.stats());
 }
 
 const PairList* FrameWorker::loadWorld() {
-  // Each refusal takes one source back to its last accepted frame or out of the world: the
-  // loop ends after at most two refusals a source.
-  while (!world_.members.empty()) {
-    spans_.clear();
-    for (const WorldMember& member : world_.members) spans_.push_back(member.frame->span());
-    try {
-      std::lock_guard<EngineLock> lock(engine_mutex_);
-      const PairList& pairs = engine_.update(BoxFrame(spans_));
-      engine_header_ = world_.header();
-      return &pairs;
-    } catch (const InvalidBoxes& refusal) {
-      {
-        std::lock_guard<EngineLock> lock(engine_mutex_);
-        engine_header_ = sceneryHeader();  // an update that threw leaves the scenery alone
-      }
-      refuseMember(refusal.error());
-    }
-  }
-  return nullptr;
+  const auto update = [this](const BoxFrame& inFrame) -> const PairList& {
+    return engine_.update(inFrame);
+  };
+  const auto refused = [this](const SourceFrame& inFrame, const std::string& inReason) {
+    status_.refuse(inFrame.header, inFrame.size(), inReason);
+  };
+  const PairList* pairs = sap_broadphase::loadWorld(world_, sources_, spans_, update, refused);
+  std::vector<SourceFramePtr> frames;
+  if (pairs)
+    for (const WorldMember& member : world_.members) frames.push_back(member.frame);
+  // An update that threw leaves the scenery alone in the engine.
+  publishWorld(pairs ? world_.header() : sceneryHeader(), std::move(frames));
+  return pairs;
+}
+
+bool FrameWorker::place(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame) {
+  const std::optional<PlacementRefusal> refusal = ingest_.placement().place(inStamp, ioFrame);
+  if (!refusal) return true;
+  if (refusal->kind == PlacementRefusal::Kind::kNoTransform)
+    status_.skip(inName + " skipped: " + refusal->reason);
+  else  // the frame's own transform is wrong: refused, as a wrong box is
+    status_.refuse(ioFrame.header, ioFrame.size(), inName + ": " + refusal->reason);
+  return false;
 }
 
 void FrameWorker::refuseLeftOut(const LeftOutSource& inLeftOut) {
@@ -357,20 +347,6 @@ void FrameWorker::refuseLeftOut(const LeftOutSource& inLeftOut) {
     return;
   }
   status_.refuse(frame.header, frame.size(), inLeftOut.reason);
-}
-
-void FrameWorker::refuseMember(const ValidationError& inError) {
-  // The one problem of the whole frame rather than of a box, more boxes than the engine takes,
-  // goes to the newest source, as a shared id does.
-  ValidationError error = inError;
-  if (error.problem == BoxProblem::kShape) error.span = world_.members.size() - 1;
-  const std::size_t span = error.span;
-  WorldMember& member = world_.members.at(span);
-  status_.refuse(member.frame->header, member.frame->size(), worldRefusal(error, world_));
-  if (SourceFramePtr fallback = sources_.refuse(member.key))
-    member.frame = std::move(fallback);
-  else
-    world_.members.erase(world_.members.begin() + static_cast<std::ptrdiff_t>(span));
 }
 
 }  // namespace sap_broadphase

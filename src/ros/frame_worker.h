@@ -23,33 +23,9 @@
 #include "sap_broadphase/core/broadphase.h"
 #include "source_ingest.h"
 #include "sources.h"
+#include "world_snapshot.h"
 
 namespace sap_broadphase {
-
-/// The engine's lock: a reader-writer lock in phases. A query (reader) that arrives while the
-/// worker holds the engine, or waits for it, is let in as soon as that one frame is done, before
-/// the worker's next frame; the worker waits only for the queries in progress. So a query waits
-/// at most for the frame in progress, whatever the frame rate, and a stream of queries never
-/// holds up the frames (a reader-preferring lock starves the worker, a writer-preferring one
-/// the queries when frames follow each other without a gap). Meets Lockable and
-/// SharedLockable (std::lock_guard, std::shared_lock).
-class EngineLock {
- public:
-  void lock();
-  void unlock();
-  void lock_shared();
-  void unlock_shared();
-
- private:
-  std::mutex mutex_;
-  std::condition_variable readers_go_;
-  std::condition_variable writer_go_;
-  bool writing_ = false;
-  std::size_t writers_waiting_ = 0;
-  std::size_t readers_ = 0;          // admitted (running, or woken and about to)
-  std::size_t readers_waiting_ = 0;  // for the frame in progress to end
-  uint64_t phase_ = 0;               // counts the writers' ends: waiting readers are admitted
-};
 
 /// What a query answers and the frame it was answered on.
 struct QueryAnswer {
@@ -72,8 +48,9 @@ class FrameWorker {
   /// Reconfigured settings, taken into force before the next frame (any thread).
   void reconfigure(const NodeParams& inSettings);
   /// What overlaps inQueries (checked, in the world's frame) in the world: the last frame
-  /// computed plus the scenery (Broadphase::query), and that frame's header. Any thread; waits
-  /// at most for the engine work in progress (a frame, a new scenery or a new engine).
+  /// computed plus the scenery (Broadphase::query's answer), and that frame's header. Any
+  /// thread; answered from the snapshot of the last frame, so it never waits for the frame in
+  /// progress (only, once a frame, for the index of the frame it reads).
   QueryAnswer query(const BoxFrame& inQueries) const;
 
  private:
@@ -99,16 +76,22 @@ class FrameWorker {
   void recoverFrom(const std::string& inWhat);
   /// Hands the sources' frames to the engine, publishes the pairs and the frame's accounts.
   void computeFrame();
-  /// The engine on the spans of world_, which it checks as it loads them; a refused source
-  /// falls back on its last accepted frame or leaves, and the world is loaded again. The pairs,
-  /// or null when no source is left.
+  /// The engine on the spans of world_ (sources.h's loadWorld): a refused source falls back on
+  /// its last accepted frame or leaves, and the world is loaded again. The pairs, or null when
+  /// no source is left.
   const PairList* loadWorld();
+  /// Moves ioFrame (of the source or scenery named inName) into ~fixed_frame at inStamp. False,
+  /// with the frame skipped (no transform) or refused (one not finite) counted and named, when
+  /// it cannot be placed.
+  bool place(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame);
+  /// Queries now see the frames inFrames (none: the scenery alone) with inHeader.
+  void publishWorld(const std_msgs::Header& inHeader, std::vector<SourceFramePtr> inFrames);
+  /// The scenery (scenery_) indexed for queries, with the engine settings in force; queries
+  /// see it with the last frame published.
+  void publishScenery();
   /// Counts and names a source the world leaves out for its frame_id: for its boxes first, when
   /// they are no boxes (the frame then leaves as one the engine refuses), else for its frame.
   void refuseLeftOut(const LeftOutSource& inLeftOut);
-  /// Counts and names the problem inError of the world's frame, and takes the source that
-  /// holds it back to its last accepted frame, or out of world_ without one.
-  void refuseMember(const ValidationError& inError);
 
   NodeParams params_;  // the settings in force (worker thread only)
   SourceIngest& ingest_;
@@ -123,11 +106,14 @@ class FrameWorker {
   ros::Time last_now_;  // ROS time of the last round (worker thread): a later one before it is a
                         // jump back in time
 
-  // Queries read engine_ from the service thread (shared); the worker changes it (frames, the
-  // scenery, a new engine) exclusively, and reads it alone without the lock.
-  mutable EngineLock engine_mutex_;
-  Broadphase engine_;
-  std_msgs::Header engine_header_;  // of the world engine_ holds (under engine_mutex_)
+  Broadphase engine_;  // the worker's alone: queries read the snapshot below
+  // The world as queries see it: replaced by the worker (under the mutex, a pointer's copy),
+  // read by the query threads, which keep the one they took until they answered.
+  mutable std::mutex snapshot_mutex_;
+  std::shared_ptr<const WorldSnapshot> snapshot_;
+  std::shared_ptr<const SceneryIndex> scenery_index_;  // shared by the snapshots (worker)
+  std_msgs::Header snapshot_header_;                   // of the last published (worker)
+  std::vector<SourceFramePtr> snapshot_frames_;        // of the last published (worker)
   SourceSet sources_;
   std::map<SourceKey, Delivery> deliveries_;
   SourceFramePtr scenery_;      // the scenery, declared again to a rebuilt engine

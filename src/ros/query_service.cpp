@@ -8,15 +8,15 @@ namespace sap_broadphase {
 
 namespace {
 
-/// Threads that answer query_boxes: calls beyond them wait in the queue, and each of those waits
-/// for a frame more whenever a frame starts before a thread is free.
+/// Threads that answer query_boxes: calls beyond them wait in the queue for a free thread (never
+/// for a frame: each reads the last frame's snapshot).
 constexpr uint32_t kQueryThreads = 8;
 
 }  // namespace
 
-QueryService::QueryService(ros::NodeHandle& ioNode, SourceIngest& ioIngest,
+QueryService::QueryService(ros::NodeHandle& ioNode, const SourceIngest& inIngest,
                            const FrameWorker& inWorker, int inLogPeriod)
-    : ingest_(ioIngest), worker_(inWorker), log_period_(inLogPeriod) {
+    : placement_(inIngest.placement()), worker_(inWorker), log_period_(inLogPeriod) {
   service_ = advertiseCheckedService<ros::ServiceSpec<QueryBoxes::Request, QueryBoxes::Response>>(
       ioNode, "query_boxes", queue_,
       [this](QueryBoxes::Request& inRequest, QueryBoxes::Response& outResponse) {
@@ -39,16 +39,18 @@ bool QueryService::onQuery(QueryBoxes::Request& inRequest, QueryBoxes::Response&
   // here, each box (NaN, min > max, a repeated id) by the engine as it reads the queries.
   const BoxArray& boxes = inRequest.boxes;
   std::optional<std::string> refusal = checkBoxArrayShape(boxes);
-  const bool moved = !ingest_.fixedFrame().empty();
-  BoxSet queries;           // the query boxes moved into ~fixed_frame (this call's own)
-  if (!refusal && moved) {  // moved into ~fixed_frame as records; else read where they lie
-    copyBoxArray(boxes, queries);
-    refusal = ingest_.placeInFixedFrame(boxes.header, queries);
+  // The query boxes as a source frame of this call's own (the request outlives it): read
+  // where they lie, or moved into ~fixed_frame as records, by the rule the sources follow.
+  SourceFrame queries;
+  queries.header = boxes.header;
+  queries.message = BoxArrayConstPtr(&boxes, [](const BoxArray*) {});
+  if (!refusal) {
+    if (auto unplaced = placement_.place(boxes.header.stamp, queries)) refusal = unplaced->reason;
   }
   QueryAnswer answer;
   if (!refusal) {
     try {
-      answer = worker_.query(moved ? BoxFrame(queries) : BoxFrame(boxArrayRecords(boxes)));
+      answer = worker_.query(BoxFrame(queries.span()));
     } catch (const InvalidBoxes& invalid) {
       refusal = invalid.error().message();
     }

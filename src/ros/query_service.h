@@ -1,7 +1,7 @@
 // QueryService: `query_boxes`, what overlaps given boxes in the node's current world (the last
-// frame of its sources and the scenery), answered on a thread of its own against the frame
-// worker's engine, so that a call waits at most for the frame in progress and a long frame never
-// holds up the node's other callbacks.
+// frame of its sources and the scenery), answered on threads of its own from the worker's
+// snapshot of its last frame (world_snapshot.h), so that a call never waits for the frame in
+// progress and a long frame never holds up the node's other callbacks.
 #pragma once
 
 #include <optional>
@@ -19,9 +19,9 @@ namespace sap_broadphase {
 
 class QueryService {
  public:
-  /// Advertises `query_boxes` on ioNode, served by its own spinner threads. ioIngest (for tf2)
-  /// and inWorker (the world) must outlive the service.
-  QueryService(ros::NodeHandle& ioNode, SourceIngest& ioIngest, const FrameWorker& inWorker,
+  /// Advertises `query_boxes` on ioNode, served by its own spinner threads. inIngest (its
+  /// placement in ~fixed_frame) and inWorker (the world) must outlive the service.
+  QueryService(ros::NodeHandle& ioNode, const SourceIngest& inIngest, const FrameWorker& inWorker,
                int inLogPeriod);
   /// Stops the spinner; a call in progress is answered first.
   ~QueryService();
@@ -35,7 +35,7 @@ class QueryService {
   /// Logs (throttled, INFO: the caller has the reason) and answers a refusal.
   void refuse(const std::string& inReason, QueryBoxes::Response& outResponse);
 
-  SourceIngest& ingest_;
+  const SourcePlacement& placement_;
   const FrameWorker& worker_;
   int log_period_;
   ros::CallbackQueue queue_;

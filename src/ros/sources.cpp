@@ -2,25 +2,35 @@
 #include "sources.h"
 
 #include <algorithm>
-#include <cfloat>
-#include <cmath>
-#include <limits>
 #include <utility>
 
-#include <tf2/LinearMath/Matrix3x3.h>
-#include <tf2/LinearMath/Quaternion.h>
-
+#include "core/box_transform.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 /// What a refusal of ids shared by two sources advises.
 constexpr const char* kIdRangeAdvice =
     ": give each source its own id range (e.g. robot k uses ids k << 24 ...)";
+
+/// Tells inRefused why ioWorld's frame was refused (inError) and takes the member that holds
+/// the problem back to its last accepted frame, or out of ioWorld without one.
+void refuseMember(const ValidationError& inError, WorldAssembly& ioWorld, SourceSet& ioSources,
+                  const MemberRefusal& inRefused) {
+  // The one problem of the whole frame rather than of a box, more boxes than the engine takes,
+  // goes to the newest source, as a shared id does.
+  ValidationError error = inError;
+  if (error.problem == BoxProblem::kShape) error.span = ioWorld.members.size() - 1;
+  const std::size_t span = error.span;
+  WorldMember& member = ioWorld.members.at(span);
+  inRefused(*member.frame, worldRefusal(error, ioWorld));
+  if (SourceFramePtr fallback = ioSources.refuse(member.key))
+    member.frame = std::move(fallback);
+  else
+    ioWorld.members.erase(ioWorld.members.begin() + static_cast<std::ptrdiff_t>(span));
+}
 
 }  // namespace
 
@@ -30,51 +40,22 @@ std::string sourceName(const SourceKey& inKey) {
   return name;
 }
 
-std::optional<std::string> nonFiniteTransform(const geometry_msgs::Transform& inTransform) {
+RigidTransform rigidTransform(const geometry_msgs::Transform& inTransform) {
+  RigidTransform transform;
   const geometry_msgs::Vector3& t = inTransform.translation;
   const geometry_msgs::Quaternion& q = inTransform.rotation;
-  const std::pair<const char*, double> components[] = {
-      {"translation.x", t.x}, {"translation.y", t.y}, {"translation.z", t.z}, {"rotation.x", q.x},
-      {"rotation.y", q.y},    {"rotation.z", q.z},    {"rotation.w", q.w}};
-  for (const auto& [name, value] : components) {
-    if (!std::isfinite(value)) return std::string(name) + " is " + std::to_string(value);
-  }
-  return std::nullopt;
+  transform.translation[0] = t.x;
+  transform.translation[1] = t.y;
+  transform.translation[2] = t.z;
+  transform.rotation[0] = q.x;
+  transform.rotation[1] = q.y;
+  transform.rotation[2] = q.z;
+  transform.rotation[3] = q.w;
+  return transform;
 }
 
 void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes) {
-  const tf2::Matrix3x3 rotation(tf2::Quaternion(inTransform.rotation.x, inTransform.rotation.y,
-                                                inTransform.rotation.z, inTransform.rotation.w));
-  const double translation[3] = {inTransform.translation.x, inTransform.translation.y,
-                                 inTransform.translation.z};
-  for (std::size_t i = 0; i < ioBoxes.size(); ++i) {
-    const double lo[3] = {ioBoxes.lo(0, i), ioBoxes.lo(1, i), ioBoxes.lo(2, i)};
-    const double hi[3] = {ioBoxes.hi(0, i), ioBoxes.hi(1, i), ioBoxes.hi(2, i)};
-    // `lo <= hi` fails exactly for a NaN bound or min > max: moved, such a box could pass as
-    // a box (NaN becomes infinite below), so it stays as published and the engine names it.
-    if (!(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2])) continue;
-    for (int out = 0; out < 3; ++out) {
-      // The extremes over the 8 corners of row `out` of R x + t separate per input axis: each
-      // term takes the smaller (larger) of R[out][in] * lo and R[out][in] * hi.
-      double low = translation[out], high = translation[out];
-      double magnitude = std::fabs(translation[out]);
-      for (int in = 0; in < 3; ++in) {
-        const double factor = rotation[out][in];
-        if (factor == 0.0) continue;  // 0 x inf would be NaN; the axis does not contribute
-        const double a = factor * lo[in], b = factor * hi[in];
-        low += std::min(a, b);
-        high += std::max(a, b);
-        magnitude += std::max(std::fabs(a), std::fabs(b));
-      }
-      // Three products and four sums round at most 4 x (DBL_EPSILON / 2) x magnitude away
-      // from the exact corner; widen by that and one more ulp so the box only grows.
-      const double slack = 2.0 * DBL_EPSILON * magnitude;
-      low = std::isnan(low) ? -kInfinity : std::nextafter(low - slack, -kInfinity);
-      high = std::isnan(high) ? kInfinity : std::nextafter(high + slack, kInfinity);
-      ioBoxes.lo(out, i) = low;
-      ioBoxes.hi(out, i) = high;
-    }
-  }
+  transformBoxes(rigidTransform(inTransform), ioBoxes);
 }
 
 BoxSpan SourceFrame::span() const {
@@ -180,6 +161,21 @@ void SourceSet::assemble(const std::string& inRequiredFrame, WorldAssembly& outW
     }
     outWorld.members.push_back(WorldMember{source->first, source->second.latest});
   }
+}
+
+const PairList* loadWorld(WorldAssembly& ioWorld, SourceSet& ioSources,
+                          std::vector<BoxSpan>& ioSpans, const WorldUpdate& inUpdate,
+                          const MemberRefusal& inRefused) {
+  while (!ioWorld.members.empty()) {
+    ioSpans.clear();
+    for (const WorldMember& member : ioWorld.members) ioSpans.push_back(member.frame->span());
+    try {
+      return &inUpdate(BoxFrame(ioSpans));
+    } catch (const InvalidBoxes& refusal) {
+      refuseMember(refusal.error(), ioWorld, ioSources, inRefused);
+    }
+  }
+  return nullptr;
 }
 
 }  // namespace sap_broadphase

@@ -17,8 +17,11 @@
 #include "sap_broadphase/BoxArray.h"
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
+
+struct RigidTransform;  // core/box_transform.h: how the core moves boxes
 
 /// One input of the world: a topic of ~sources, one publisher (caller id) on it and the
 /// header.frame_id of its frames. The frame id tells robots apart where the caller id cannot:
@@ -42,18 +45,12 @@ std::string sourceName(const SourceKey& inKey);
 /// Name of the latched scenery in refusals.
 constexpr const char* kStaticSourceName = "'static_boxes'";
 
-/// Moves every box of ioBoxes by inTransform (rotation, then translation) and replaces it with
-/// the axis-aligned box of its 8 moved corners, each bound rounded one ulp outwards: the result
-/// contains the exactly moved box, so no overlapping pair is lost to the transform (pairs of
-/// rotated boxes are a superset of the exact ones). A bound that is not finite after the move
-/// becomes -inf / +inf. A box that is no box (a NaN bound, min > max) stays as published, for
-/// the engine's check to name it in the sender's own numbers.
-void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes);
+/// inTransform as the core moves boxes with it (core/box_transform.h).
+RigidTransform rigidTransform(const geometry_msgs::Transform& inTransform);
 
-/// Why inTransform cannot move boxes: a translation or rotation component that is not finite
-/// ("translation.x is inf"), or nothing. tf2 refuses NaN but takes infinities, which would
-/// make every moved box span the whole axis and pair with everything.
-std::optional<std::string> nonFiniteTransform(const geometry_msgs::Transform& inTransform);
+/// The core's transformBoxes() for a ROS transform (finite: tf2 transforms are checked with
+/// moveBoxes() first): the one rule of the node for a moved box, 8 corners rounded outwards.
+void transformBoxes(const geometry_msgs::Transform& inTransform, BoxSet& ioBoxes);
 
 /// One frame of a source as the node keeps it, immutable once stored: the source's latest
 /// frame, its last accepted one and the spans of the world being computed share it.
@@ -143,5 +140,17 @@ class SourceSet {
   std::map<SourceKey, Source> sources_;
   uint64_t next_join_ = 0;
 };
+
+/// Loads a world into the engine through inUpdate (which throws InvalidBoxes, naming the box or
+/// span, for a frame it refuses) and returns the pairs, or null when no source is left. Each
+/// refusal is told to inRefused (the frame refused, in the node's words of worldRefusal) and
+/// takes the source that holds the problem back to its last accepted frame in ioSources, or
+/// out of ioWorld without one; the world is then loaded again. The loop ends after at most two
+/// refusals a source. ioSpans holds the members' spans as the engine read them last.
+using WorldUpdate = std::function<const PairList&(const BoxFrame& inFrame)>;
+using MemberRefusal = std::function<void(const SourceFrame& inFrame, const std::string& inReason)>;
+const PairList* loadWorld(WorldAssembly& ioWorld, SourceSet& ioSources,
+                          std::vector<BoxSpan>& ioSpans, const WorldUpdate& inUpdate,
+                          const MemberRefusal& inRefused);
 
 }  // namespace sap_broadphase

@@ -20,10 +20,13 @@ add_rostest(test/ros/rviz.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}
 add_rostest(test/ros/rosbag.test DEPENDENCIES ${PROJECT_NAME}_node)
 
 # Unit tests of the ROS layer's pure functions (conversions, markers, sources, the node's
-# tables against FrameStats.msg): no roscore.
+# tables against FrameStats.msg) and of the ingest's parts (placement against a tf2 buffer
+# filled by hand, the mailbox on a fake clock, the world's refusal and fall-back loop, the
+# snapshot queries read): no roscore.
 catkin_add_gtest(test_ros_units
   test/ros/test_conversions.cpp test/ros/test_frames.cpp test/ros/test_markers.cpp
-  test/ros/test_sources_units.cpp test/ros/test_node_tables.cpp test/ros/test_units_main.cpp)
+  test/ros/test_sources_units.cpp test/ros/test_node_tables.cpp
+  test/ros/test_source_ingest_units.cpp test/ros/test_units_main.cpp)
 target_include_directories(test_ros_units PRIVATE test/ros src/ros)
 # test_node_tables reads msg/FrameStats.msg, docs/NODE.md, config/default.yaml and the launch
 # and rostest files.
