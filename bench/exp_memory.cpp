@@ -42,7 +42,7 @@ sap_broadphase::SceneConfig movingScene(std::size_t inCount, double inDensity, u
 }
 
 std::string perBox(std::size_t inBytes, std::size_t inBoxes) {
-  return fmt(static_cast<double>(inBytes) / static_cast<double>(inBoxes), 1);
+  return fmt(static_cast<double>(inBytes) / static_cast<double>(inBoxes), 3);
 }
 
 /// The skin the default chooses for this scene: the engine run for a few frames.

@@ -140,6 +140,17 @@ std::size_t bytesOf(const Vector& inVector) {
 
 }  // namespace
 
+void SkinList::releaseCandidates() {
+  PairList().swap(canonical_pairs_);
+  Buffer<uint32_t>().swap(position_of_);
+  Buffer<uint32_t>().swap(run_begin_);
+  Buffer<uint32_t>().swap(partner_positions_);
+  Buffer<uint32_t>().swap(canonical_slots_);
+  Buffer<BoundsRecord>().swap(gathered_);
+  Buffer<uint64_t>().swap(verdicts_);
+  spatial_count_ = 0;
+}
+
 SkinList::MemoryUse SkinList::memoryUse() const {
   MemoryUse use;
   use.reference = bytesOf(reference_.ids) + bytesOf(reference_.groups) + bytesOf(reference_.masks);
@@ -148,9 +159,13 @@ SkinList::MemoryUse SkinList::memoryUse() const {
   use.candidates = bytesOf(canonical_pairs_) + bytesOf(partner_positions_) +
                    bytesOf(canonical_slots_) + bytesOf(run_begin_) + bytesOf(position_of_);
   use.pass = bytesOf(gathered_) + bytesOf(verdicts_);
-  use.scratch = bytesOf(scratch_.has_candidates) + bytesOf(scratch_.members) +
-                bytesOf(scratch_.keys) + bytesOf(scratch_.order) + bytesOf(scratch_.fill);
+  use.scratch = adopt_scratch_bytes_;
   return use;
+}
+
+std::size_t SkinList::scratchBytes() const {
+  return bytesOf(scratch_.has_candidates) + bytesOf(scratch_.members) + bytesOf(scratch_.keys) +
+         bytesOf(scratch_.order) + bytesOf(scratch_.fill);
 }
 
 bool SkinList::covers(const BoxColumns& inBoxes, int inThreads) const {
@@ -171,6 +186,7 @@ const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, in
   const double margin = inSkin / 2;
   const double infinity = std::numeric_limits<double>::infinity();
   const std::size_t n = inBoxes.size();
+  releaseCandidates();  // dead from here until adopt(): the grown sweep's peak does without them
   reference_.ids = inBoxes.ids;
   reference_.groups = inBoxes.groups;
   reference_.masks = inBoxes.masks;
@@ -220,6 +236,8 @@ void SkinList::adopt(const BoxColumns& inBoxes, PairList&& ioCandidates) {
   keepSpatialOrder();
   keepSpatialCandidates();
   sortRunsByPartner();
+  adopt_scratch_bytes_ = scratchBytes();
+  scratch_ = AdoptScratch();  // dead until the next adopt(): not held through the frames between
   valid_ = true;
   SAP_ASSERT(covers(inBoxes, 1), "a box outside its grown box in the skin list");
   SAP_ASSERT(holdsEveryCandidate(), "a kept candidate whose box has no spatial position");

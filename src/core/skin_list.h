@@ -63,7 +63,8 @@ class SkinList {
   static void keepOverlapping(const BoxColumns& inBoxes, PairList& ioPairs);
   /// The boxes of inBoxes grown by inSkin / 2 on every side (rounded outward), kept as the
   /// reference of the next candidates and returned for the sweep that finds them (valid until
-  /// the next inflate()).
+  /// the next inflate()). The last candidates and a pass's buffers are given back first: the
+  /// grown sweep that follows, a frame's memory peak, runs without them.
   const BoxColumns& inflate(const BoxColumns& inBoxes, double inSkin, int inThreads = 1);
   /// Keeps inCandidates (pairs of the inflated boxes, canonical order, filters honoured) as the
   /// candidates; inBoxes are the boxes given to inflate(). Throws std::length_error when there
@@ -94,7 +95,7 @@ class SkinList {
     std::size_t reference = 0;   ///< the grown boxes of the last sweep
     std::size_t candidates = 0;  ///< the kept candidates: pairs, spatial order, runs
     std::size_t pass = 0;        ///< a pass's gathered bounds and verdict bits
-    std::size_t scratch = 0;     ///< adopt()'s working lists
+    std::size_t scratch = 0;     ///< adopt()'s working lists (held while it runs)
   };
   MemoryUse memoryUse() const;
 
@@ -102,6 +103,8 @@ class SkinList {
   bool sameCounts(const BoxColumns& inBoxes) const;
   bool sameIdsAndFilters(const BoxColumns& inBoxes, std::size_t inBegin, std::size_t inEnd) const;
   bool holdsEveryCandidate() const;
+  void releaseCandidates();
+  std::size_t scratchBytes() const;
   void keepBoxIndexes(const BoxColumns& inBoxes);
   void keepSpatialOrder();
   void keepSpatialCandidates();
@@ -127,9 +130,9 @@ class SkinList {
   // Per pass: the frame's bounds by position, and a verdict bit per canonical candidate, one
   // row of verdictWords() words per thread (bit k of the row: candidate k overlaps).
   Buffer<BoundsRecord> gathered_;
-  // adopt()'s working lists, a few words a box (none a candidate: the candidates' own arrays
-  // hold their box indexes while they are sorted), kept between sweeps so that a sweep frame
-  // reuses their pages; buffers, so that sizing them zeroes nothing.
+  // adopt()'s working lists, a few words a box and one a candidate (the candidates' own arrays
+  // hold their box indexes while they are sorted), given back when adopt() is done; buffers,
+  // so that sizing them zeroes nothing.
   struct AdoptScratch {
     Buffer<uint8_t> has_candidates;  // by box index
     Buffer<uint32_t> members;        // boxes with candidates
@@ -137,6 +140,7 @@ class SkinList {
     Buffer<uint32_t> order;
     Buffer<uint32_t> fill;  // by first position: where its next candidate goes
   } scratch_;
+  std::size_t adopt_scratch_bytes_ = 0;  // what the last adopt()'s working lists held
   Buffer<uint64_t> verdicts_;
   int verdict_rows_ = 1;  // the threads of the last test, each with its row
   bool valid_ = false;
