@@ -1,8 +1,10 @@
-// Small timing helpers: a wall-clock stopwatch and medians.
+// Small timing helpers: a wall-clock stopwatch, medians, percentiles and the worst value.
 #pragma once
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace sap_bench {
@@ -30,6 +32,17 @@ inline double median(std::vector<double> inValues) {
   const double upper = inValues[mid];
   if (inValues.size() % 2 == 1) return upper;
   return 0.5 * (upper + *std::max_element(inValues.begin(), inValues.begin() + mid));
+}
+
+/// The inFraction quantile of the values (nearest rank: the smallest value with at least that
+/// fraction of the values at or below it); 0 when empty. percentile(v, 0.99) is the p99 frame.
+inline double percentile(std::vector<double> inValues, double inFraction) {
+  if (inValues.empty()) return 0.0;
+  const double rank = std::ceil(inFraction * static_cast<double>(inValues.size()));
+  const std::size_t index =
+      std::min(inValues.size() - 1, static_cast<std::size_t>(std::max(1.0, rank)) - 1);
+  std::nth_element(inValues.begin(), inValues.begin() + index, inValues.end());
+  return inValues[index];
 }
 
 /// Largest value; 0 when empty.

@@ -262,7 +262,7 @@ void runPeers(const Options& inOptions) {
                ? "skipped (slow)"
                : std::to_string(entry.one_shot_ms.size()) + (entry.stopped_slow ? " (slow)" : ""),
            k < firstPeer ? "exact, closed intervals" : peers[k - firstPeer]->semantics(),
-           ran ? fmt(frameQuantile(entry.steady_ms, 0.99)) : "-",
+           ran ? fmt(percentile(entry.steady_ms, 0.99)) : "-",
            ran ? fmt(maximum(entry.steady_ms)) : "-",
            entry.first_frame_ms >= 0 ? fmt(entry.first_frame_ms) : "-"});
       if (k < firstPeer || entry.one_shot_ms.empty()) continue;

@@ -221,14 +221,4 @@ void runPeerPass(Peer& ioPeer, const BenchCase& inCase, int inFrames,
   for (int f = 0; f < inFrames; ++f) ioProgress.step(inCase.name);
 }
 
-double frameQuantile(std::vector<double> inTimes, double inQuantile) {
-  if (inTimes.empty()) return 0.0;
-  const double rank = std::ceil(inQuantile * static_cast<double>(inTimes.size()));
-  const std::size_t at =
-      std::min(inTimes.size() - 1, static_cast<std::size_t>(std::max(1.0, rank)) - 1);
-  std::nth_element(inTimes.begin(), inTimes.begin() + static_cast<std::ptrdiff_t>(at),
-                   inTimes.end());
-  return inTimes[at];
-}
-
 }  // namespace sap_bench

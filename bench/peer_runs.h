@@ -71,8 +71,4 @@ void runPeerPass(Peer& ioPeer, const BenchCase& inCase, int inFrames,
                  const std::vector<sap_broadphase::PairList>& inTruth, Contender& ioEntry,
                  double& ioCostPerBox, Progress& ioProgress);
 
-/// The inQuantile (0..1) of the frame times by nearest rank (0.99: the 99th percentile frame);
-/// 0 when empty.
-double frameQuantile(std::vector<double> inTimes, double inQuantile);
-
 }  // namespace sap_bench

@@ -169,8 +169,8 @@ void BoxColumns::reserve(std::size_t inCount) {
 void BoxColumns::resize(std::size_t inCount, bool inFiltered) {
   ids.resize(inCount);
   for (int axis = 0; axis < 3; ++axis) {
-    lo[axis].resize(inCount);
-    hi[axis].resize(inCount);
+    resizeDiscarding(lo[axis], inCount);
+    resizeDiscarding(hi[axis], inCount);
   }
   groups.resize(inFiltered ? inCount : 0);
   masks.resize(inFiltered ? inCount : 0);

@@ -8,17 +8,20 @@
 #include <optional>
 #include <vector>
 
+#include "core/buffers.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
 
 /// Box i is [lo[0][i], hi[0][i]] x [lo[1][i], hi[1][i]] x [lo[2][i], hi[2][i]]; `groups` and
-/// `masks` are either empty (the defaults) or one per box.
+/// `masks` are either empty (the defaults) or one per box. The bounds, 48 of a box's 52 bytes,
+/// are buffers (buffers.h): sizing them does not zero memory that the copy then overwrites, and
+/// a first frame's copy is the first to touch their pages, each thread its own slice.
 struct BoxColumns {
   std::vector<uint32_t> ids;
-  std::vector<double> lo[3];
-  std::vector<double> hi[3];
+  Buffer<double> lo[3];
+  Buffer<double> hi[3];
   std::vector<uint32_t> groups;
   std::vector<uint32_t> masks;
 
@@ -27,7 +30,9 @@ struct BoxColumns {
   void clear();
   /// Reserves room for inCount boxes.
   void reserve(std::size_t inCount);
-  /// Sizes every array for inCount boxes, groups and masks only when inFiltered.
+  /// Sizes every array for inCount boxes, groups and masks only when inFiltered, for a caller
+  /// that then writes every bound: the bounds are left unset (not zeroed, not kept when an
+  /// array grows).
   void resize(std::size_t inCount, bool inFiltered);
   /// Appends one box with the default group and mask.
   void add(uint32_t inId, const double inMin[3], const double inMax[3]);

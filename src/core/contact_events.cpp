@@ -55,6 +55,7 @@ void diffPairLists(const PairList& inLast, const PairList& inNow, ContactEvents&
 }
 
 void ContactEventTracker::startFrame() {
+  all_began_.store(nullptr);
   events_.began.clear();
   events_.ended.clear();
 }
@@ -72,11 +73,22 @@ void ContactEventTracker::compare(const PairList& inPairs) {
   if (has_last_) {
     diffPairLists(last_, inPairs, events_);
   } else {
-    events_.began.assign(inPairs.begin(), inPairs.end());
+    events_.began.clear();
     events_.ended.clear();
+    all_began_.store(&inPairs);  // copied if events() asks (a first frame's pairs all began)
   }
   has_last_ = true;
   frame_open_ = false;
+}
+
+const ContactEvents& ContactEventTracker::events() const {
+  if (all_began_.load(std::memory_order_acquire) == nullptr) return events_;
+  const std::lock_guard<std::mutex> lock(fill_);
+  if (const PairList* all = all_began_.load()) {
+    events_.began.assign(all->begin(), all->end());
+    all_began_.store(nullptr, std::memory_order_release);
+  }
+  return events_;
 }
 
 void ContactEventTracker::sameListAsLast() {

@@ -2,6 +2,9 @@
 // found by one linear merge of the two, and the state that keeps the last list without copying it.
 #pragma once
 
+#include <atomic>
+#include <mutex>
+
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -22,7 +25,10 @@ class ContactEventTracker {
   /// Takes the last frame's list out of ioPairs (a swap); ioPairs keeps a buffer to write into.
   void keepLastList(PairList& ioPairs);
   /// The frame's list is complete: its events are the difference from the kept last list (from
-  /// nothing on a first frame), and it becomes the last list.
+  /// nothing on a first frame), and it becomes the last list. inPairs must stay unchanged until
+  /// the next startFrame() or forget(): a first frame's events (every pair began) are copied
+  /// from it only when events() asks for them, so that a first frame neither copies its pairs
+  /// nor keeps a second list of their size for good.
   void compare(const PairList& inPairs);
   /// The frame's list is the last one, untouched (a reused frame): no events.
   void sameListAsLast();
@@ -30,11 +36,15 @@ class ContactEventTracker {
   void forget();
   /// Gives back the spare buffer (the list before the last one) after a burst of large frames.
   void releaseMemory();
-  const ContactEvents& events() const { return events_; }
+  /// The last frame's events. Safe to call from several threads at once (between frames).
+  const ContactEvents& events() const;
 
  private:
-  PairList last_;            // between keepLastList() and compare(): the last frame's list
-  ContactEvents events_;     // the last frame's
+  PairList last_;  // between keepLastList() and compare(): the last frame's list
+  // The last frame's events; on a first frame `began` is filled from all_began_ on request.
+  mutable ContactEvents events_;
+  mutable std::atomic<const PairList*> all_began_{nullptr};
+  mutable std::mutex fill_;  // one events() fills `began`, the others wait for it
   bool has_last_ = false;    // a frame completed since construction or forget()
   bool frame_open_ = false;  // keepLastList() without its compare(): that frame threw
 };

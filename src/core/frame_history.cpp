@@ -297,6 +297,15 @@ void FrameHistory::forget() {
   delta_ = FrameDelta();
 }
 
+std::size_t FrameHistory::bytesHeld() const {
+  std::size_t bytes = last_.ids.capacity() * sizeof(uint32_t) +
+                      (last_.groups.capacity() + last_.masks.capacity()) * sizeof(uint32_t) +
+                      unchanged_.capacity() + span_first_boxes_.capacity() * sizeof(std::size_t);
+  for (int axis = 0; axis < 3; ++axis)
+    bytes += (last_.lo[axis].capacity() + last_.hi[axis].capacity()) * sizeof(double);
+  return bytes;
+}
+
 void FrameHistory::shrinkToFit() {
   last_ = BoxColumns(last_);  // a copy holds only what is used
   unchanged_.shrink_to_fit();

@@ -70,6 +70,8 @@ class FrameHistory {
   void forget();
   /// Gives back the capacity the copy does not use (after a burst of larger frames).
   void shrinkToFit();
+  /// Bytes held (capacities): the copy and the per-box change flags.
+  std::size_t bytesHeld() const;
 
  private:
   // The delta of a frame of the last frame's size, from the one pass that compared and copied

@@ -98,7 +98,7 @@ class IndexOfId {
 
 /// The axis along which the finite lower bounds of inMembers spread widest: sorting along it
 /// puts the fewest boxes between a box and its partners.
-int widestAxis(const BoxColumns& inBoxes, const std::vector<uint32_t>& inMembers) {
+int widestAxis(const BoxColumns& inBoxes, const Buffer<uint32_t>& inMembers) {
   int widest = 0;
   double widest_spread = -1.0;
   for (int axis = 0; axis < 3; ++axis) {
@@ -133,7 +133,40 @@ bool sameSlice(const std::vector<uint32_t>& inA, const std::vector<uint32_t>& in
                                     (inEnd - inBegin) * sizeof(uint32_t)) == 0;
 }
 
+template <typename Vector>
+std::size_t bytesOf(const Vector& inVector) {
+  return inVector.capacity() * sizeof(typename Vector::value_type);
+}
+
 }  // namespace
+
+void SkinList::releaseCandidates() {
+  PairList().swap(canonical_pairs_);
+  Buffer<uint32_t>().swap(position_of_);
+  Buffer<uint32_t>().swap(run_begin_);
+  Buffer<uint32_t>().swap(partner_positions_);
+  Buffer<uint32_t>().swap(canonical_slots_);
+  Buffer<BoundsRecord>().swap(gathered_);
+  Buffer<uint64_t>().swap(verdicts_);
+  spatial_count_ = 0;
+}
+
+SkinList::MemoryUse SkinList::memoryUse() const {
+  MemoryUse use;
+  use.reference = bytesOf(reference_.ids) + bytesOf(reference_.groups) + bytesOf(reference_.masks);
+  for (int axis = 0; axis < 3; ++axis)
+    use.reference += bytesOf(reference_.lo[axis]) + bytesOf(reference_.hi[axis]);
+  use.candidates = bytesOf(canonical_pairs_) + bytesOf(partner_positions_) +
+                   bytesOf(canonical_slots_) + bytesOf(run_begin_) + bytesOf(position_of_);
+  use.pass = bytesOf(gathered_) + bytesOf(verdicts_);
+  use.scratch = adopt_scratch_bytes_;
+  return use;
+}
+
+std::size_t SkinList::scratchBytes() const {
+  return bytesOf(scratch_.has_candidates) + bytesOf(scratch_.members) + bytesOf(scratch_.keys) +
+         bytesOf(scratch_.order) + bytesOf(scratch_.fill);
+}
 
 bool SkinList::covers(const BoxColumns& inBoxes, int inThreads) const {
   if (!valid_ || !sameCounts(inBoxes)) return false;
@@ -153,6 +186,7 @@ const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, in
   const double margin = inSkin / 2;
   const double infinity = std::numeric_limits<double>::infinity();
   const std::size_t n = inBoxes.size();
+  releaseCandidates();  // dead from here until adopt(): the grown sweep's peak does without them
   reference_.ids = inBoxes.ids;
   reference_.groups = inBoxes.groups;
   reference_.masks = inBoxes.masks;
@@ -190,19 +224,20 @@ void SkinList::keepOverlapping(const BoxColumns& inBoxes, PairList& ioPairs) {
 }
 
 void SkinList::adopt(const BoxColumns& inBoxes, const PairList& inCandidates) {
-  const std::size_t count = inCandidates.size();
-  if (count > std::numeric_limits<uint32_t>::max())
+  adopt(inBoxes, PairList(inCandidates));
+}
+
+void SkinList::adopt(const BoxColumns& inBoxes, PairList&& ioCandidates) {
+  if (ioCandidates.size() > std::numeric_limits<uint32_t>::max())
     throw std::length_error("skin reuse keeps fewer than 2^32 candidate pairs");
-  canonical_pairs_ = inCandidates;
-  const IndexOfId index_of(inBoxes.ids);
-  std::vector<uint32_t>& candidate_indexes = scratch_.candidate_indexes;
-  resizeDiscarding(candidate_indexes, 2 * count);
-  for (std::size_t k = 0; k < count; ++k) {
-    candidate_indexes[2 * k] = index_of(inCandidates[k].a);
-    candidate_indexes[2 * k + 1] = index_of(inCandidates[k].b);
-  }
+  canonical_pairs_.swap(ioCandidates);
+  PairList().swap(ioCandidates);  // the last candidates' memory, before the new ones' arrays
+  keepBoxIndexes(inBoxes);
   keepSpatialOrder();
   keepSpatialCandidates();
+  sortRunsByPartner();
+  adopt_scratch_bytes_ = scratchBytes();
+  scratch_ = AdoptScratch();  // dead until the next adopt(): not held through the frames between
   valid_ = true;
   SAP_ASSERT(covers(inBoxes, 1), "a box outside its grown box in the skin list");
   SAP_ASSERT(holdsEveryCandidate(), "a kept candidate whose box has no spatial position");
@@ -210,11 +245,32 @@ void SkinList::adopt(const BoxColumns& inBoxes, const PairList& inCandidates) {
 
 bool SkinList::holdsEveryCandidate() const {
   const std::size_t count = canonical_pairs_.size();
-  if (first_positions_.size() != count || partner_positions_.size() != count) return false;
-  for (std::size_t k = 0; k < count; ++k)
-    if (!(first_positions_[k] < partner_positions_[k] && partner_positions_[k] < spatial_count_))
-      return false;
+  if (partner_positions_.size() != count || canonical_slots_.size() != count ||
+      run_begin_.size() != std::size_t{spatial_count_} + 1 || run_begin_[spatial_count_] != count)
+    return false;
+  for (uint32_t first = 0; first < spatial_count_; ++first) {
+    for (uint32_t k = run_begin_[first]; k < run_begin_[first + 1]; ++k) {
+      const bool ordered =
+          k == run_begin_[first] || partner_positions_[k - 1] < partner_positions_[k];
+      if (!(first < partner_positions_[k] && partner_positions_[k] < spatial_count_ && ordered))
+        return false;
+    }
+  }
   return true;
+}
+
+// The box indexes of each candidate's boxes, held in the arrays that later hold its spatial
+// order (canonical_slots_: first box, partner_positions_: second box), so that sorting the
+// candidates needs no list of its own.
+void SkinList::keepBoxIndexes(const BoxColumns& inBoxes) {
+  const std::size_t count = canonical_pairs_.size();
+  const IndexOfId index_of(inBoxes.ids);
+  resizeDiscarding(canonical_slots_, count);
+  resizeDiscarding(partner_positions_, count);
+  for (std::size_t k = 0; k < count; ++k) {
+    canonical_slots_[k] = index_of(canonical_pairs_[k].a);
+    partner_positions_[k] = index_of(canonical_pairs_[k].b);
+  }
 }
 
 // The boxes that have candidates, sorted by their inflated lower bound's sort key along the
@@ -222,60 +278,93 @@ bool SkinList::holdsEveryCandidate() const {
 // apart at most.
 void SkinList::keepSpatialOrder() {
   const std::size_t n = reference_.size();
-  std::vector<uint8_t>& has_candidates = scratch_.has_candidates;
+  const std::size_t count = canonical_pairs_.size();
+  Buffer<uint8_t>& has_candidates = scratch_.has_candidates;
   has_candidates.assign(n, 0);
-  for (uint32_t i : scratch_.candidate_indexes) has_candidates[i] = 1;
-  std::vector<uint32_t>& members = scratch_.members;
+  for (std::size_t k = 0; k < count; ++k)
+    has_candidates[canonical_slots_[k]] = has_candidates[partner_positions_[k]] = 1;
+  Buffer<uint32_t>& members = scratch_.members;
   members.clear();
   for (std::size_t i = 0; i < n; ++i)
     if (has_candidates[i]) members.push_back(static_cast<uint32_t>(i));
   const auto spatial_count = static_cast<uint32_t>(members.size());
   const int axis = widestAxis(reference_, members);
-  std::vector<uint32_t>& keys = scratch_.keys;
-  std::vector<uint32_t>& order = scratch_.order;
+  Buffer<uint32_t>& keys = scratch_.keys;
+  Buffer<uint32_t>& order = scratch_.order;
   resizeDiscarding(keys, spatial_count);
   resizeDiscarding(order, spatial_count);
   for (uint32_t j = 0; j < spatial_count; ++j) keys[j] = lowKey(reference_.lo[axis][members[j]]);
   radixIndexSort(keys.data(), spatial_count, order.data());
-  position_of_.assign(n, spatial_count);
+  resizeDiscarding(position_of_, n);
+  std::fill(position_of_.begin(), position_of_.end(), spatial_count);
   for (uint32_t position = 0; position < spatial_count; ++position)
     position_of_[members[order[position]]] = position;
   spatial_count_ = spatial_count;
 }
 
-// The candidates by (first, partner) position: a counting sort by first position, then each
-// short run of one first position sorted by partner.
+// The candidates by first position, a counting sort: the box indexes become positions in
+// place, then one scatter puts each partner at its candidate's place (in a scratch list of the
+// candidates' size, the only one adopt() needs) and leaves the place in the candidate's slot
+// entry, which the slots' own scatter then reads.
 void SkinList::keepSpatialCandidates() {
-  const std::vector<uint32_t>& candidate_indexes = scratch_.candidate_indexes;
-  const std::size_t count = candidate_indexes.size() / 2;
+  const std::size_t count = canonical_pairs_.size();
   const std::size_t spatial_count = spatial_count_;
-  std::vector<uint32_t>& run_begin = scratch_.run_begin;
-  run_begin.assign(spatial_count + 1, 0);
+  uint32_t* first_of = canonical_slots_.data();  // first box index in, first position out
+  uint32_t* partner_of = partner_positions_.data();
+  resizeDiscarding(run_begin_, spatial_count + 1);
+  std::fill(run_begin_.begin(), run_begin_.end(), 0u);
   for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t a = position_of_[candidate_indexes[2 * k]];
-    const uint32_t b = position_of_[candidate_indexes[2 * k + 1]];
-    ++run_begin[std::min(a, b) + 1];
+    const uint32_t a = position_of_[first_of[k]];
+    const uint32_t b = position_of_[partner_of[k]];
+    first_of[k] = std::min(a, b);
+    partner_of[k] = std::max(a, b);
+    ++run_begin_[first_of[k] + 1];
   }
   for (std::size_t first = 0; first < spatial_count; ++first)
-    run_begin[first + 1] += run_begin[first];
-  std::vector<uint64_t>& runs = scratch_.runs;
-  resizeDiscarding(runs, count);
-  std::vector<uint32_t>& fill = scratch_.fill;
-  fill.assign(run_begin.begin(), run_begin.end() - 1);
+    run_begin_[first + 1] += run_begin_[first];
+  Buffer<uint32_t>& fill = scratch_.fill;  // by first position: its next candidate's place
+  fill.assign(run_begin_.begin(), run_begin_.end() - 1);
+  Buffer<uint32_t>& placed = scratch_.members;  // reused: the members are sorted already
+  resizeDiscarding(placed, count);
   for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t a = position_of_[candidate_indexes[2 * k]];
-    const uint32_t b = position_of_[candidate_indexes[2 * k + 1]];
-    runs[fill[std::min(a, b)]++] = (uint64_t{std::max(a, b)} << 32) | k;
+    const uint32_t place = fill[first_of[k]]++;
+    placed[place] = partner_of[k];
+    first_of[k] = place;  // from here on: candidate k's place
   }
-  resizeDiscarding(first_positions_, count);
-  resizeDiscarding(partner_positions_, count);
-  resizeDiscarding(canonical_slots_, count);
-  for (std::size_t first = 0; first < spatial_count; ++first) {
-    std::sort(runs.begin() + run_begin[first], runs.begin() + run_begin[first + 1]);
-    for (uint32_t k = run_begin[first]; k < run_begin[first + 1]; ++k) {
-      first_positions_[k] = static_cast<uint32_t>(first);
-      partner_positions_[k] = static_cast<uint32_t>(runs[k] >> 32);
-      canonical_slots_[k] = static_cast<uint32_t>(runs[k]);
+  std::copy(placed.begin(), placed.end(), partner_positions_.begin());
+  for (std::size_t k = 0; k < count; ++k) placed[first_of[k]] = static_cast<uint32_t>(k);
+  std::copy(placed.begin(), placed.end(), canonical_slots_.begin());
+}
+
+// Each run of one first position sorted by partner, its slots carried along: runs hold a few
+// candidates (an insertion sort), rarely many (a box that meets most others: a sort of packed
+// words).
+void SkinList::sortRunsByPartner() {
+  constexpr uint32_t kShortRun = 32;
+  std::vector<uint64_t> packed;
+  for (uint32_t first = 0; first < spatial_count_; ++first) {
+    const uint32_t begin = run_begin_[first], end = run_begin_[first + 1];
+    uint32_t* partner = partner_positions_.data();
+    uint32_t* slot = canonical_slots_.data();
+    if (end - begin <= kShortRun) {
+      for (uint32_t k = begin + 1; k < end; ++k) {
+        const uint32_t key = partner[k], carried = slot[k];
+        uint32_t j = k;
+        for (; j > begin && partner[j - 1] > key; --j) {
+          partner[j] = partner[j - 1];
+          slot[j] = slot[j - 1];
+        }
+        partner[j] = key;
+        slot[j] = carried;
+      }
+      continue;
+    }
+    packed.clear();
+    for (uint32_t k = begin; k < end; ++k) packed.push_back(uint64_t{partner[k]} << 32 | slot[k]);
+    std::sort(packed.begin(), packed.end());
+    for (uint32_t k = begin; k < end; ++k) {
+      partner[k] = static_cast<uint32_t>(packed[k - begin] >> 32);
+      slot[k] = static_cast<uint32_t>(packed[k - begin]);
     }
   }
 }
@@ -344,10 +433,10 @@ bool SkinList::gatherInside(const BoxColumns& inBoxes, int inThreads) {
 // In (first, partner) order: the first box's record is read again and again, the partner's
 // lies a little further on; the verdict goes to the candidate's canonical slot.
 void SkinList::testSpatialCandidates(int inThreads) {
-  const auto count = static_cast<std::ptrdiff_t>(first_positions_.size());
+  const auto count = static_cast<std::ptrdiff_t>(partner_positions_.size());
   const std::size_t words = verdictWords();
   resizeDiscarding(verdicts_, words * static_cast<std::size_t>(std::max(1, inThreads)));
-  const uint32_t* first = first_positions_.data();
+  const uint32_t* run_begin = run_begin_.data();
   const uint32_t* partner = partner_positions_.data();
   const uint32_t* slot = canonical_slots_.data();
   const BoundsRecord* gathered = gathered_.data();
@@ -358,14 +447,18 @@ void SkinList::testSpatialCandidates(int inThreads) {
     // Each worker sets bits in its own row (row 0 when run inline); copyHits merges them.
     uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(currentWorker());
     const auto end = static_cast<std::ptrdiff_t>(inEnd);
+    // The first position of candidate inBegin: the last run that starts at or before it.
+    uint32_t first = static_cast<uint32_t>(
+        std::upper_bound(run_begin, run_begin + spatial_count_ + 1, inBegin) - run_begin - 1);
     for (auto k = static_cast<std::ptrdiff_t>(inBegin); k < end; ++k) {
+      while (run_begin[first + 1] <= k) ++first;  // empty runs are skipped too
       // Partners lie ahead of the first box, mostly in lines no candidate has read yet, and
       // the verdict bits of consecutive candidates lie anywhere in the bit set.
       if (k + kPrefetchAhead < end) {
         __builtin_prefetch(gathered + partner[k + kPrefetchAhead]);
         __builtin_prefetch(verdicts + slot[k + kPrefetchAhead] / 64, 1);
       }
-      const uint64_t overlap = recordsOverlap(gathered[first[k]], gathered[partner[k]]);
+      const uint64_t overlap = recordsOverlap(gathered[first], gathered[partner[k]]);
       verdicts[slot[k] / 64] |= overlap << (slot[k] % 64);
     }
   });

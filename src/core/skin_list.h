@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/box_columns.h"
+#include "core/buffers.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
@@ -38,10 +39,11 @@ struct alignas(64) BoundsRecord {
 };
 
 /// The kept candidates' memory budget: a grown sweep that finds more candidates than this a
-/// box (and more than kMinKeptCandidateBudget in all) keeps none. A kept candidate costs some
-/// 40 bytes (its canonical pair, positions, slot, sort runs); 64 a box is 2.5 KB a box, about
-/// ten times what the plain path holds, and far above what a skin that pays gives (a few a
-/// box). Without it `skin 1e300` at 4000 boxes kept all 8 million pairs (+515 MB).
+/// box (and more than kMinKeptCandidateBudget in all) keeps none. A kept candidate costs 16
+/// bytes (its canonical pair, partner position and slot), 8 more while the grown sweep's list
+/// is sorted; 64 a box is 1-1.5 KB a box, several times what the plain path holds, and far above
+/// what a skin that pays gives (a few a box). Without it `skin 1e300` at 4000 boxes kept all 8
+/// million pairs (+515 MB).
 constexpr std::size_t kMaxKeptCandidatesPerBox = 64;
 /// Below this many candidates the budget does not apply (small frames of crowded boxes).
 constexpr std::size_t kMinKeptCandidateBudget = std::size_t{1} << 20;
@@ -61,12 +63,16 @@ class SkinList {
   static void keepOverlapping(const BoxColumns& inBoxes, PairList& ioPairs);
   /// The boxes of inBoxes grown by inSkin / 2 on every side (rounded outward), kept as the
   /// reference of the next candidates and returned for the sweep that finds them (valid until
-  /// the next inflate()).
+  /// the next inflate()). The last candidates and a pass's buffers are given back first: the
+  /// grown sweep that follows, a frame's memory peak, runs without them.
   const BoxColumns& inflate(const BoxColumns& inBoxes, double inSkin, int inThreads = 1);
   /// Keeps inCandidates (pairs of the inflated boxes, canonical order, filters honoured) as the
   /// candidates; inBoxes are the boxes given to inflate(). Throws std::length_error when there
   /// are 2^32 candidates or more (their rows are indexed in 32 bits).
   void adopt(const BoxColumns& inBoxes, const PairList& inCandidates);
+  /// The same, taking the list instead of copying it: ioCandidates is left empty, and the
+  /// last candidates' memory is given back before the new ones are sorted.
+  void adopt(const BoxColumns& inBoxes, PairList&& ioCandidates);
   /// True when every box of inBoxes lies inside its inflated box (same ids, groups and masks in
   /// the same order), and then the frame's bounds are gathered for collectGathered(). One read
   /// of the frame, so that the engine can know before planning whether the candidates answer
@@ -84,12 +90,25 @@ class SkinList {
   /// Forgets the candidates (the next frame sweeps).
   void clear() { valid_ = frame_gathered_ = false; }
 
+  /// Bytes held (capacities), by part: for the memory experiment (bench/exp_memory.cpp).
+  struct MemoryUse {
+    std::size_t reference = 0;   ///< the grown boxes of the last sweep
+    std::size_t candidates = 0;  ///< the kept candidates: pairs, spatial order, runs
+    std::size_t pass = 0;        ///< a pass's gathered bounds and verdict bits
+    std::size_t scratch = 0;     ///< adopt()'s working lists (held while it runs)
+  };
+  MemoryUse memoryUse() const;
+
  private:
   bool sameCounts(const BoxColumns& inBoxes) const;
   bool sameIdsAndFilters(const BoxColumns& inBoxes, std::size_t inBegin, std::size_t inEnd) const;
   bool holdsEveryCandidate() const;
+  void releaseCandidates();
+  std::size_t scratchBytes() const;
+  void keepBoxIndexes(const BoxColumns& inBoxes);
   void keepSpatialOrder();
   void keepSpatialCandidates();
+  void sortRunsByPartner();
   bool gatherInside(const BoxColumns& inBoxes, int inThreads);
   void testSpatialCandidates(int inThreads);
   void copyHits(int inThreads, PairList& outPairs);
@@ -99,29 +118,30 @@ class SkinList {
   // The spatial order: positions 0..m-1 for the m boxes that have candidates; the others all
   // have position m, which a pass turns into a scratch record per thread that no candidate
   // reads.
-  std::vector<uint32_t> position_of_;  // box index -> position
-  uint32_t spatial_count_ = 0;         // m
-  // The candidates by (first position, partner position), first < partner.
-  std::vector<uint32_t> first_positions_;
-  std::vector<uint32_t> partner_positions_;
-  std::vector<uint32_t> canonical_slots_;  // the candidate's index in canonical_pairs_
-  PairList canonical_pairs_;               // the candidates, as adopted
+  Buffer<uint32_t> position_of_;  // box index -> position
+  uint32_t spatial_count_ = 0;    // m
+  // The candidates by (first position, partner position), first < partner: those of first
+  // position p are [run_begin_[p], run_begin_[p + 1]) (a first position is not kept per
+  // candidate: 4 bytes a candidate less).
+  Buffer<uint32_t> run_begin_;
+  Buffer<uint32_t> partner_positions_;
+  Buffer<uint32_t> canonical_slots_;  // the candidate's index in canonical_pairs_
+  PairList canonical_pairs_;          // the candidates, as adopted (taken, not copied)
   // Per pass: the frame's bounds by position, and a verdict bit per canonical candidate, one
   // row of verdictWords() words per thread (bit k of the row: candidate k overlaps).
-  std::vector<BoundsRecord> gathered_;
-  // adopt()'s working lists, kept between sweeps so that a sweep frame reuses their pages
-  // instead of faulting in and zeroing millions of entries again.
+  Buffer<BoundsRecord> gathered_;
+  // adopt()'s working lists, a few words a box and one a candidate (the candidates' own arrays
+  // hold their box indexes while they are sorted), given back when adopt() is done; buffers,
+  // so that sizing them zeroes nothing.
   struct AdoptScratch {
-    std::vector<uint32_t> candidate_indexes;  // both boxes of candidate k at 2k, 2k+1
-    std::vector<uint8_t> has_candidates;      // by box index
-    std::vector<uint32_t> members;            // boxes with candidates, then their sort keys
-    std::vector<uint32_t> keys;
-    std::vector<uint32_t> order;
-    std::vector<uint32_t> run_begin;  // by first position: where its candidates start
-    std::vector<uint32_t> fill;
-    std::vector<uint64_t> runs;  // partner position << 32 | canonical slot
+    Buffer<uint8_t> has_candidates;  // by box index
+    Buffer<uint32_t> members;        // boxes with candidates
+    Buffer<uint32_t> keys;           // their sort keys
+    Buffer<uint32_t> order;
+    Buffer<uint32_t> fill;  // by first position: where its next candidate goes
   } scratch_;
-  std::vector<uint64_t> verdicts_;
+  std::size_t adopt_scratch_bytes_ = 0;  // what the last adopt()'s working lists held
+  Buffer<uint64_t> verdicts_;
   int verdict_rows_ = 1;  // the threads of the last test, each with its row
   bool valid_ = false;
   bool frame_gathered_ = false;  // gather() succeeded and collectGathered() has not run since

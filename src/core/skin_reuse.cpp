@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
 
 #include "core/assert.h"
 #include "core/axis_spread.h"
@@ -80,7 +81,7 @@ void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameRep
       keepNoCandidates(inSwept, ioReport, ioPairs);
       return;
     }
-    kept_.adopt(inSwept, ioPairs);
+    kept_.adopt(inSwept, std::move(ioPairs));  // taken, not copied: ioPairs is rewritten below
   }
   // Every box lies inside its own grown box: the pass that answers the frame always runs.
   const bool covered = coversFrame(inSwept, inThreads, ioReport);

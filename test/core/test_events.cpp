@@ -9,6 +9,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/contact_events.h"
@@ -204,6 +205,30 @@ TEST(EngineEvents, FirstFrameBeginsEveryPairAndResetStartsOver) {
     engine.update(scene.boxes());
     EXPECT_TRUE(sameEvents({}, first, engine.events())) << "after reset(), threads " << threads;
   }
+}
+
+// A first frame's events are copied from its pair list only when asked for: asked by several
+// threads at once they are the same complete list for each, and a frame that nobody asked
+// leaves nothing behind for the next one.
+TEST(EngineEvents, FirstFrameEventsAskedConcurrentlyOrNeverAreRight) {
+  SceneSimulator scene(movingScene(SceneKind::kUniform, 22, 3000, 0.3, 5));
+  Broadphase engine(engineConfig(Method::kAuto, 2, 0, 1));
+  const PairList first = bruteForcePairs(scene.boxes());
+  ASSERT_FALSE(first.empty());
+  engine.update(scene.boxes());
+  std::vector<std::size_t> began(4, 0);
+  std::vector<std::thread> readers;
+  for (std::size_t r = 0; r < began.size(); ++r)
+    readers.emplace_back([&, r] { began[r] = engine.events().began.size(); });
+  for (std::thread& reader : readers) reader.join();
+  for (std::size_t r = 0; r < began.size(); ++r) EXPECT_EQ(began[r], first.size()) << r;
+  EXPECT_TRUE(sameEvents({}, first, engine.events()));
+  engine.reset();
+  engine.update(scene.boxes());  // a first frame again, its events never asked for
+  scene.step();
+  const PairList second = bruteForcePairs(scene.boxes());
+  engine.update(scene.boxes());
+  EXPECT_TRUE(sameEvents(first, second, engine.events()));
 }
 
 TEST(EngineEvents, SceneryChangesShowAtTheNextUpdate) {

@@ -175,5 +175,44 @@ TEST(SkinList, DenseFramesAgreeAcrossThreadCounts) {
   expectExactForAllThreadCounts(list, movedWithin(boxes, 0.5, random), "dense lattice");
 }
 
+// Boxes that meet hundreds of others (runs of one first position longer than the insertion
+// sort takes), kept by taking the sweep's list: the taken list is left empty, the candidates
+// are the oracle's, and every frame inside the skins is answered exactly.
+TEST(SkinList, HubBoxesAndTakenListsMatchOracle) {
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
+    BoxColumns boxes = columnsOf(test_support::randomBoxes(1200, 30.0, 2.0, seed));
+    for (std::size_t hub = 0; hub < boxes.size(); hub += 300) {
+      for (int axis = 0; axis < 3; ++axis) {
+        boxes.lo[axis][hub] -= 8.0 + static_cast<double>(seed);
+        boxes.hi[axis][hub] += 8.0;
+      }
+    }
+    if (seed % 2 == 0) boxes = test_support::shuffledSubset(boxes, 0.9, true, seed);
+    const double skin = 0.4;
+    SkinList list;
+    PairList candidates = bruteForcePairs(list.inflate(boxes, skin));
+    const std::size_t count = candidates.size();
+    list.adopt(boxes, std::move(candidates));
+    EXPECT_TRUE(candidates.empty()) << "seed " << seed;
+    EXPECT_EQ(list.candidates(), count) << "seed " << seed;
+    expectExactForAllThreadCounts(list, boxes, "the swept frame with hub boxes");
+    TestRandom random(seed);
+    for (int step = 0; step < 3; ++step)
+      expectExactForAllThreadCounts(list, movedWithin(boxes, skin / 2, random),
+                                    "a frame with hub boxes inside the skins");
+  }
+}
+
+// Kept again and again (as every rebuild does), of other sizes: each list is exact.
+TEST(SkinList, KeptAgainAfterEachSweepMatchesOracle) {
+  SkinList list;
+  for (uint64_t seed = 1; seed <= 5; ++seed) {
+    const std::size_t count = 400 * static_cast<std::size_t>(6 - seed);
+    const BoxColumns boxes = columnsOf(test_support::randomBoxes(count, 25.0, 3.0, seed));
+    keepCandidates(list, boxes, 0.3 * static_cast<double>(seed));
+    expectExactForAllThreadCounts(list, boxes, "a list kept again");
+  }
+}
+
 }  // namespace
 }  // namespace sap_broadphase
