@@ -29,8 +29,7 @@ void checkQueryHits(std::size_t inHits) {
   throw std::length_error(
       "query: more than " + std::to_string(kMaxQueryHits) +
       " hits (the most one query may answer, kMaxQueryHits): " + std::to_string(inHits) +
-      " found before it stopped; ask with fewer "
-      "or smaller boxes");
+      " found before it stopped; ask with fewer or smaller boxes");
 }
 
 }  // namespace
