@@ -476,6 +476,12 @@ std::vector<Limit> makeLimits() {
        "a box line is about 200 bytes; checked while reading, so an endless line "
        "(/dev/zero) is refused without being held",
        "FILE:LINE: refused, sap_pairs exits 2"},
+      {"query_boxes, Broadphase.query", "hits of one query", 0.0,
+       static_cast<double>(kMaxQueryHits), false, "at most 16777216 (2^24)",
+       "each hit is 8 bytes found, 8 in the answer and 8 in the response (kMaxQueryHits); a "
+       "frame scan stops once past it",
+       "the query refused naming the count: query_boxes success false, C++ std::length_error, "
+       "Python ValueError"},
       {kMessageEntry, "message length", 0.0, 1e9, false, "at most 10^9 bytes",
        "roscpp's own limit (20 833 333 boxes a BoxArray without ids); checked before anything "
        "is allocated",

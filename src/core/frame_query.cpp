@@ -1,7 +1,10 @@
 #include "core/frame_query.h"
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/pair_sort.h"
@@ -17,6 +20,16 @@ std::vector<uint32_t> everyIndex(std::size_t inCount) {
   std::vector<uint32_t> indexes(inCount);
   std::iota(indexes.begin(), indexes.end(), 0u);
   return indexes;
+}
+
+/// Refuses a query whose hits passed kMaxQueryHits (config.h): its answer would hold 16 bytes
+/// a hit more, and a query_boxes response 8.
+void checkQueryHits(std::size_t inHits) {
+  if (inHits <= kMaxQueryHits) return;
+  throw std::length_error(
+      "query: more than " + std::to_string(kMaxQueryHits) +
+      " hits (the most one query may answer, kMaxQueryHits): " + std::to_string(inHits) +
+      " found before it stopped; ask with fewer or smaller boxes");
 }
 
 }  // namespace
@@ -68,12 +81,17 @@ void FrameQuery::scan(const BoxColumns& inQueries, int inThreads, PairList& outH
                             std::max<std::size_t>(1, boxes / tuning::kMinScannedBoxesPerThread)));
   // A block a unit, each block's hits in its own part, the parts joined in block order: the
   // same hits in the same order on any thread count.
+  // Every block stops once the hits of all blocks passed kMaxQueryHits: the query is refused,
+  // and the hits held stay within the bound and a query row of a block for each thread.
   std::vector<PairList> parts(blocks);
+  std::atomic<std::size_t> found{0};
   runUnits(blocks, threads, [&](std::size_t inBlock) {
     PairList& hits = parts[inBlock];
     const std::size_t begin = inBlock * tuning::kQueryScanBlock;
     const std::size_t end = std::min(boxes, begin + tuning::kQueryScanBlock);
     for (std::size_t q = 0; q < inQueries.size(); ++q) {
+      if (found.load(std::memory_order_relaxed) > kMaxQueryHits) return;
+      const std::size_t before = hits.size();
       const double query_low = inQueries.lo[0][q];
       const double query_high = inQueries.hi[0][q];
       for (std::size_t i = begin; i < end; ++i) {
@@ -82,8 +100,10 @@ void FrameQuery::scan(const BoxColumns& inQueries, int inThreads, PairList& outH
             groupsMayPair(inQueries.group(q), inQueries.mask(q), frame.group(i), frame.mask(i)))
           hits.push_back(IdPair{inQueries.ids[q], frame.ids[i]});
       }
+      if (hits.size() > before) found.fetch_add(hits.size() - before, std::memory_order_relaxed);
     }
   });
+  checkQueryHits(found.load());
   for (const PairList& part : parts) outHits.insert(outHits.end(), part.begin(), part.end());
 }
 
@@ -91,9 +111,11 @@ PairList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
                        const StaticIndex& inScenery, int inThreads) {
   PairList hits;
   inFrame.query(inQueries, inThreads, hits);
+  checkQueryHits(hits.size());
   if (inScenery.size() > 0 && inQueries.size() > 0) {
     inScenery.queryAll(inQueries, everyIndex(inQueries.size()), inThreads, hits,
                        StaticIndex::PairOrder::kQueryFirst);
+    checkQueryHits(hits.size());
   }
   PairSortScratch scratch;
   sortPairsByAThenB(hits, scratch);  // (query id, world id): either may be the larger

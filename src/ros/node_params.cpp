@@ -305,6 +305,9 @@ std::string describeNodeParams(const NodeParams& inParams) {
 }
 
 void toReconfigureConfig(const NodeParams& inParams, BroadphaseNodeConfig& outConfig) {
+  // The .cfg's defaults first: a BroadphaseNodeConfig constructed as is holds uninitialised
+  // members, and reading its bools below would be undefined (fuzz_reconfigure found it).
+  outConfig = BroadphaseNodeConfig::__getDefault__();
   dynamic_reconfigure::Config message;
   outConfig.__toMessage__(message);  // every entry, so that each field finds its own
   for (const ConfigField& field : configFields())

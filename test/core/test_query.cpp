@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -311,6 +312,57 @@ TEST(Query, BadQueryBoxesAreRefusedWithValidatesWordsAndChangeNothing) {
   EXPECT_TRUE(sameHits(before, engine.query(good)));
   const PairList pairs = engine.update(frame);
   EXPECT_TRUE(test_support::samePairs(bruteForcePairs(frame), pairs));
+}
+
+// Boxes [i, i + 0.5] in x, none touching another; a query box [-1, inCount] meets them all.
+BoxSet disjointRow(std::size_t inCount) {
+  BoxSet boxes;
+  for (std::size_t i = 0; i < inCount; ++i) {
+    const double lo[3] = {static_cast<double>(i), 0.0, 0.0};
+    const double hi[3] = {i + 0.5, 1.0, 1.0};
+    boxes.add(static_cast<uint32_t>(i), lo, hi);
+  }
+  return boxes;
+}
+
+BoxSet queriesOverRow(std::size_t inQueries, std::size_t inRow) {
+  BoxSet queries;
+  for (std::size_t q = 0; q < inQueries; ++q) {
+    const double lo[3] = {-1.0, 0.0, 0.0};
+    const double hi[3] = {static_cast<double>(inRow), 1.0, 1.0};
+    queries.add(static_cast<uint32_t>(q), lo, hi);
+  }
+  return queries;
+}
+
+TEST(Query, MoreHitsThanTheBoundAreRefusedOnScansAndIndexes) {
+  // Scanned: few query boxes (the first scans of a frame), each meeting the whole frame.
+  const std::size_t row = kMaxQueryHits / 40 + 1;
+  const BoxSet frame = disjointRow(row);
+  const BoxColumns frame_columns = columnsOf(frame);
+  FrameQuery frame_query;
+  frame_query.setFrame(frame_columns);
+  PairList hits;
+  EXPECT_THROW(frame_query.query(columnsOf(queriesOverRow(40, row)), 2, hits), std::length_error);
+  EXPECT_FALSE(frame_query.indexed()) << "40 query boxes are scanned";
+
+  // Indexed (many query boxes), through the engine: refused naming the bound, then the engine
+  // answers as before.
+  const std::size_t side = 4097;  // 4097^2 hits, past 2^24
+  BroadphaseConfig config;
+  config.threads = 2;
+  Broadphase engine(config);
+  const BoxSet world = disjointRow(side);
+  EXPECT_TRUE(engine.update(world).empty());
+  try {
+    engine.query(queriesOverRow(side, side));
+    ADD_FAILURE() << side * side << " hits were answered, past kMaxQueryHits";
+  } catch (const std::length_error& refusal) {
+    EXPECT_NE(std::string(refusal.what()).find(std::to_string(kMaxQueryHits)), std::string::npos)
+        << refusal.what();
+  }
+  const BoxSet one = queriesOverRow(1, side);
+  EXPECT_TRUE(sameHits(bruteForceQuery(one, world), engine.query(one)));
 }
 
 TEST(Query, TheWorldIsTheLastFrameThatReturned) {

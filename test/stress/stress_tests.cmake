@@ -27,6 +27,7 @@ sap_add_gtest(test_fuzz_replay
   test/stress/fuzz_replay.cpp
   fuzz/fuzz_checks.cpp
   fuzz/sequence_checks.cpp
+  fuzz/settings_checks.cpp
   test/stress/stress_sequences.cpp
   test/core/test_main.cpp
 )
@@ -35,14 +36,17 @@ target_link_libraries(test_fuzz_replay ${PROJECT_NAME}_core_internal)
 target_compile_definitions(test_fuzz_replay PRIVATE
   SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
 
-# The same for the BoxArray target, which needs the ROS messages and conversions (catkin
-# build only).
+# The same for the BoxArray, wire, ~sources and reconfigure targets, which need the ROS
+# messages, the node's parameter readers and the header generated from cfg/BroadphaseNode.cfg
+# (catkin build only).
 if(TARGET ${PROJECT_NAME}_ros)
   sap_add_gtest(test_fuzz_replay_ros
     test/stress/test_fuzz_replay_ros.cpp
     test/stress/fuzz_replay.cpp
     fuzz/box_array_checks.cpp
     fuzz/wire_checks.cpp
+    fuzz/sources_checks.cpp
+    fuzz/reconfigure_checks.cpp
     fuzz/fuzz_checks.cpp
     test/stress/stress_sequences.cpp
     test/core/test_main.cpp
@@ -50,7 +54,8 @@ if(TARGET ${PROJECT_NAME}_ros)
   target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
   target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal
     ${catkin_LIBRARIES})
-  add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp)
+  add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp
+    ${PROJECT_NAME}_gencfg)
   target_compile_definitions(test_fuzz_replay_ros PRIVATE
     SAP_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz"
     SAP_ADAPTERS_MSGS_DIR="${CMAKE_CURRENT_SOURCE_DIR}/src/ros/adapters_msgs")

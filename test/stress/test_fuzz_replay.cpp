@@ -1,9 +1,10 @@
-// The text, box-set and sequence fuzzers' corpora and crash regressions, replayed.
+// The text, box-set, sequence and settings fuzzers' corpora and crash regressions, replayed.
 #include <gtest/gtest.h>
 
 #include "fuzz_checks.h"
 #include "fuzz_replay.h"
 #include "sequence_checks.h"
+#include "settings_checks.h"
 
 namespace sap_broadphase::stress {
 namespace {
@@ -18,6 +19,10 @@ TEST(FuzzReplay, BoxSetValidationCorpusAndRegressions) {
 
 TEST(FuzzReplay, FrameSequenceCorpusAndRegressions) {
   expectCorpusClean("sequence", fuzz::checkSequenceBytes);
+}
+
+TEST(FuzzReplay, SettingsCorpusAndRegressions) {
+  expectCorpusClean("settings", fuzz::checkSettingsInput);
 }
 
 }  // namespace

@@ -1,9 +1,11 @@
-// The BoxArray and wire fuzzers' corpora and crash regressions, replayed (need the ROS
-// messages).
+// The BoxArray, wire, ~sources and reconfigure fuzzers' corpora and crash regressions,
+// replayed (need the ROS messages and the node's parameter readers).
 #include <gtest/gtest.h>
 
 #include "box_array_checks.h"
 #include "fuzz_replay.h"
+#include "reconfigure_checks.h"
+#include "sources_checks.h"
 #include "wire_checks.h"
 
 namespace sap_broadphase::stress {
@@ -15,6 +17,14 @@ TEST(FuzzReplay, BoxArrayCorpusAndRegressions) {
 
 TEST(FuzzReplay, WireCorpusAndRegressions) {
   expectCorpusClean("wire", fuzz::checkWireInput);
+}
+
+TEST(FuzzReplay, SourcesCorpusAndRegressions) {
+  expectCorpusClean("sources", fuzz::checkSourcesInput);
+}
+
+TEST(FuzzReplay, ReconfigureCorpusAndRegressions) {
+  expectCorpusClean("reconfigure", fuzz::checkReconfigureInput);
 }
 
 }  // namespace

@@ -168,6 +168,13 @@ std::optional<std::string> configProblem(const BroadphaseConfig& inConfig);
 /// endless line (`sap_pairs /dev/zero`) is refused after this many bytes.
 constexpr std::size_t kMaxTextLineBytes = std::size_t{1} << 20;
 
+/// Most hits one query may answer (Broadphase::query, the node's query_boxes): 2^24 hits are
+/// 128 MB while found and as many again in the answer (and in a query_boxes response, 8 bytes
+/// a hit). Past it the query is refused (std::length_error naming the count) instead of
+/// holding hits until memory runs out: a frame scan stops once the bound is passed, the
+/// frame's index and the scenery are refused once their hits are found.
+constexpr std::size_t kMaxQueryHits = std::size_t{1} << 24;
+
 /// One numeric value an entry point takes.
 struct Limit {
   const char* entry;      ///< where it comes in: "node parameter", "sap_pairs", ...
