@@ -14,6 +14,7 @@ No timing is asserted: each wait is for a condition (the trial's box in the worl
 WAIT only so that a lost message fails the trial instead of hanging the test.
 """
 import os
+import selectors
 import subprocess
 import sys
 import time
@@ -25,6 +26,10 @@ from sap_broadphase.srv import QueryBoxes, QueryBoxesRequest
 
 PACKAGE = "sap_broadphase"
 WAIT = 20.0  # seconds; a bound on waiting, never a speed check
+# A publisher process's start (rospy, the message classes, its node) on a loaded machine can
+# take longer than the world's answer: its wait is bounded on its own, from its start to its
+# "published", so that a slow start is never counted as a lost message.
+START_WAIT = 180.0
 TYPES = [("boxes", "sap_broadphase/BoxArray"), ("markers", "visualization_msgs/MarkerArray"),
          ("vision", "vision_msgs/BoundingBox3DArray"),
          ("detections", "vision_msgs/Detection3DArray"),
@@ -75,6 +80,15 @@ class OneShotTest(unittest.TestCase):
             time.sleep(0.02)  # polled: the answer is exact for the frame it was answered on
         return False
 
+    @staticmethod
+    def wait_published(publisher):
+        """True once the publisher process says it published (its one line on stdout)."""
+        with selectors.DefaultSelector() as selector:
+            selector.register(publisher.stdout, selectors.EVENT_READ)
+            if not selector.select(START_WAIT):
+                return False
+        return publisher.stdout.readline().strip() == "published"
+
     def test_one_shot_publishes_reach_the_world(self):
         lost = []
         for k in range(self.trials):
@@ -84,8 +98,10 @@ class OneShotTest(unittest.TestCase):
                 publishers[type_name, box_id] = subprocess.Popen(
                     [sys.executable, PUBLISHER, type_name, self.topic(short, k),
                      "%d" % (1000 + k), str(box_id)],
-                    stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+                    stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
             for (type_name, box_id), publisher in publishers.items():
+                self.assertTrue(self.wait_published(publisher),
+                                "%s trial %d: the publisher never published" % (type_name, k))
                 reached = self.wait_in_world(box_id)
                 publisher.stdin.close()
                 publisher.wait(WAIT)
