@@ -262,13 +262,15 @@ std::vector<ConfigField> makeConfigFields() {
   return {
       {"threads", ConfigFieldType::kInteger, "0", 0.0, static_cast<double>(maxThreads()),
        "an integer from 0 to 4 a processor (0 = all cores)",
-       "worker threads; 0 = all cores, or one where one is measured faster (method auto)",
+       "worker threads; 0 = all cores (one for a frame below parallel_min_boxes, method auto)",
        "at most 4 a processor (kMaxThreadsPerProcessor x omp_get_num_procs): more only wait at "
        "the sweep's barriers, and OpenMP starts every one (999 on 2 cores: 110 s a frame; "
        "100000: no address space left)",
        getInteger<&C::threads>, setInteger<&C::threads>},
       {"method", ConfigFieldType::kMethod, "auto", 0.0, 0.0, "auto, parallel, sequential or brute",
-       "auto: one thread below parallel_min_boxes boxes or with one thread, else parallel; brute: "
+       "auto: one thread below parallel_min_boxes boxes; the small-frame kernel (no fixed skin) at "
+       "any size on up to 2 threads, else the sweep (parallel from parallel_min_boxes boxes); "
+       "brute: "
        "every pair tested (the oracle)",
        "the engine's methods", getMethod, setMethod},
       {"primary_axis", ConfigFieldType::kAxis, "x", 0.0, 2.0, "x, y or z (or 0, 1, 2)",
