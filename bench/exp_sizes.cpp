@@ -162,8 +162,7 @@ void runSizes(const Options& inOptions) {
         const double oneShot = median(entry.one_shot_ms), steady = median(entry.steady_ms);
         table.addRow({fmtSize(n), fmt(density, 2), entry.name, ran ? fmt(oneShot) : "-",
                       ran ? fmtRatio(oneShot, refOnce) : "-", ran ? fmt(steady) : "-",
-                      ran ? fmtRatio(steady, refKept) : "-",
-                      fmtCount(entry.last_pairs),
+                      ran ? fmtRatio(steady, refKept) : "-", fmtCount(entry.last_pairs),
                       pairStatus(entry.wrong_one_shot, entry.frames_checked),
                       k == 0 ? "reference" : pairStatus(entry.wrong_steady, entry.frames_checked),
                       entry.skipped_slow ? "skipped (slow)"
