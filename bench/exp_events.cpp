@@ -13,7 +13,7 @@
 #include "bench_output.h"
 #include "bench_scenes.h"
 #include "bench_stats.h"
-#include "core/contact_events.h"
+#include "core/frame/contact_events.h"
 #include "experiments.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"

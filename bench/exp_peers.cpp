@@ -16,7 +16,7 @@
 #include "bench_output.h"
 #include "bench_scenes.h"
 #include "bench_stats.h"
-#include "core/pair_sort.h"
+#include "core/frame/pair_sort.h"
 #include "engine_runner.h"
 #include "experiments.h"
 #include "peer_runs.h"

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "bench_output.h"
-#include "core/box_columns.h"
-#include "core/frame_plan.h"
-#include "core/random.h"
-#include "core/small_frame.h"
+#include "core/frame/box_columns.h"
+#include "core/frame/frame_plan.h"
+#include "core/tools/random.h"
+#include "core/strategies/small_frame.h"
 #include "experiments.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"

@@ -27,7 +27,7 @@ add_library(${PROJECT_NAME}_ros
 # yaml-cpp: list and dict parameters given as YAML strings on the command line
 find_package(yaml-cpp REQUIRED)
 target_link_libraries(${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES} yaml-cpp)
-# The core's moving of boxes between frames (src/core/box_transform.h), private to the engine.
+# The core's moving of boxes between frames (src/core/tools/box_transform.h), private to the engine.
 target_include_directories(${PROJECT_NAME}_ros PRIVATE src)
 # node_reconfigure.cpp and node_params.cpp include the header generated from cfg/BroadphaseNode.cfg.
 add_dependencies(${PROJECT_NAME}_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)

@@ -169,14 +169,14 @@ def benchmark_table_problems():
 
 CORE = ROOT / "src" / "core"
 API = ROOT / "include" / "sap_broadphase" / "core"
-INCLUDE = re.compile(r'^\s*#\s*include\s+"(?:sap_broadphase/)?core/(\w+)\.h"', re.M)
+INCLUDE = re.compile(r'^\s*#\s*include\s+"(?:sap_broadphase/)?core/(?:\w+/)?(\w+)\.h"', re.M)
 FACADE = "broadphase"
 ALLOWED_FACADE_INCLUDERS = {CORE / "broadphase.cpp", API / "brute_force.h"}
 
 
 def core_includes():
     """{file: [part it includes]} over the engine's sources and API headers."""
-    files = sorted(CORE.glob("*.h")) + sorted(CORE.glob("*.cpp")) + sorted(API.glob("*.h"))
+    files = sorted(CORE.rglob("*.h")) + sorted(CORE.rglob("*.cpp")) + sorted(API.glob("*.h"))
     return {f: INCLUDE.findall(f.read_text(encoding="utf-8")) for f in files}
 
 

@@ -104,7 +104,7 @@ compile() {  # source object
 }
 export -f compile
 export CXX FLAGS INCLUDES ROOT newest_header
-sources=("$ROOT"/src/core/*.cpp "$ROOT/src/ros/conversions.cpp" "$ROOT/fuzz/fuzz_checks.cpp" \
+sources=("$ROOT"/src/core/*.cpp "$ROOT"/src/core/*/*.cpp "$ROOT/src/ros/conversions.cpp" "$ROOT/fuzz/fuzz_checks.cpp" \
          "$ROOT/fuzz/box_array_checks.cpp" "$ROOT/fuzz/sequence_checks.cpp" \
          "$ROOT/fuzz/wire_checks.cpp" "$ROOT/src/ros/wire_layout.cpp" \
          "$ROOT/fuzz/settings_checks.cpp" "$ROOT/fuzz/sources_checks.cpp" \
@@ -116,7 +116,7 @@ for src in "${sources[@]}"; do echo "$src $OUT/obj/$(basename "$src" .cpp).o"; d
   xargs -P2 -n2 bash -c 'compile "$0" "$1"'
 
 core_objs=()
-for src in "$ROOT"/src/core/*.cpp; do core_objs+=("$OUT/obj/$(basename "$src" .cpp).o"); done
+for src in "$ROOT"/src/core/*.cpp "$ROOT"/src/core/*/*.cpp; do core_objs+=("$OUT/obj/$(basename "$src" .cpp).o"); done
 link() {  # target extra-objects... extra-libs
   local target=$1; shift
   $CXX $FLAGS -fsanitize=fuzzer -o "$OUT/fuzz_$target" "$OUT/obj/fuzz_$target.o" \

@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/frame_history.h"
+#include "core/frame/frame_history.h"
 #include "sap_broadphase/core/scenes.h"
 
 namespace {

@@ -9,12 +9,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/box_columns.h"
-#include "core/pair_sort.h"
-#include "core/radix_sort.h"
-#include "core/small_frame.h"
-#include "core/sort_keys.h"
-#include "core/sweep.h"  // Algorithms 1 and 3 (candidates)
+#include "core/frame/box_columns.h"
+#include "core/frame/pair_sort.h"
+#include "core/sweep/radix_sort.h"
+#include "core/strategies/small_frame.h"
+#include "core/sweep/sort_keys.h"
+#include "core/sweep/sweep.h"  // Algorithms 1 and 3 (candidates)
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"

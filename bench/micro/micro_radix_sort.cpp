@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "core/radix_sort.h"
-#include "core/sort_keys.h"
+#include "core/sweep/radix_sort.h"
+#include "core/sweep/sort_keys.h"
 
 namespace {
 

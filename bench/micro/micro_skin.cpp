@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/box_columns.h"
-#include "core/skin_list.h"
+#include "core/frame/box_columns.h"
+#include "core/strategies/skin_list.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
 

@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/box_columns.h"
-#include "core/static_index.h"
+#include "core/frame/box_columns.h"
+#include "core/strategies/static_index.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
 

@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "core/succ_tree.h"
+#include "core/sweep/succ_tree.h"
 
 namespace {
 

@@ -18,19 +18,19 @@
 #include <string>
 
 #include "core/assert.h"
-#include "core/contact_events.h"
-#include "core/frame_history.h"
-#include "core/frame_plan.h"
-#include "core/frame_query.h"
-#include "core/memory_policy.h"
-#include "core/pair_sort.h"
-#include "core/phase_timer.h"
-#include "core/skin_reuse.h"
-#include "core/small_frame.h"
-#include "core/static_index.h"
-#include "core/sweep_and_prune.h"
+#include "core/frame/contact_events.h"
+#include "core/frame/frame_history.h"
+#include "core/frame/frame_plan.h"
+#include "core/strategies/frame_query.h"
+#include "core/runner/memory_policy.h"
+#include "core/frame/pair_sort.h"
+#include "core/runner/phase_timer.h"
+#include "core/strategies/skin_reuse.h"
+#include "core/strategies/small_frame.h"
+#include "core/strategies/static_index.h"
+#include "core/sweep/sweep_and_prune.h"
 #include "core/tuning.h"
-#include "core/work_units.h"
+#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 

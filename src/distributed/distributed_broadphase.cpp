@@ -14,8 +14,8 @@
 #include <string>
 #include <unordered_map>
 
-#include "core/pair_sort.h"
-#include "core/work_units.h"
+#include "core/frame/pair_sort.h"
+#include "core/runner/work_units.h"
 #include "slab_cuts.h"
 
 namespace sap_broadphase::distributed {

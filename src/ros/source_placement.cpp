@@ -6,7 +6,7 @@
 #include <tf2/exceptions.h>
 
 #include "core/assert.h"
-#include "core/box_transform.h"
+#include "core/tools/box_transform.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {

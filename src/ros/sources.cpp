@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "core/box_transform.h"
+#include "core/tools/box_transform.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "core/box_transform.h"
+#include "core/tools/box_transform.h"
 #include "sap_broadphase/core/box_set.h"
 
 namespace sap_broadphase {

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/memory_policy.h"
+#include "core/runner/memory_policy.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/config.h"
 
@@ -364,7 +364,7 @@ TEST(Limits, TheRobustnessDocIsTheTable) {
   ASSERT_NE(from, std::string::npos) << "no limits table in " << path;
   ASSERT_NE(to, std::string::npos);
   EXPECT_EQ(doc.substr(from + begin.size(), to - from - begin.size()), limitsMarkdown())
-      << "docs/ROBUSTNESS.md and the limits table (src/core/config.cpp) differ; the table:\n"
+      << "docs/ROBUSTNESS.md and the limits table (src/core/frame/config.cpp) differ; the table:\n"
       << limitsMarkdown();
 }
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/sort_keys.h"
+#include "core/sweep/sort_keys.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 

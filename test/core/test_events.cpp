@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/contact_events.h"
+#include "core/frame/contact_events.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"
 #include "test_support.h"

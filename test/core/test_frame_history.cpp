@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/frame_history.h"
+#include "core/frame/frame_history.h"
 #include "test_support.h"
 
 namespace sap_broadphase {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/frame_plan.h"
+#include "core/frame/frame_plan.h"
 #include "core/tuning.h"
 
 namespace sap_broadphase {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/pair_sort.h"
+#include "core/frame/pair_sort.h"
 #include "test_support.h"
 
 namespace sap_broadphase {

@@ -14,8 +14,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/frame_query.h"
-#include "core/pair_sort.h"
+#include "core/strategies/frame_query.h"
+#include "core/frame/pair_sort.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"
 #include "test_support.h"

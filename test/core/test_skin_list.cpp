@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/skin_list.h"
+#include "core/strategies/skin_list.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 

@@ -3,9 +3,9 @@
 // one box left it, and the sweep's costs are learnt from the sweep's own phases.
 #include <gtest/gtest.h>
 
-#include "core/frame_history.h"
-#include "core/frame_plan.h"
-#include "core/skin_reuse.h"
+#include "core/frame/frame_history.h"
+#include "core/frame/frame_plan.h"
+#include "core/strategies/skin_reuse.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"

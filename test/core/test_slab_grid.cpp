@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "core/slab_grid.h"
+#include "core/sweep/slab_grid.h"
 #include "core/tuning.h"
 #include "test_support.h"
 

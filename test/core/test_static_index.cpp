@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/pair_sort.h"
-#include "core/static_index.h"
+#include "core/frame/pair_sort.h"
+#include "core/strategies/static_index.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/scenes.h"
 #include "test_support.h"

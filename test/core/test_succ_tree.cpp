@@ -8,7 +8,7 @@
 #include <set>
 #include <vector>
 
-#include "core/succ_tree.h"
+#include "core/sweep/succ_tree.h"
 #include "test_support.h"
 
 namespace sap_broadphase {

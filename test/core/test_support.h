@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/box_columns.h"
-#include "core/random.h"
+#include "core/frame/box_columns.h"
+#include "core/tools/random.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"

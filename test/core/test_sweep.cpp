@@ -9,13 +9,13 @@
 #include <limits>
 #include <vector>
 
-#include "core/axis_spread.h"
-#include "core/box_columns.h"
-#include "core/key_origin.h"
-#include "core/radix_sort.h"
-#include "core/small_frame.h"
-#include "core/sort_keys.h"
-#include "core/sweep.h"
+#include "core/sweep/axis_spread.h"
+#include "core/frame/box_columns.h"
+#include "core/sweep/key_origin.h"
+#include "core/sweep/radix_sort.h"
+#include "core/strategies/small_frame.h"
+#include "core/sweep/sort_keys.h"
+#include "core/sweep/sweep.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 

@@ -13,8 +13,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/axis_spread.h"
-#include "core/work_units.h"
+#include "core/runner/work_units.h"
+#include "core/sweep/axis_spread.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"
@@ -226,6 +226,29 @@ TEST(WorkRunner, APassInsideAUnitRunsInline) {
     runUnits(8, 2, [&](std::size_t inInner) { runs[inOuter * 8 + inInner].fetch_add(1); });
   });
   for (std::size_t k = 0; k < runs.size(); ++k) ASSERT_EQ(runs[k].load(), 1) << k;
+}
+
+// The threads a pass may use come from the innermost scope, and are restored when it ends;
+// outside every scope a pass runs on one thread.
+TEST(WorkRunner, PassThreadsComeFromTheInnermostScope) {
+  EXPECT_EQ(passThreads(), 1);
+  WorkRunner runner(3);
+  {
+    const RunnerScope frame(runner, 2);
+    EXPECT_EQ(passThreads(), 2);
+    {
+      const ThreadsScope tool(4);
+      EXPECT_EQ(passThreads(), 4);
+    }
+    EXPECT_EQ(passThreads(), 2);
+    const RunnerScope wider(runner, 8);
+    EXPECT_EQ(passThreads(), 3) << "a scope's team is cut to its runner's workers";
+  }
+  EXPECT_EQ(passThreads(), 1);
+  std::vector<std::atomic<int>> workers_seen(2);
+  const ThreadsScope two(2);
+  runUnitsOnWorkers(64, [&](std::size_t, int inWorker) { workers_seen[inWorker].fetch_add(1); });
+  EXPECT_EQ(workers_seen[0].load() + workers_seen[1].load(), 64);
 }
 
 // Engines on several threads at once, each with its own runner (and its workers' own scratch):

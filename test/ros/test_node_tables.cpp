@@ -170,7 +170,7 @@ TEST(NodeTables, NumberParametersHaveALimitsRow) {
     const bool flag = std::holds_alternative<bool& (*)(NodeParams&)>(row.access);
     if (!number || flag) continue;  // switches, text and lists have no range
     EXPECT_NE(findLimit("node parameter", std::string("~") + row.name), nullptr)
-        << "~" << row.name << " has no row in the limits table (src/core/config.cpp)";
+        << "~" << row.name << " has no row in the limits table (src/core/frame/config.cpp)";
   }
 }
 

@@ -33,7 +33,7 @@
 // Only the generated messages and the project's header-only random generator (by a path
 // relative to this file, so soak.sh needs no engine include path): the checker shares no code
 // with the engine it checks.
-#include "../../src/core/random.h"
+#include "../../src/core/tools/random.h"
 
 namespace sap_broadphase {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/box_columns.h"
+#include "core/frame/box_columns.h"
 #include "sap_broadphase/core/brute_force.h"
 
 namespace sap_broadphase::stress {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/random.h"
+#include "core/tools/random.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/pair_set.h"

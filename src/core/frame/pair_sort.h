@@ -1,0 +1,78 @@
+// The engine's pair lists on their way out: the pairing threads' chunked lists and the sorts
+// that put pairs in canonical order (pair_set.h), once a frame.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/runner/buffers.h"
+#include "core/tuning.h"
+#include "sap_broadphase/core/pair_set.h"
+
+namespace sap_broadphase {
+
+/// Pairs appended in fixed-size chunks, the pairing threads' output: growing never copies
+/// (a vector's doubling would keep old and new storage resident together) and clear() keeps
+/// the chunks for the next frame.
+class PairChunks {
+ public:
+  static constexpr std::size_t kChunkPairs = tuning::kPairChunkPairs;
+
+  /// Forgets the pairs, keeping the storage.
+  void clear() {
+    used_chunks_ = 0;
+    fill_ = kChunkPairs;
+  }
+  /// Appends one pair.
+  void push_back(const IdPair& inPair) {
+    if (fill_ == kChunkPairs) startChunk();
+    chunks_[used_chunks_ - 1][fill_++] = inPair;
+  }
+  /// Number of pairs held.
+  std::size_t size() const {
+    return used_chunks_ == 0 ? 0 : (used_chunks_ - 1) * kChunkPairs + fill_;
+  }
+  /// Calls inVisit(pair) for every pair, in insertion order.
+  template <typename Visit>
+  void forEach(Visit&& inVisit) const {
+    for (std::size_t chunk = 0; chunk < used_chunks_; ++chunk) {
+      const std::size_t count = chunk + 1 == used_chunks_ ? fill_ : kChunkPairs;
+      const IdPair* pairs = chunks_[chunk].get();
+      for (std::size_t k = 0; k < count; ++k) inVisit(pairs[k]);
+    }
+  }
+
+ private:
+  void startChunk();
+
+  std::vector<std::unique_ptr<IdPair[]>> chunks_;
+  std::size_t used_chunks_ = 0;
+  std::size_t fill_ = kChunkPairs;
+};
+
+/// Buffers reused by sortPairsCanonical between calls.
+struct PairSortScratch {
+  PairList pairs;
+  Buffer<uint32_t> offsets;  // every sort fills what it reads: growing it zeroes nothing
+};
+
+/// Sorts pairs by (a, b), whatever the order within a pair (box queries' (query id, world id)
+/// hits). Dense ids (largest a below a few times the pair count): a counting sort on a, then
+/// each a's short list sorted by b. Sparse ids: an LSD radix sort on the 64-bit key a<<32|b.
+void sortPairsByAThenB(PairList& ioPairs, PairSortScratch& ioScratch);
+/// The same for pairs with a < b: the canonical order used wherever pairs leave the process.
+void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch);
+/// Convenience overload with temporary buffers.
+void sortPairsCanonical(PairList& ioPairs);
+/// Merges the disjoint lists inParts into outPairs in canonical order, without first copying
+/// them into one list when ids are dense. inParts is left unchanged.
+void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
+                        PairSortScratch& ioScratch);
+/// The same on up to inThreads threads (one part each), so the merge grows with n on every
+/// core rather than on one. Same result for any thread count.
+void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
+                        PairSortScratch& ioScratch, int inThreads);
+
+}  // namespace sap_broadphase
