@@ -3,7 +3,9 @@
 #
 #   scripts/bench.sh --all     every sap_bench experiment the page reads (a CSV and the PNGs
 #                              each), memory in a process of its own, the Python module's
-#                              script when the module is built, sap_microbench, and the runs
+#                              script when the module is built, sap_microbench, the runs of
+#                              their own folders (busy_2p20/, peers_2p17/, physx_sizes*/ when
+#                              PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
 #                              used; into bench/results/<machine>/ with machine.txt (minutes on
 #                              2 cores, not hours). The default.
@@ -54,7 +56,7 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift ;;
     --physx) physx="$2"; shift ;;
     --) shift; bench_args=("$@"); break ;;
-    -h|--help) sed -n '2,29p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
     *) echo "bench.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -115,6 +117,32 @@ echo "bench.sh: results in $out"
 [ -n "$only" ] && { echo "bench.sh: done; results in $out"; exit 0; }
 # Memory in a process of its own, so earlier experiments' heap does not hide the peak.
 "$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e memory "${bench_args[@]}"
+
+# Runs of their own, each in a folder the page names: the busy machine at 2^20 (fewer frames),
+# CGAL alone at 2^17, MPI ranks of this machine (not in --quick), and, when PhysX is named
+# (--physx; with --bin, the PhysX that sap_bench was built with), the size sweep beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17;
+# 20 at 2^20).
+if [ "$quick" -eq 1 ]; then
+  big_busy=(--sizes 2^12 --frames 3); big_peers=(--max-n 2^12)
+  physx_small=(--sizes 2^10 --frames 3); physx_big=(--sizes 2^12 --frames 3)
+else
+  big_busy=(--sizes 2^20 --frames 20); big_peers=(--max-n 2^17)
+  physx_small=(--sizes 2^12,2^14,2^17 --frames 201); physx_big=(--sizes 2^20 --frames 21)
+fi
+run_in_folder() {  # folder experiment sap_bench-arguments...
+  local folder="$out/$1" experiment=$2; shift 2
+  mkdir -p "$folder"; rm -f "$folder/machine.txt"
+  "$bin/sap_bench" "${quick_flag[@]}" --out "$folder" -e "$experiment" "$@" "${bench_args[@]}"
+}
+run_in_folder busy_2p20 busy "${big_busy[@]}"
+run_in_folder peers_2p17 peers "${big_peers[@]}"
+[ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed "${bench_args[@]}"
+if [ -n "$physx" ]; then
+  run_in_folder physx_sizes sizes "${physx_small[@]}" --threads 2
+  run_in_folder physx_sizes_2p20 sizes "${physx_big[@]}" --threads 2
+else
+  echo "bench.sh: no PhysX named (--physx DIR): no physx_sizes/"
+fi
 
 # The Python module beside rtree, when the module is built (the plain CMake build's python/
 # folder, or the catkin workspace's) and rtree is installed.
