@@ -75,11 +75,11 @@ inline Endpoint endpointOfStream(const uint64_t* inStream, std::size_t inK) {
           secondary_stream::high(inStream, inK)};
 }
 
-// Writes the secondary stream of the whole order, on up to inThreads threads.
-void buildSecondaryStream(const PairingInput& inInput, int inThreads) {
+// Writes the secondary stream of the whole order, on the scope's threads.
+void buildSecondaryStream(const PairingInput& inInput) {
   const std::size_t endpoints = 2 * std::size_t{inInput.objects};
   uint64_t* stream = inInput.stream_scratch;
-  runOverItems(WorkUnits{endpoints}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(WorkUnits{endpoints}, [&](std::size_t inBegin, std::size_t inEnd) {
     for (std::size_t k = inBegin; k < inEnd; ++k) {
       const Endpoint endpoint = endpointOfOrder(inInput, k);
       stream[2 * k] = endpoint.rank_and_kind | (uint64_t{endpoint.low} << 32);
@@ -354,16 +354,16 @@ void forEachEndpointOfSlice(const PairingInput& inInput, const uint64_t* inStrea
 // Scatter from the exact counts: the secondary stream, a counting pass over it, then the
 // placement pass. Segments are packed without gaps. Also estimates each partition's work, its
 // entries plus the candidate ranks its low entries span, into ioWork.partition_work.
-void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
+void scatterCounted(const PairingInput& inInput, int inSlices,
                     const RankPartitions& inSplit, SweepWorkspace& ioWork) {
-  buildSecondaryStream(inInput, inThreads);
+  buildSecondaryStream(inInput);
   const uint64_t* stream = inInput.stream_scratch;
   const uint32_t partitions = inSplit.count;
   std::vector<std::size_t>& counts = ioWork.scatter_counts;
   const std::size_t stride = counterStride(partitions);
   counts.assign(std::size_t(inSlices) * stride, 0);
   ioWork.partition_work.assign(partitions, 0);
-  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+  runUnits(inSlices, [&](std::size_t inSlice) {
     // Entry counts at [0, partitions), work at [partitions, 2 * partitions).
     std::size_t* my_counts = &counts[inSlice * stride];
     std::size_t* my_work = my_counts + partitions;
@@ -393,7 +393,7 @@ void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
   }
   resizeDiscarding(ioWork.partition_entries, offset);
   uint64_t* out = ioWork.partition_entries.data();
-  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+  runUnits(inSlices, [&](std::size_t inSlice) {
     const int slice = static_cast<int>(inSlice);
     std::size_t* my_counts = &counts[inSlice * stride];
     forEachEndpointOfSlice(inInput, stream, slice, inSlices, inSplit,
@@ -465,7 +465,7 @@ bool scatterSliceIntoRoom(const PairingInput& inInput, int inSlice, int inSlices
 // Scatter in one pass, straight from the secondary order and the boxes' records, into
 // segments sized from the last frame's (no stream, no counting pass). Returns false, with the
 // entries incomplete, when a segment outgrew its room: then the caller scatters counted.
-bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThreads,
+bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices,
                            const RankPartitions& inSplit, SweepWorkspace& ioWork) {
   const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   std::size_t offset = 0;
@@ -479,7 +479,7 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThre
   const std::size_t stride = counterStride(inSplit.count);
   ioWork.scatter_counts.assign(std::size_t(inSlices) * stride, 0);
   std::vector<uint8_t> slice_fits(static_cast<std::size_t>(inSlices), 1);
-  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+  runUnits(inSlices, [&](std::size_t inSlice) {
     const int slice = static_cast<int>(inSlice);
     std::size_t* cursor = &ioWork.scatter_counts[std::size_t(slice) * stride];
     slice_fits[inSlice] = scatterSliceIntoRoom(inInput, slice, inSlices, inSplit, cursor, ioWork);
@@ -490,9 +490,9 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThre
 // Copies each endpoint of the secondary order to the entry segments of the partitions it
 // matters to, keeping sweep order within each (slice s's segment of a partition holds the
 // entries of slice s of the order, so the segments in slice order are in sweep order), the
-// inSlices slices on up to inThreads threads. When the last frame had the same split, straight
+// inSlices slices on the scope's threads. When the last frame had the same split, straight
 // into its layout; otherwise, or when a segment outgrows it, counted.
-void scatterToPartitions(const PairingInput& inInput, int inSlices, int inThreads,
+void scatterToPartitions(const PairingInput& inInput, int inSlices,
                          const RankPartitions& inSplit, SweepWorkspace& ioWork) {
   const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   ioWork.segment_begin.resize(segments);
@@ -500,8 +500,8 @@ void scatterToPartitions(const PairingInput& inInput, int inSlices, int inThread
   ScatterLayout& layout = ioWork.last_layout;
   const bool same_split = layout.slices == inSlices && layout.shift == inSplit.shift &&
                           layout.partitions == inSplit.count;
-  if (!same_split || !scatterIntoLastLayout(inInput, inSlices, inThreads, inSplit, ioWork))
-    scatterCounted(inInput, inSlices, inThreads, inSplit, ioWork);
+  if (!same_split || !scatterIntoLastLayout(inInput, inSlices, inSplit, ioWork))
+    scatterCounted(inInput, inSlices, inSplit, ioWork);
   if (!same_split) layout.partition_ms.assign(inSplit.count, 0.0);
   layout.slices = inSlices;
   layout.shift = inSplit.shift;
@@ -608,10 +608,11 @@ void orderPartitions(const RankPartitions& inSplit, SweepWorkspace& ioWork) {
 }  // namespace
 
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
+  const NarrowedScope one_thread(1);  // Algorithm 1: every pass of it on the calling thread
   const uint32_t n = inInput.objects;
   if (n <= tuning::kPairingPartitionRanks ||
       uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= tuning::kSequentialTreeBits) {
-    buildSecondaryStream(inInput, 1);
+    buildSecondaryStream(inInput);
     prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
     PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
     sweep.run(WholeStreamReader{inInput.stream_scratch, 2 * std::size_t{n}, n});
@@ -623,18 +624,18 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
   // order; on the big trees every insert, erase and range walk would miss the cache.
   const RankPartitions split = partitionRanks(n, 1);
-  scatterToPartitions(inInput, 1, 1, split, ioWork);
+  scatterToPartitions(inInput, 1, split, ioWork);
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
   for (uint32_t p = 0; p < split.count; ++p)
     sweepPartition(inInput, ioWork, split, 1, p, ioWork.pairing.data(), outPairs);
 }
 
-void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
+void pairParallel(const PairingInput& inInput, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread) {
-  const int threads = std::max(1, inThreads);
+  const int threads = std::max(1, passThreads());
   const RankPartitions split = partitionRanks(inInput.objects, threads);  // Δ and m
   const int slices = unitsForThreads(threads);
-  scatterToPartitions(inInput, slices, threads, split, ioWork);
+  scatterToPartitions(inInput, slices, split, ioWork);
   orderPartitions(split, ioWork);
   SAP_ASSERT(isPermutation(ioWork.partition_order, split.count),
              "partitions handed out twice or never");
@@ -643,7 +644,7 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   outPairsPerThread.resize(threads);
   for (PairChunks& pairs : outPairsPerThread) pairs.clear();  // a smaller team leaves some
   // Each worker sweeps its partitions with its own trees into its own pair list.
-  runUnitsOnWorkers(split.count, threads, [&](std::size_t inK, int inWorker) {
+  runUnitsOnWorkers(split.count, [&](std::size_t inK, int inWorker) {
     SuccTree* trees = &ioWork.pairing[std::size_t(inWorker) * slab_count];
     PairChunks& pairs = outPairsPerThread[inWorker];
     sweepPartition(inInput, ioWork, split, slices, ioWork.partition_order[inK], trees, pairs);
