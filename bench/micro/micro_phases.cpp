@@ -11,9 +11,9 @@
 
 #include "core/frame/box_columns.h"
 #include "core/frame/pair_sort.h"
-#include "core/sweep/radix_sort.h"
 #include "core/runner/work_units.h"
 #include "core/strategies/small_frame.h"
+#include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/sweep/sweep.h"  // Algorithms 1 and 3 (candidates)
 #include "sap_broadphase/core/broadphase.h"

@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "core/sweep/radix_sort.h"
 #include "core/runner/work_units.h"
+#include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 
 namespace {
@@ -54,8 +54,8 @@ void BM_PartitionedSortWarm(benchmark::State& state) {
   sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, bounds, order.data());
   double dispersion = 0.0;
   for (auto _ : state) {
-    dispersion = sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, bounds,
-                             order.data());
+    dispersion =
+        sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, bounds, order.data());
   }
   state.counters["D"] = dispersion;
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(keys.size()));

@@ -21,16 +21,16 @@
 #include "core/frame/contact_events.h"
 #include "core/frame/frame_history.h"
 #include "core/frame/frame_plan.h"
-#include "core/strategies/frame_query.h"
-#include "core/runner/memory_policy.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/memory_policy.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/frame_query.h"
 #include "core/strategies/skin_reuse.h"
 #include "core/strategies/small_frame.h"
 #include "core/strategies/static_index.h"
 #include "core/sweep/sweep_and_prune.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 
@@ -277,8 +277,8 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
   // The frame's threads, decided once (frame_plan.h, frameThreads) and installed in the runner's
   // scope for the whole frame: its loading and its plan's work run on them (passThreads()), the
   // plan may only keep a sequential sweep to one of them (runFrame's nested scope).
-  const RunnerScope frame_scope(
-      impl.runner, frameThreads(impl.config, inFrame.size(), impl.runner.threads()));
+  const RunnerScope frame_scope(impl.runner,
+                                frameThreads(impl.config, inFrame.size(), impl.runner.threads()));
   FrameReport& report = impl.report;
   report = FrameReport();
   impl.events.startFrame();

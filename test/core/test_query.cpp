@@ -14,9 +14,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/strategies/frame_query.h"
 #include "core/frame/pair_sort.h"
 #include "core/runner/work_units.h"
+#include "core/strategies/frame_query.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"
 #include "test_support.h"

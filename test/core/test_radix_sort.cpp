@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 
-#include "core/sweep/radix_sort.h"
 #include "core/runner/work_units.h"
+#include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "test_support.h"
 

@@ -8,8 +8,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/sweep/slab_grid.h"
 #include "core/runner/work_units.h"
+#include "core/sweep/slab_grid.h"
 #include "core/tuning.h"
 #include "test_support.h"
 

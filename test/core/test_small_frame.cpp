@@ -9,11 +9,11 @@
 #include <string>
 #include <utility>
 
-#include "core/sweep/key_origin.h"
+#include "core/runner/work_units.h"
 #include "core/strategies/small_frame.h"
+#include "core/sweep/key_origin.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 

@@ -9,14 +9,14 @@
 #include <limits>
 #include <vector>
 
-#include "core/sweep/axis_spread.h"
 #include "core/frame/box_columns.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/small_frame.h"
+#include "core/sweep/axis_spread.h"
 #include "core/sweep/key_origin.h"
 #include "core/sweep/radix_sort.h"
-#include "core/strategies/small_frame.h"
 #include "core/sweep/sort_keys.h"
 #include "core/sweep/sweep.h"
-#include "core/runner/work_units.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 

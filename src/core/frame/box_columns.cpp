@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "core/sweep/radix_sort.h"
 #include "core/runner/work_units.h"
+#include "core/sweep/radix_sort.h"
 
 namespace sap_broadphase {
 namespace {

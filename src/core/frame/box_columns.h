@@ -45,8 +45,8 @@ struct BoxColumns {
 };
 
 /// Copies every box of inFrame into outBoxes (replaced, capacity reused), unchecked, on the
-/// threads of the runner's scope (passThreads()): for the engine's parts tested or measured on their own, and for query
-/// boxes. Ids beyond 32 bits wrap (check the frame first).
+/// threads of the runner's scope (passThreads()): for the engine's parts tested or measured on
+/// their own, and for query boxes. Ids beyond 32 bits wrap (check the frame first).
 void copyFrame(const BoxFrame& inFrame, BoxColumns& outBoxes);
 /// The same, returned.
 BoxColumns columnsOf(const BoxFrame& inFrame);

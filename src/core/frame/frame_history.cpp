@@ -2,8 +2,8 @@
 #include "core/assert.h"
 #include "core/frame/box_columns.h"
 #include "core/runner/buffers.h"
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 
 #include <algorithm>
 #include <cmath>

@@ -182,6 +182,10 @@ class NarrowedScope {
   RunnerScope scope_;
 };
 
+/// The passes run on the scope's threads, through the overloads without a count below. The
+/// overloads that take inThreads serve the kept-candidate passes (skin_list), which are still
+/// handed the plan's count, and the runner's own tests; they go once nothing passes a count.
+
 /// Runs inBody(unit, worker) for every unit in [0, inUnits) on up to inThreads workers of this
 /// thread's runner (worker < inThreads); one unit or one thread runs inline, as the calling
 /// thread's worker (currentWorker(): 0 unless inside a unit).

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/frame/pair_sort.h"
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 #include "sap_broadphase/core/config.h"  // kMaxQueryHits
 
 namespace sap_broadphase {
@@ -77,9 +77,8 @@ void FrameQuery::scan(const BoxColumns& inQueries, PairList& outHits) const {
   const std::size_t boxes = frame.size();
   const std::size_t blocks = (boxes + tuning::kQueryScanBlock - 1) / tuning::kQueryScanBlock;
   // A scan too short to share keeps to fewer of the scope's threads.
-  const NarrowedScope scan_threads(static_cast<int>(
-      std::min<std::size_t>(passThreads(),
-                            std::max<std::size_t>(1, boxes / tuning::kMinScannedBoxesPerThread))));
+  const NarrowedScope scan_threads(static_cast<int>(std::min<std::size_t>(
+      passThreads(), std::max<std::size_t>(1, boxes / tuning::kMinScannedBoxesPerThread))));
   // A block a unit, each block's hits in its own part, the parts joined in block order: the
   // same hits in the same order on any thread count.
   // Every block stops once the hits of all blocks passed kMaxQueryHits: the query is refused,

@@ -56,8 +56,8 @@ class FrameQuery {
 
 /// Broadphase::query() for valid inQueries: the hits in the last frame (inFrame) and in the
 /// declared scenery (inScenery; its ids differ from the frame's), sorted by (query id, world
-/// id), on the threads of the runner's scope, each hit as {query id, world id} (the facade hands them out
-/// as QueryHits).
+/// id), on the threads of the runner's scope, each hit as {query id, world id} (the facade hands
+/// them out as QueryHits).
 PairList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
                        const StaticIndex& inScenery);
 

@@ -13,11 +13,11 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/key_origin.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1
@@ -268,8 +268,7 @@ __attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxColumns& inBoxes
 // and the cells each box reaches (packed as four bytes: first and last cell on grid axis 0,
 // then on grid axis 1).
 void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
-                  const GridAxis (&inGrid)[2], bool inAvx2,
-                  SmallFrameWorkspace& ioWork) {
+                  const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   resizeDiscarding(ioWork.order, n);
   resizeDiscarding(ioWork.scratch, n);
@@ -330,8 +329,7 @@ void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint3
 // runs a unit of the sorted boxes at a time on the frame's threads, each unit into the entries
 // placeUnitsInCells gave it.
 void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
-               const GridAxis (&inGrid)[2], bool inAvx2,
-               SmallFrameWorkspace& ioWork) {
+               const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, ioWork);
   const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
@@ -411,8 +409,8 @@ void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inA
   const int threads = passThreads();
   const auto unit_entries = static_cast<uint32_t>(
       threads <= 1 ? entries
-                     : std::max<std::size_t>(kUnitBoxes / tuning::kSmallFrameSweepUnitsPerBoxUnit,
-                                             entries / (kUnitsPerThread * threads)));
+                   : std::max<std::size_t>(kUnitBoxes / tuning::kSmallFrameSweepUnitsPerBoxUnit,
+                                           entries / (kUnitsPerThread * threads)));
   cutCellsIntoUnits(ioWork.cell_start, unit_entries, ioWork.unit_first_cell);
   const std::vector<uint32_t>& first_cell = ioWork.unit_first_cell;
   const std::size_t units = first_cell.size() - 1;

@@ -1,8 +1,8 @@
 #include "core/strategies/static_index.h"
 
 #include "core/assert.h"
-#include "core/sweep/axis_spread.h"
 #include "core/runner/buffers.h"
+#include "core/sweep/axis_spread.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 
 #include "core/sweep/radix_sort.h"
 
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 
@@ -355,7 +355,8 @@ void StaticIndex::queryRange(const BoxColumns& inQueries,
   }
 }
 
-void StaticIndex::queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes, PairList& outPairs, PairOrder inOrder) const {
+void StaticIndex::queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+                           PairList& outPairs, PairOrder inOrder) const {
   // Units of queries, each unit's pairs in its own part, the parts joined in unit order: the
   // sequential order for any thread count (a frame of one unit queries inline).
   const WorkUnits units{inQueryIndexes.size()};

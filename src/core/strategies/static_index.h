@@ -25,8 +25,8 @@ namespace sap_broadphase {
 class StaticIndex {
  public:
   /// Indexes boxes inIndexes (distinct positions in inBoxes) of inBoxes on the threads of the
-  /// runner's scope (passThreads()); keeps its own copy of their bounds, ids, groups and masks (the BoxColumns may
-  /// change afterwards). Replaces any earlier content.
+  /// runner's scope (passThreads()); keeps its own copy of their bounds, ids, groups and masks (the
+  /// BoxColumns may change afterwards). Replaces any earlier content.
   void build(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes);
   /// Number of indexed boxes not removed.
   std::size_t size() const { return live_count_; }
@@ -43,7 +43,8 @@ class StaticIndex {
   /// All pairs between boxes inQueryIndexes of inQueries and the index, on the threads of the
   /// runner's scope, appended to outPairs (any order; the caller sorts canonically). The order
   /// is the sequential one, whatever the thread count.
-  void queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes, PairList& outPairs, PairOrder inOrder = PairOrder::kCanonical) const;
+  void queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
+                PairList& outPairs, PairOrder inOrder = PairOrder::kCanonical) const;
   /// Marks the indexed box with id inId as removed (it no longer answers queries); false if
   /// no such box is indexed or it was already removed.
   bool remove(uint32_t inId);

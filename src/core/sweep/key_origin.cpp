@@ -16,8 +16,7 @@ double axisKeyOrigin(const AxisSpread& inSpread) {
 
 KeyOrigin keyOriginOf(FrameSpread& ioSpread) {
   KeyOrigin origin;
-  for (int axis = 0; axis < 3; ++axis)
-    origin.origin[axis] = axisKeyOrigin(ioSpread.axis(axis));
+  for (int axis = 0; axis < 3; ++axis) origin.origin[axis] = axisKeyOrigin(ioSpread.axis(axis));
   return origin;
 }
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/sweep/axis_spread.h"
 #include "core/frame/box_columns.h"
+#include "core/sweep/axis_spread.h"
 #include "core/sweep/sort_keys.h"
 
 namespace sap_broadphase {

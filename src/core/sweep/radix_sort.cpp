@@ -7,9 +7,9 @@
 #include <limits>
 
 #include "core/assert.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -110,17 +110,17 @@ void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex
   for (uint32_t k = 0; k < inCount; ++k) outIndex[k] = static_cast<uint32_t>(sorted[k]);
 }
 
-double PartitionedSorter::sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions, AxisBounds& ioBounds, uint32_t* outIndex) {
+double PartitionedSorter::sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
+                               AxisBounds& ioBounds, uint32_t* outIndex) {
   resizeDiscarding(owned_packed_, inCount);
   resizeDiscarding(owned_scratch_, inCount);
   for (uint32_t k = 0; k < inCount; ++k) owned_packed_[k] = packKeyIndex(inKeys[k], k);
-  return sortPacked(owned_packed_.data(), owned_scratch_.data(), inCount, inPartitions,
-                    ioBounds, outIndex);
+  return sortPacked(owned_packed_.data(), owned_scratch_.data(), inCount, inPartitions, ioBounds,
+                    outIndex);
 }
 
 double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, uint32_t inCount,
-                                     int inPartitions, AxisBounds& ioBounds,
-                                     uint32_t* outIndex) {
+                                     int inPartitions, AxisBounds& ioBounds, uint32_t* outIndex) {
   if (inCount == 0) return 0.0;
   const int partitions = std::clamp(inPartitions, 1, kMaxSortPartitions);
   if (!ioBounds.from_previous_frame ||
@@ -140,8 +140,7 @@ double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, ui
 
 // First frame (or after an axis swap): b_p = min + p * span / m over the finite coordinates.
 void PartitionedSorter::initialiseBoundsFromSpan(const uint64_t* inPacked, uint32_t inCount,
-                                                 int inPartitions,
-                                                 AxisBounds& ioBounds) {
+                                                 int inPartitions, AxisBounds& ioBounds) {
   struct Span {
     float lowest = std::numeric_limits<float>::infinity();
     float highest = -std::numeric_limits<float>::infinity();
@@ -238,8 +237,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
 // Algorithm 2, lines 4-5: the partitions are independent and handed out dynamically. Keys at
 // the sorted positions p * floor(count / m) are kept as next frame's bounds.
 void PartitionedSorter::sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* ioScratch,
-                                                 uint32_t inCount,
-                                                 uint32_t* outIndex) {
+                                                 uint32_t inCount, uint32_t* outIndex) {
   const int partitions = static_cast<int>(partition_size_.size());
   const std::size_t sample_step = inCount / partitions;
   bound_samples_.assign(partitions - 1, 0);

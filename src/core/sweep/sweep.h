@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/frame/box_columns.h"
-#include "core/runner/buffers.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/buffers.h"
 #include "core/sweep/slab_grid.h"
 #include "core/sweep/succ_tree.h"
 #include "core/tuning.h"
@@ -105,8 +105,8 @@ struct SweepWorkspace {
 void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObjects,
                                  SuccTree& ioActive, CandidateRanges& outRanges);
 
-/// Algorithm 3: the same result computed by the scope's threads (passThreads()) on equal slices of the
-/// order (more slices than threads, claimed dynamically), with per-slice sets (of objects, not
+/// Algorithm 3: the same result computed by the scope's threads (passThreads()) on equal slices of
+/// the order (more slices than threads, claimed dynamically), with per-slice sets (of objects, not
 /// ranks) joined by an all-prefix symmetric difference.
 void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);

@@ -5,13 +5,13 @@
 #include <utility>
 
 #include "core/assert.h"
-#include "core/sweep/axis_policy.h"
-#include "core/sweep/axis_spread.h"
 #include "core/runner/buffers.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
+#include "core/sweep/axis_policy.h"
+#include "core/sweep/axis_spread.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 

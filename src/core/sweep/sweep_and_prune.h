@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/frame/pair_sort.h"
 #include "core/runner/buffers.h"
 #include "core/sweep/key_origin.h"
-#include "core/frame/pair_sort.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/slab_grid.h"
 #include "core/sweep/succ_tree.h"

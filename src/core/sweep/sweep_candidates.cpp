@@ -4,9 +4,9 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/sweep.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {

@@ -7,9 +7,9 @@
 #include "core/assert.h"
 #include "core/runner/buffers.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/sweep.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -354,8 +354,8 @@ void forEachEndpointOfSlice(const PairingInput& inInput, const uint64_t* inStrea
 // Scatter from the exact counts: the secondary stream, a counting pass over it, then the
 // placement pass. Segments are packed without gaps. Also estimates each partition's work, its
 // entries plus the candidate ranks its low entries span, into ioWork.partition_work.
-void scatterCounted(const PairingInput& inInput, int inSlices,
-                    const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                    SweepWorkspace& ioWork) {
   buildSecondaryStream(inInput);
   const uint64_t* stream = inInput.stream_scratch;
   const uint32_t partitions = inSplit.count;
@@ -465,8 +465,8 @@ bool scatterSliceIntoRoom(const PairingInput& inInput, int inSlice, int inSlices
 // Scatter in one pass, straight from the secondary order and the boxes' records, into
 // segments sized from the last frame's (no stream, no counting pass). Returns false, with the
 // entries incomplete, when a segment outgrew its room: then the caller scatters counted.
-bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices,
-                           const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                           SweepWorkspace& ioWork) {
   const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   std::size_t offset = 0;
   for (std::size_t s = 0; s < segments; ++s) {
@@ -492,8 +492,8 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices,
 // entries of slice s of the order, so the segments in slice order are in sweep order), the
 // inSlices slices on the scope's threads. When the last frame had the same split, straight
 // into its layout; otherwise, or when a segment outgrows it, counted.
-void scatterToPartitions(const PairingInput& inInput, int inSlices,
-                         const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+void scatterToPartitions(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                         SweepWorkspace& ioWork) {
   const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   ioWork.segment_begin.resize(segments);
   ioWork.segment_end.resize(segments);
@@ -526,13 +526,14 @@ void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCou
 }
 
 // The rank split: partitions of at most tuning::kPairingPartitionRanks ranks, and on several
-// threads at least tuning::kPairingPartitionsPerThread per thread, so that handing the partitions
-// out by decreasing measured work evens the threads out on clustered frames too. The size is the
-// largest power of two that gives at least that many partitions.
-RankPartitions partitionRanks(uint32_t inObjects, int inThreads) {
+// threads (the scope's) at least tuning::kPairingPartitionsPerThread per thread, so that handing
+// the partitions out by decreasing measured work evens the threads out on clustered frames too. The
+// size is the largest power of two that gives at least that many partitions.
+RankPartitions partitionRanks(uint32_t inObjects) {
+  const int threads = passThreads();
   const uint32_t by_cache =
       (inObjects + tuning::kPairingPartitionRanks - 1) / tuning::kPairingPartitionRanks;
-  const uint32_t by_threads = inThreads > 1 ? inThreads * tuning::kPairingPartitionsPerThread : 1;
+  const uint32_t by_threads = threads > 1 ? threads * tuning::kPairingPartitionsPerThread : 1;
   const uint32_t wanted = std::max(by_cache, by_threads);
   const uint32_t largest_size = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
   RankPartitions split;
@@ -623,7 +624,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
   // order; on the big trees every insert, erase and range walk would miss the cache.
-  const RankPartitions split = partitionRanks(n, 1);
+  const RankPartitions split = partitionRanks(n);
   scatterToPartitions(inInput, 1, split, ioWork);
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
   for (uint32_t p = 0; p < split.count; ++p)
@@ -633,7 +634,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
 void pairParallel(const PairingInput& inInput, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread) {
   const int threads = std::max(1, passThreads());
-  const RankPartitions split = partitionRanks(inInput.objects, threads);  // Δ and m
+  const RankPartitions split = partitionRanks(inInput.objects);  // Δ and m
   const int slices = unitsForThreads(threads);
   scatterToPartitions(inInput, slices, split, ioWork);
   orderPartitions(split, ioWork);
