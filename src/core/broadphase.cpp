@@ -250,6 +250,8 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
   {
     // The plan's work on the plan's threads: the frame's, or one for a sequential sweep.
     const RunnerScope plan_scope(runner, frame_plan.threads);
+    SAP_ASSERT(passThreads() == frame_plan.threads,
+               "the plan's work on other threads than its own");
     execute(frame_plan, spread);
     if (!config.skin) {  // the costs only feed the automatic skin's choice
       PhaseTimer timer(report.ms_plan);
