@@ -19,9 +19,9 @@
 #include "bench_memory.h"
 #include "bench_output.h"
 #include "bench_scenes.h"
-#include "core/sweep/axis_spread.h"
 #include "core/frame/frame_history.h"
 #include "core/strategies/skin_list.h"
+#include "core/sweep/axis_spread.h"
 #include "core/sweep/sweep_and_prune.h"
 #include "engine_runner.h"
 #include "experiments.h"
@@ -67,7 +67,7 @@ void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& 
   const std::size_t n = inScene.n;
   FrameHistory history;
   std::optional<ValidationError> problem;
-  history.load(simulator.boxes(), 1, problem);
+  history.load(simulator.boxes(), problem);
   const BoxColumns& boxes = history.loaded();
   BroadphaseConfig config;
   SweepAndPrune sweep(config);
@@ -77,7 +77,7 @@ void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& 
   meter.start();
   {
     FrameSpread spread(boxes);
-    sweep.run(boxes, spread, FramePath::kParallel, 1, report, pairs);
+    sweep.run(boxes, spread, FramePath::kParallel, report, pairs);
   }
   const std::size_t pair_bytes = pairs.capacity() * sizeof(IdPair);
   const std::size_t sweep_bytes =
@@ -87,7 +87,7 @@ void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& 
   const BoxColumns& grown = kept.inflate(boxes, inSkin);
   {
     FrameSpread grown_spread(grown);
-    sweep.run(grown, grown_spread, FramePath::kParallel, 1, report, pairs);
+    sweep.run(grown, grown_spread, FramePath::kParallel, report, pairs);
   }
   const std::size_t candidates = pairs.size();
   kept.adopt(boxes, std::move(pairs));

@@ -5,7 +5,6 @@
 // same frames. Scenes: the uniform ones, the touching lattice, the ball and plane frames; one
 // chart per scene. The oracle is the brute force for small n and, above that, our exact
 // uniform grid (itself checked against the brute force in --quick runs).
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +14,7 @@
 #include "bench_scenes.h"
 #include "bench_stats.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/work_units.h"
 #include "engine_runner.h"
 #include "experiments.h"
 #include "pair_diff.h"
@@ -111,12 +111,15 @@ class QuantisedContender : public EngineContender {
         top = std::max(top, inBoxes.hi(axis, i));
       }
       const double scale = top > origin ? 65535.0 / (top - origin) : 0.0;
-#pragma omp parallel for num_threads(threads_) schedule(static) if (n >= kParallelMinBoxes)
-      for (std::size_t i = 0; i < n; ++i) {
-        quantised_.lo(axis, i) = kOffset + std::floor((inBoxes.lo(axis, i) - origin) * scale);
-        quantised_.hi(axis, i) =
-            kOffset + std::min(65535.0, std::ceil((inBoxes.hi(axis, i) - origin) * scale));
-      }
+      const sap_broadphase::ThreadsScope threads(n >= kParallelMinBoxes ? threads_ : 1);
+      sap_broadphase::runOverItems(
+          sap_broadphase::WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
+            for (std::size_t i = inBegin; i < inEnd; ++i) {
+              quantised_.lo(axis, i) = kOffset + std::floor((inBoxes.lo(axis, i) - origin) * scale);
+              quantised_.hi(axis, i) =
+                  kOffset + std::min(65535.0, std::ceil((inBoxes.hi(axis, i) - origin) * scale));
+            }
+          });
     }
   }
 
@@ -150,18 +153,21 @@ class FatMarginContender : public EngineContender {
           fat_.lo(axis, i) -= margin_, fat_.hi(axis, i) += margin_;
       return;
     }
-#pragma omp parallel for num_threads(threads_) schedule(static) if (n >= kParallelMinBoxes)
-    for (std::size_t i = 0; i < n; ++i) {
-      bool inside = true;
-      for (int axis = 0; axis < 3; ++axis)
-        inside = inside && inBoxes.lo(axis, i) >= fat_.lo(axis, i) &&
-                 inBoxes.hi(axis, i) <= fat_.hi(axis, i);
-      if (inside) continue;
-      for (int axis = 0; axis < 3; ++axis) {
-        fat_.lo(axis, i) = inBoxes.lo(axis, i) - margin_;
-        fat_.hi(axis, i) = inBoxes.hi(axis, i) + margin_;
-      }
-    }
+    const sap_broadphase::ThreadsScope threads(n >= kParallelMinBoxes ? threads_ : 1);
+    sap_broadphase::runOverItems(sap_broadphase::WorkUnits{n},
+                                 [&](std::size_t inBegin, std::size_t inEnd) {
+                                   for (std::size_t i = inBegin; i < inEnd; ++i) {
+                                     bool inside = true;
+                                     for (int axis = 0; axis < 3; ++axis)
+                                       inside = inside && inBoxes.lo(axis, i) >= fat_.lo(axis, i) &&
+                                                inBoxes.hi(axis, i) <= fat_.hi(axis, i);
+                                     if (inside) continue;
+                                     for (int axis = 0; axis < 3; ++axis) {
+                                       fat_.lo(axis, i) = inBoxes.lo(axis, i) - margin_;
+                                       fat_.hi(axis, i) = inBoxes.hi(axis, i) + margin_;
+                                     }
+                                   }
+                                 });
   }
 
   double margin_;

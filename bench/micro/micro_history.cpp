@@ -10,12 +10,14 @@
 #include <vector>
 
 #include "core/frame/frame_history.h"
+#include "core/runner/work_units.h"
 #include "sap_broadphase/core/scenes.h"
 
 namespace {
 
 using sap_broadphase::BoxSet;
 using sap_broadphase::FrameHistory;
+using sap_broadphase::ThreadsScope;
 
 // Two consecutive frames of a uniform scene of inBoxes boxes.
 std::vector<BoxSet> twoFrames(std::size_t inBoxes) {
@@ -36,12 +38,12 @@ int threadsOf(const benchmark::State& inState) {
 
 void BM_HistoryLoadRecords(benchmark::State& state) {
   const std::vector<BoxSet> frames = twoFrames(static_cast<std::size_t>(state.range(0)));
-  const int threads = threadsOf(state);
+  const ThreadsScope threads(threadsOf(state));
   FrameHistory history;
   std::optional<sap_broadphase::ValidationError> problem;
   std::size_t k = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(history.load(frames[k++ & 1], threads, problem).moved_boxes);
+    benchmark::DoNotOptimize(history.load(frames[k++ & 1], problem).moved_boxes);
     history.remember();
   }
   if (problem) state.SkipWithError("a frame was refused");

@@ -11,8 +11,9 @@
 
 #include "core/frame/box_columns.h"
 #include "core/frame/pair_sort.h"
-#include "core/sweep/radix_sort.h"
+#include "core/runner/work_units.h"
 #include "core/strategies/small_frame.h"
+#include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/sweep/sweep.h"  // Algorithms 1 and 3 (candidates)
 #include "sap_broadphase/core/broadphase.h"
@@ -90,12 +91,12 @@ BENCHMARK(BM_CandidatesSequential)
 
 void BM_CandidatesParallel(benchmark::State& state) {
   const PreparedFrame& frame = preparedFrame(state.range(0), densityArg(state));
-  const int threads = static_cast<int>(state.range(2));
+  const ThreadsScope threads(static_cast<int>(state.range(2)));
   SweepWorkspace work;
   CandidateRanges ranges;
   for (auto _ : state) {
     computeCandidatesParallel(frame.primary_order.data(), static_cast<uint32_t>(frame.boxes.size()),
-                              threads, work, ranges);
+                              work, ranges);
   }
 }
 BENCHMARK(BM_CandidatesParallel)

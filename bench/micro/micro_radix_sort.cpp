@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "core/runner/work_units.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 
@@ -12,6 +13,7 @@ namespace {
 
 using sap_broadphase::AxisBounds;
 using sap_broadphase::PartitionedSorter;
+using sap_broadphase::ThreadsScope;
 
 /// Endpoint keys of inBoxes random intervals (lows then highs), as the engine makes them.
 std::vector<uint32_t> endpointKeys(uint32_t inBoxes) {
@@ -44,16 +46,16 @@ BENCHMARK(BM_RadixIndexSort)
 // Algorithm 2 with 16 partitions on state.range(1) threads; warm: B kept between iterations.
 void BM_PartitionedSortWarm(benchmark::State& state) {
   const auto boxes = static_cast<uint32_t>(state.range(0));
-  const int threads = static_cast<int>(state.range(1));
+  const ThreadsScope threads(static_cast<int>(state.range(1)));
   const auto keys = endpointKeys(boxes);
   std::vector<uint32_t> order(keys.size());
   PartitionedSorter sorter;
   AxisBounds bounds;
-  sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, threads, bounds, order.data());
+  sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, bounds, order.data());
   double dispersion = 0.0;
   for (auto _ : state) {
-    dispersion = sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, threads, bounds,
-                             order.data());
+    dispersion =
+        sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, bounds, order.data());
   }
   state.counters["D"] = dispersion;
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(keys.size()));
@@ -66,13 +68,13 @@ BENCHMARK(BM_PartitionedSortWarm)
 // The first frame: B initialised from the key span each time.
 void BM_PartitionedSortCold(benchmark::State& state) {
   const auto boxes = static_cast<uint32_t>(state.range(0));
-  const int threads = static_cast<int>(state.range(1));
+  const ThreadsScope threads(static_cast<int>(state.range(1)));
   const auto keys = endpointKeys(boxes);
   std::vector<uint32_t> order(keys.size());
   PartitionedSorter sorter;
   for (auto _ : state) {
     AxisBounds bounds;
-    sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, threads, bounds, order.data());
+    sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 16, bounds, order.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(keys.size()));
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/frame/box_columns.h"
+#include "core/runner/work_units.h"
 #include "core/strategies/static_index.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
@@ -57,10 +58,10 @@ const StaticScene& staticScene() {
 // Building the index of 10^6 static boxes (once per static set in the engine).
 void BM_StaticIndexBuild(benchmark::State& state) {
   const StaticScene& scene = staticScene();
-  const int threads = static_cast<int>(state.range(0));
+  const ThreadsScope threads(static_cast<int>(state.range(0)));
   for (auto _ : state) {
     StaticIndex index;
-    index.build(scene.all_columns, scene.static_indexes, threads);
+    index.build(scene.all_columns, scene.static_indexes);
     benchmark::DoNotOptimize(index.size());
   }
   state.SetItemsProcessed(state.iterations() * kStatic);
@@ -70,13 +71,16 @@ BENCHMARK(BM_StaticIndexBuild)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 // The per-frame work for the static side: every moving x static pair.
 void BM_StaticIndexQueryAll(benchmark::State& state) {
   const StaticScene& scene = staticScene();
-  const int threads = static_cast<int>(state.range(0));
   StaticIndex index;
-  index.build(scene.all_columns, scene.static_indexes, 0);
+  {
+    const ThreadsScope all_cores(resolveThreadCount(0));
+    index.build(scene.all_columns, scene.static_indexes);
+  }
+  const ThreadsScope threads(static_cast<int>(state.range(0)));
   PairList pairs;
   for (auto _ : state) {
     pairs.clear();
-    index.queryAll(scene.all_columns, scene.moving_indexes, threads, pairs);
+    index.queryAll(scene.all_columns, scene.moving_indexes, pairs);
     benchmark::DoNotOptimize(pairs.data());
   }
   state.counters["pairs"] = static_cast<double>(pairs.size());

@@ -21,16 +21,16 @@
 #include "core/frame/contact_events.h"
 #include "core/frame/frame_history.h"
 #include "core/frame/frame_plan.h"
-#include "core/strategies/frame_query.h"
-#include "core/runner/memory_policy.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/memory_policy.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/frame_query.h"
 #include "core/strategies/skin_reuse.h"
 #include "core/strategies/small_frame.h"
 #include "core/strategies/static_index.h"
 #include "core/sweep/sweep_and_prune.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 
@@ -62,12 +62,12 @@ struct Broadphase::Impl {
   std::optional<ValidationError> sceneryIdConflict(const BoxColumns& inBoxes,
                                                    const BoxFrame& inFrame) const;
   void countBoxesThatPairWithNothing(const BoxColumns& inBoxes);
-  FramePlan plan(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
+  FramePlan plan(const BoxColumns& inBoxes, const FrameDelta& inDelta);
   void execute(const FramePlan& inPlan, FrameSpread& ioSpread);
-  void addSceneryPairs(const BoxColumns& inBoxes, int inThreads);
+  void addSceneryPairs(const BoxColumns& inBoxes);
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
-  void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
+  void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta);
   void forgetFrames();
 };
 
@@ -101,34 +101,36 @@ std::optional<ValidationError> Broadphase::Impl::sceneryIdConflict(const BoxColu
 }
 
 // The plan, made once: whether the kept candidates still cover the boxes is known before it
-// (SkinReuse::coversFrame), so the plan cannot be wrong about them.
-FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& inDelta,
-                                 int inThreads) {
+// (SkinReuse::coversFrame), so the plan cannot be wrong about them. Runs in the frame's scope:
+// its threads are the frame's.
+FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& inDelta) {
+  const int frame_threads = passThreads();
   PlanInputs inputs;
   inputs.config = &config;
   inputs.delta = inDelta;
   inputs.boxes = inBoxes.size();
-  inputs.threads = inThreads;
+  inputs.threads = frame_threads;
   inputs.last_pairs_valid = pairs_valid;
   inputs.kept_candidates = skin.hasCandidates();
   inputs.kept_skin = skin.skin();
   inputs.motion = skin.recentMotion();
   inputs.costs = skin.costs();
   inputs.kept_covers =
-      planConsidersKeptCandidates(inputs) && skin.coversFrame(inBoxes, inThreads, report);
+      planConsidersKeptCandidates(inputs) && skin.coversFrame(inBoxes, frame_threads, report);
   PhaseTimer timer(report.ms_plan);
   const FramePlan plan = planFrame(inputs);
   SAP_ASSERT(plan.path != FramePath::kSkin || inputs.kept_covers,
              "the plan answers from kept candidates that do not cover the frame");
   SAP_ASSERT(plan.sweep_skin == 0.0 || findsAllPairs(plan.path),
              "a skin to grow boxes by on a frame whose pairs are not found from scratch");
-  SAP_ASSERT(plan.threads >= 1 && plan.threads <= inThreads, "the plan's threads out of range");
+  SAP_ASSERT(plan.threads >= 1 && plan.threads <= frame_threads, "the plan's threads out of range");
   return plan;
 }
 
 // Runs the plan's strategy: this frame's pairs of the boxes of ioSpread go into pairs, in
 // canonical order. ioSpread (the boxes' spread) is measured by whichever strategy needs it
-// first and read again by the cost learning after it.
+// first and read again by the cost learning after it. Runs in the plan's scope (its threads
+// are inPlan.threads); the kept-candidate passes are still handed that count.
 void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
   const BoxColumns& boxes = ioSpread.boxes();
   switch (inPlan.path) {
@@ -151,13 +153,13 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         {
           PhaseTimer timer(report.ms_pairing);
-          pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs, inPlan.threads);
+          pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs);
         }
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
       } else {
         PhaseTimer timer(report.ms_pairing);
         skin.forget();
-        pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs, inPlan.threads);
+        pairSmallFrame(boxes, ioSpread, buffers.small_frame, pairs);
       }
       break;
     case FramePath::kSequential:
@@ -165,11 +167,11 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
       if (inPlan.sweep_skin > 0.0) {
         const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
-        sweep.run(grown, grown_spread, inPlan.path, inPlan.threads, report, pairs);
+        sweep.run(grown, grown_spread, inPlan.path, report, pairs);
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
       } else {
         skin.forget();
-        sweep.run(boxes, ioSpread, inPlan.path, inPlan.threads, report, pairs);
+        sweep.run(boxes, ioSpread, inPlan.path, report, pairs);
       }
       break;
   }
@@ -177,8 +179,9 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
 
 // The pairs with the declared scenery join the strategy's pairs, already in canonical order:
 // only the scenery's pairs are sorted, then the two sorted lists are merged (no pair is in
-// both: scenery ids differ from the frame's, and the strategy pairs frame boxes only).
-void Broadphase::Impl::addSceneryPairs(const BoxColumns& inBoxes, int inThreads) {
+// both: scenery ids differ from the frame's, and the strategy pairs frame boxes only). On the
+// frame's threads.
+void Broadphase::Impl::addSceneryPairs(const BoxColumns& inBoxes) {
   if (scenery.size() == 0 || inBoxes.size() == 0) return;
   PairList& scenery_pairs = buffers.scenery_pairs;
   scenery_pairs.clear();
@@ -186,7 +189,7 @@ void Broadphase::Impl::addSceneryPairs(const BoxColumns& inBoxes, int inThreads)
     PhaseTimer timer(report.ms_static);
     buffers.every_box.resize(inBoxes.size());
     std::iota(buffers.every_box.begin(), buffers.every_box.end(), 0u);
-    scenery.queryAll(inBoxes, buffers.every_box, inThreads, scenery_pairs);
+    scenery.queryAll(inBoxes, buffers.every_box, scenery_pairs);
   }
   if (scenery_pairs.empty()) return;
   PhaseTimer timer(report.ms_output);
@@ -237,20 +240,25 @@ Broadphase::Broadphase(Broadphase&&) noexcept = default;
 Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 
 // Everything of a frame after the history has compared (or loaded) it: inBoxes are the boxes
-// that may pair, as the history now holds them.
-void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta,
-                                int inThreads) {
+// that may pair, as the history now holds them. Runs in the frame's scope.
+void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta) {
   skin.startFrame(inDelta);
-  const FramePlan frame_plan = plan(inBoxes, inDelta, inThreads);
+  const FramePlan frame_plan = plan(inBoxes, inDelta);
   FrameSpread spread(inBoxes);  // measured once, by the first part that needs it
   const bool reused = frame_plan.path == FramePath::kReused;
   if (!reused) events.keepLastList(pairs);  // the strategy writes the buffer of the list before
-  execute(frame_plan, spread);
-  if (!config.skin) {  // the costs only feed the automatic skin's choice
-    PhaseTimer timer(report.ms_plan);
-    skin.learn(frame_plan, spread, pairs.size(), report);
+  {
+    // The plan's work on the plan's threads: the frame's, or one for a sequential sweep.
+    const RunnerScope plan_scope(runner, frame_plan.threads);
+    SAP_ASSERT(passThreads() == frame_plan.threads,
+               "the plan's work on other threads than its own");
+    execute(frame_plan, spread);
+    if (!config.skin) {  // the costs only feed the automatic skin's choice
+      PhaseTimer timer(report.ms_plan);
+      skin.learn(frame_plan, spread, pairs.size(), report);
+    }
   }
-  if (!reused) addSceneryPairs(inBoxes, inThreads);
+  if (!reused) addSceneryPairs(inBoxes);
   if (reused) {
     events.sameListAsLast();
   } else {
@@ -267,11 +275,12 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
 
 const PairList& Broadphase::update(const BoxFrame& inFrame) {
   Impl& impl = *impl_;
-  const RunnerScope scope(impl.runner);
   impl.world.clear();  // the history's copy is about to change
-  // The frame's threads, decided once (frame_plan.h, frameThreads): its loading and its plan's
-  // work run on them; the plan may only keep a sequential sweep to one of them.
-  const int threads = frameThreads(impl.config, inFrame.size(), impl.runner.threads());
+  // The frame's threads, decided once (frame_plan.h, frameThreads) and installed in the runner's
+  // scope for the whole frame: its loading and its plan's work run on them (passThreads()), the
+  // plan may only keep a sequential sweep to one of them (runFrame's nested scope).
+  const RunnerScope frame_scope(impl.runner,
+                                frameThreads(impl.config, inFrame.size(), impl.runner.threads()));
   FrameReport& report = impl.report;
   report = FrameReport();
   impl.events.startFrame();
@@ -280,7 +289,7 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
     std::optional<ValidationError> problem;
     const FrameDelta delta = [&] {
       PhaseTimer timer(report.ms_history);
-      return impl.history.load(inFrame, threads, problem);
+      return impl.history.load(inFrame, problem);
     }();
     const BoxColumns& boxes = impl.history.loaded();
     if (!problem && !delta.sameIds()) problem = impl.sceneryIdConflict(boxes, inFrame);
@@ -292,7 +301,7 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
     }
     report.boxes = boxes.size();
     impl.countBoxesThatPairWithNothing(boxes);
-    impl.runFrame(boxes, delta, threads);
+    impl.runFrame(boxes, delta);
   }
   SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
   return impl.pairs;
@@ -322,13 +331,13 @@ void Broadphase::reset() {
 }
 
 void Broadphase::setStaticBoxes(const BoxFrame& inStaticBoxes) {
-  const RunnerScope scope(impl_->runner);
+  const RunnerScope scope(impl_->runner);  // the scenery is built on every thread of the runner
   BoxColumns scenery;
-  copyFrame(inStaticBoxes, scenery, impl_->runner.threads());
+  copyFrame(inStaticBoxes, scenery);
   if (auto problem = checkColumns(scenery, inStaticBoxes)) throw InvalidBoxes(std::move(*problem));
   std::vector<uint32_t> every_box(scenery.size());
   std::iota(every_box.begin(), every_box.end(), 0u);
-  impl_->scenery.build(scenery, every_box, impl_->runner.threads());
+  impl_->scenery.build(scenery, every_box);
   impl_->scenery_ids = scenery.ids;
   std::sort(impl_->scenery_ids.begin(), impl_->scenery_ids.end());
   impl_->pairs_valid = false;  // the last pairs were computed against other scenery
@@ -346,12 +355,12 @@ std::size_t Broadphase::staticBoxCount() const {
 }
 
 QueryHitList Broadphase::query(const BoxFrame& inQueries) const {
-  const RunnerScope scope(impl_->runner);  // a concurrent query finds it busy: runs inline
-  const int threads = impl_->runner.threads();
+  // Every thread of the runner; a concurrent query finds it busy and runs inline.
+  const RunnerScope scope(impl_->runner);
   BoxColumns queries;  // a query's own: queries may run concurrently
-  copyFrame(inQueries, queries, threads);
+  copyFrame(inQueries, queries);
   if (auto problem = checkColumns(queries, inQueries)) throw InvalidBoxes(std::move(*problem));
-  const PairList hits = answerQueries(queries, impl_->world, impl_->scenery, threads);
+  const PairList hits = answerQueries(queries, impl_->world, impl_->scenery);
   QueryHitList answer(hits.size());
   std::transform(hits.begin(), hits.end(), answer.begin(), [](const IdPair& inHit) {
     return QueryHit{inHit.a, inHit.b};

@@ -337,13 +337,14 @@ void DistributedBroadphase::Impl::placeInSlabs(const BoxSet& inBoxes) {
   const std::size_t n = inBoxes.size();
   first_slab.resize(n);
   last_slab.resize(n);
-  runOverItems(WorkUnits{n}, resolveThreadCount(config.engine.threads),
-               [&](std::size_t inBegin, std::size_t inEnd) {
-                 for (std::size_t i = inBegin; i < inEnd; ++i) {
-                   first_slab[i] = slabOf(inBoxes.lo(axis, i));
-                   last_slab[i] = slabOf(inBoxes.hi(axis, i));
-                 }
-               });
+  // On the engine's thread count, through the process's runner (outside the engine's calls).
+  const ThreadsScope threads(resolveThreadCount(config.engine.threads));
+  runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t i = inBegin; i < inEnd; ++i) {
+      first_slab[i] = slabOf(inBoxes.lo(axis, i));
+      last_slab[i] = slabOf(inBoxes.hi(axis, i));
+    }
+  });
 }
 
 SlabDeltas DistributedBroadphase::Impl::deltasSinceLastFrame(const BoxSet& inBoxes) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/frame/frame_history.h"
+#include "core/runner/work_units.h"
 #include "test_support.h"
 
 namespace sap_broadphase {
@@ -21,7 +22,8 @@ using test_support::randomBoxes;
 // Loads inFrame into ioHistory, which must accept it, and returns the delta (a copy).
 FrameDelta loadAccepted(FrameHistory& ioHistory, const BoxFrame& inFrame, int inThreads) {
   std::optional<ValidationError> problem;
-  const FrameDelta delta = ioHistory.load(inFrame, inThreads, problem);
+  const ThreadsScope threads(inThreads);
+  const FrameDelta delta = ioHistory.load(inFrame, problem);
   EXPECT_FALSE(problem) << problem->message();
   return delta;
 }
@@ -196,13 +198,14 @@ TEST(FrameHistory, LoadRefusesWithValidatesWordsAndForgets) {
   FrameHistory history;
   std::optional<ValidationError> problem;
   loadAndRemember(history, frame, 2);
+  const ThreadsScope two_threads(2);  // the refused loads below run on two threads too
 
   // Same ids: a box min > max and a later NaN; the lowest bad box is named as validate() does.
   BoxSet bad = frame;
   bad.lo(1, 700) = bad.hi(1, 700) + 1.0;
   bad.hi(2, 800) = std::nan("");
   const std::vector<BoxSpan> bad_spans = test_support::cutIntoSpans(bad, 300);
-  history.load(BoxFrame(bad_spans), 2, problem);
+  history.load(BoxFrame(bad_spans), problem);
   ASSERT_TRUE(problem);
   const auto expected = validate(bad);
   ASSERT_TRUE(expected);
@@ -210,7 +213,7 @@ TEST(FrameHistory, LoadRefusesWithValidatesWordsAndForgets) {
   EXPECT_EQ(problem->index, 700u);
   EXPECT_EQ(problem->span, 2u);  // boxes 600..899
   // Refused: the next frame is a first frame, even the good one again.
-  EXPECT_EQ(history.load(frame, 2, problem).relation, FrameRelation::kFirst);
+  EXPECT_EQ(history.load(frame, problem).relation, FrameRelation::kFirst);
   EXPECT_FALSE(problem);
 
   // A repeated id in a frame of the same size: other ids, named by validate(), with both spans.
@@ -218,7 +221,7 @@ TEST(FrameHistory, LoadRefusesWithValidatesWordsAndForgets) {
   BoxSet repeated = frame;
   repeated.ids[410] = repeated.ids[3];
   const std::vector<BoxSpan> repeated_spans = test_support::cutIntoSpans(repeated, 300);
-  history.load(BoxFrame(repeated_spans), 1, problem);
+  history.load(BoxFrame(repeated_spans), problem);
   ASSERT_TRUE(problem);
   EXPECT_EQ(problem->problem, BoxProblem::kDuplicateId);
   EXPECT_EQ(problem->index, 410u);
@@ -248,7 +251,7 @@ TEST(FrameHistory, IdOffsetsNumberSpansAndOverflowIsRefused) {
   overflowing[1].id_offset = UINT32_MAX - 5;  // 5 fits, 6 does not
   for (int attempt = 0; attempt < 2; ++attempt) {
     std::optional<ValidationError> problem;
-    history.load(BoxFrame(overflowing), 1, problem);
+    history.load(BoxFrame(overflowing), problem);
     ASSERT_TRUE(problem) << "attempt " << attempt;
     EXPECT_EQ(problem->problem, BoxProblem::kIdOverflow);
     EXPECT_EQ(problem->index, 3u);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/frame/pair_sort.h"
+#include "core/runner/work_units.h"
 #include "test_support.h"
 
 namespace sap_broadphase {
@@ -123,7 +124,8 @@ TEST(PairSet, MergeOfPartsEqualsSortForEveryThreadCount) {
                                             << parts << " parts, " << threads << " threads");
           PairSortScratch scratch;
           PairList merged = {{7, 8}};  // replaced, not appended to
-          sortPairsCanonical(chunks, merged, scratch, threads);
+          const ThreadsScope scope(threads);
+          sortPairsCanonical(chunks, merged, scratch);
           EXPECT_EQ(merged, expected);
           std::size_t left = 0;  // the parts are left as they were
           for (const PairChunks& part : chunks) left += part.size();

@@ -14,8 +14,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/strategies/frame_query.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/frame_query.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "sap_broadphase/core/scenes.h"
 #include "test_support.h"
@@ -147,12 +148,13 @@ TEST(Query, ScansAndTheFrameIndexGiveTheOracleAnswers) {
     const BoxColumns frame_columns = columnsOf(frame);
     FrameQuery frame_query;
     frame_query.setFrame(frame_columns);
+    const ThreadsScope two_threads(2);
     for (int round = 0; round < 6; ++round) {
       BoxSet queries = queryBoxes(20, 100.0, seed * 10 + round);
       if (seed % 2 == 0) addRandomFilters(queries, seed + round);
       const bool was_indexed = frame_query.indexed();
       PairList hits;
-      frame_query.query(columnsOf(queries), 2, hits);
+      frame_query.query(columnsOf(queries), hits);
       PairSortScratch scratch;
       sortPairsByAThenB(hits, scratch);
       QueryHitList answer;
@@ -342,8 +344,9 @@ TEST(Query, MoreHitsThanTheBoundAreRefusedOnScansAndIndexes) {
   const BoxColumns frame_columns = columnsOf(frame);
   FrameQuery frame_query;
   frame_query.setFrame(frame_columns);
+  const ThreadsScope two_threads(2);
   PairList hits;
-  EXPECT_THROW(frame_query.query(columnsOf(queriesOverRow(40, row)), 2, hits), std::length_error);
+  EXPECT_THROW(frame_query.query(columnsOf(queriesOverRow(40, row)), hits), std::length_error);
   EXPECT_FALSE(frame_query.indexed()) << "40 query boxes are scanned";
 
   // Indexed (many query boxes), through the engine: refused naming the bound, then the engine

@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "core/runner/work_units.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "test_support.h"
@@ -246,6 +247,7 @@ TEST(RadixSort, PartitionedSortEqualsStableSortAcrossFrames) {
   for (const std::vector<uint32_t>& baseKeys : keySets()) {
     for (int partitions : {1, 2, 3, 4, 7, 16}) {
       for (int threads : {1, 2, 7}) {
+        const ThreadsScope scope(threads);
         PartitionedSorter sorter;
         AxisBounds bounds;
         std::vector<uint32_t> keys = baseKeys;
@@ -253,7 +255,7 @@ TEST(RadixSort, PartitionedSortEqualsStableSortAcrossFrames) {
         for (int frame = 0; frame < 3; ++frame) {
           std::vector<uint32_t> order(keys.size());
           const double dispersion = sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()),
-                                                partitions, threads, bounds, order.data());
+                                                partitions, bounds, order.data());
           ASSERT_EQ(order, stableOrder(keys))
               << keys.size() << " keys, " << partitions << " partitions, " << threads
               << " threads, frame " << frame;
@@ -278,6 +280,7 @@ TEST(RadixSort, PartitionedSortEqualsStableSortAcrossFrames) {
 }
 
 TEST(RadixSort, PartitionedSortHandlesSizeChangesBetweenFrames) {
+  const ThreadsScope two_threads(2);
   PartitionedSorter sorter;
   AxisBounds bounds;
   TestRandom random(99);
@@ -285,26 +288,27 @@ TEST(RadixSort, PartitionedSortHandlesSizeChangesBetweenFrames) {
     std::vector<uint32_t> keys(count);
     for (uint32_t& key : keys) key = lowKey(random.between(-10.0, 10.0));
     std::vector<uint32_t> order(count);
-    sorter.sort(keys.data(), static_cast<uint32_t>(count), 4, 2, bounds, order.data());
+    sorter.sort(keys.data(), static_cast<uint32_t>(count), 4, bounds, order.data());
     ASSERT_EQ(order, stableOrder(keys)) << count;
   }
 }
 
 TEST(RadixSort, DispersionIsZeroForBalancedPartitionsAndHighWhenClustered) {
   // Frame 1 sets B from the sorted order; frame 2 with the same keys is then perfectly balanced.
+  const ThreadsScope two_threads(2);
   std::vector<uint32_t> keys(40000);
   for (std::size_t k = 0; k < keys.size(); ++k) keys[k] = lowKey(static_cast<double>(k));
   PartitionedSorter sorter;
   AxisBounds bounds;
   std::vector<uint32_t> order(keys.size());
-  sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 4, 2, bounds, order.data());
+  sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 4, bounds, order.data());
   const double balanced =
-      sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 4, 2, bounds, order.data());
+      sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 4, bounds, order.data());
   EXPECT_LT(balanced, 0.01);
   // Now every key collapses onto one value: all land in one partition.
   std::fill(keys.begin(), keys.end(), lowKey(12345.0));
   const double clustered =
-      sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 4, 2, bounds, order.data());
+      sorter.sort(keys.data(), static_cast<uint32_t>(keys.size()), 4, bounds, order.data());
   EXPECT_GT(clustered, 0.5);
   EXPECT_EQ(order, stableOrder(keys));
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/runner/work_units.h"
 #include "core/sweep/slab_grid.h"
 #include "core/tuning.h"
 #include "test_support.h"
@@ -65,11 +66,11 @@ TEST(SlabGrid, TheDefaultIsThePapersSingleList) {
 TEST(SlabGrid, FewBoxesOrOneRequestedSlabKeepOneList) {
   const BoxColumns few = boxesAlongZ(tuning::kMinBoxesForSlabs - 1, 1000.0, 1.0);
   FrameSpread few_spread(few);
-  EXPECT_EQ(chooseSlabGrid(few_spread, kZ, 0, 1).count, 1);
+  EXPECT_EQ(chooseSlabGrid(few_spread, kZ, 0).count, 1);
   const BoxColumns many = boxesAlongZ(tuning::kMinBoxesForSlabs, 1000.0, 1.0);
   FrameSpread many_spread(many);
-  EXPECT_GT(chooseSlabGrid(many_spread, kZ, 0, 1).count, 1);
-  EXPECT_EQ(chooseSlabGrid(many_spread, kZ, 1, 1).count, 1);
+  EXPECT_GT(chooseSlabGrid(many_spread, kZ, 0).count, 1);
+  EXPECT_EQ(chooseSlabGrid(many_spread, kZ, 1).count, 1);
 }
 
 TEST(SlabGrid, AutomaticSlabsAreAboutTwoExtentsWideAndSpanTheBounds) {
@@ -77,7 +78,8 @@ TEST(SlabGrid, AutomaticSlabsAreAboutTwoExtentsWideAndSpanTheBounds) {
   for (double span : {60.0, 1000.0}) {
     const BoxColumns boxes = boxesAlongZ(4096, span, 1.0);
     FrameSpread spread(boxes);
-    const SlabGrid grid = chooseSlabGrid(spread, kZ, 0, 2);
+    const ThreadsScope two_threads(2);
+    const SlabGrid grid = chooseSlabGrid(spread, kZ, 0);
     const int expected = std::min(
         kMaxSlabs, static_cast<int>(std::ceil((span + 1.0) / (tuning::kSlabWidthInExtents * 1.0))));
     EXPECT_EQ(grid.count, expected) << "span " << span;
@@ -91,12 +93,12 @@ TEST(SlabGrid, AutomaticSlabsAreAboutTwoExtentsWideAndSpanTheBounds) {
 TEST(SlabGrid, ARequestedCountIsHonouredUpToTheMaximum) {
   const BoxColumns boxes = columnsOf(randomBoxes(3000, 100.0, 2.0, 8));
   FrameSpread spread(boxes);
-  EXPECT_EQ(chooseSlabGrid(spread, kZ, 7, 1).count, 7);
-  EXPECT_EQ(chooseSlabGrid(spread, kZ, kMaxSlabs, 1).count, kMaxSlabs);
+  EXPECT_EQ(chooseSlabGrid(spread, kZ, 7).count, 7);
+  EXPECT_EQ(chooseSlabGrid(spread, kZ, kMaxSlabs).count, kMaxSlabs);
   // A small frame too: a requested count is not subject to the automatic minimum.
   const BoxColumns few = columnsOf(randomBoxes(10, 100.0, 2.0, 8));
   FrameSpread few_spread(few);
-  EXPECT_EQ(chooseSlabGrid(few_spread, kZ, 3, 1).count, 3);
+  EXPECT_EQ(chooseSlabGrid(few_spread, kZ, 3).count, 3);
 }
 
 TEST(SlabGrid, NoFiniteSpanMeansOneSlab) {
@@ -104,8 +106,8 @@ TEST(SlabGrid, NoFiniteSpanMeansOneSlab) {
   BoxColumns flat = boxesAlongZ(4096, 100.0, 1.0);
   for (std::size_t i = 0; i < flat.size(); ++i) flat.lo[kZ][i] = flat.hi[kZ][i] = 3.0;
   FrameSpread flat_spread(flat);
-  EXPECT_EQ(chooseSlabGrid(flat_spread, kZ, 0, 1).count, 1);
-  EXPECT_EQ(chooseSlabGrid(flat_spread, kZ, 8, 1).count, 1);
+  EXPECT_EQ(chooseSlabGrid(flat_spread, kZ, 0).count, 1);
+  EXPECT_EQ(chooseSlabGrid(flat_spread, kZ, 8).count, 1);
   // Every box unbounded on z: no finite bound at all.
   BoxColumns unbounded = boxesAlongZ(4096, 100.0, 1.0);
   for (std::size_t i = 0; i < unbounded.size(); ++i) {
@@ -113,7 +115,7 @@ TEST(SlabGrid, NoFiniteSpanMeansOneSlab) {
     unbounded.hi[kZ][i] = kInfinity;
   }
   FrameSpread unbounded_spread(unbounded);
-  EXPECT_EQ(chooseSlabGrid(unbounded_spread, kZ, 0, 1).count, 1);
+  EXPECT_EQ(chooseSlabGrid(unbounded_spread, kZ, 0).count, 1);
 }
 
 TEST(SlabGrid, InfiniteBoxesFallInTheEndSlabs) {
@@ -121,7 +123,7 @@ TEST(SlabGrid, InfiniteBoxesFallInTheEndSlabs) {
   boxes.lo[kZ][0] = -kInfinity;
   boxes.hi[kZ][4095] = kInfinity;
   FrameSpread spread(boxes);
-  const SlabGrid grid = chooseSlabGrid(spread, kZ, 0, 1);
+  const SlabGrid grid = chooseSlabGrid(spread, kZ, 0);
   ASSERT_GT(grid.count, 1);
   EXPECT_EQ(grid.slabOf(boxes.lo[kZ][0]), 0);
   EXPECT_EQ(grid.slabOf(boxes.hi[kZ][4095]), grid.count - 1);

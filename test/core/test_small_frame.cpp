@@ -9,11 +9,11 @@
 #include <string>
 #include <utility>
 
-#include "core/sweep/key_origin.h"
+#include "core/runner/work_units.h"
 #include "core/strategies/small_frame.h"
+#include "core/sweep/key_origin.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 
@@ -34,11 +34,12 @@ void expectGridMatches(const BoxColumns& inBoxes, const std::string& inLabel) {
   PairList pairs;
   for (int threads = 1; threads <= 4; ++threads) {
     const std::string label = inLabel + ", " + std::to_string(threads) + " threads";
+    const ThreadsScope scope(threads);
     for (int run = 0; run < 2; ++run) {
-      pairSmallFrame(inBoxes, work, pairs, threads);
+      pairSmallFrame(inBoxes, work, pairs);
       EXPECT_GT(work.grid_cells, 1u) << label << ": the grid did not run";
       EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << label << " (dispatched)";
-      pairSmallFramePortable(inBoxes, work, pairs, threads);
+      pairSmallFramePortable(inBoxes, work, pairs);
       EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << label << " (portable)";
     }
   }
@@ -69,12 +70,13 @@ TEST(SmallFrameGrid, ParallelPassesMatchTheOracleOnOneToFourThreads) {
     const PairList oracle = bruteForcePairs(boxes);
     SmallFrameWorkspace one_thread;
     PairList pairs;
-    pairSmallFrame(boxes, one_thread, pairs, 1);
+    pairSmallFrame(boxes, one_thread, pairs);
     ASSERT_TRUE(test_support::samePairs(oracle, pairs)) << label << ", 1 thread";
     for (int threads = 2; threads <= 4; ++threads) {
       SmallFrameWorkspace work;
+      const ThreadsScope scope(threads);
       const uint64_t regions = parallelRegionsOpened();
-      pairSmallFrame(boxes, work, pairs, threads);
+      pairSmallFrame(boxes, work, pairs);
       const std::string at = label + ", " + std::to_string(threads) + " threads";
       EXPECT_GT(parallelRegionsOpened(), regions) << at << ": no pass was handed out";
       EXPECT_GT(work.unit_first_cell.size(), 2u) << at << ": one run of cells";
@@ -82,7 +84,7 @@ TEST(SmallFrameGrid, ParallelPassesMatchTheOracleOnOneToFourThreads) {
       EXPECT_TRUE(std::equal(one_thread.box_of.begin(), one_thread.box_of.end(),
                              work.box_of.begin(), work.box_of.end()))
           << at << ": the cells' layout depends on the threads";
-      pairSmallFramePortable(boxes, work, pairs, threads);
+      pairSmallFramePortable(boxes, work, pairs);
       EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << at << " (portable)";
     }
   }
@@ -147,7 +149,7 @@ TEST(SmallFrameGrid, BoundsAreTheKeyOriginsOutwardKeys) {
   }
   FrameSpread spread(boxes);
   const int axis = chooseSmallFrameAxis(spread);
-  const KeyOrigin origin = keyOriginOf(spread, 1);
+  const KeyOrigin origin = keyOriginOf(spread);
   SmallFrameWorkspace work;
   PairList pairs;
   for (int sweep = 0; sweep < 2; ++sweep) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/frame/pair_sort.h"
+#include "core/runner/work_units.h"
 #include "core/strategies/static_index.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/scenes.h"
@@ -152,6 +153,21 @@ std::vector<uint32_t> allIndexes(const BoxColumns& inBoxes) {
   return indexes;
 }
 
+/// StaticIndex::build on inThreads threads (the runner's scope).
+void buildOnThreads(StaticIndex& ioIndex, const BoxColumns& inBoxes,
+                    const std::vector<uint32_t>& inIndexes, int inThreads) {
+  const ThreadsScope scope(inThreads);
+  ioIndex.build(inBoxes, inIndexes);
+}
+
+/// StaticIndex::queryAll on inThreads threads (the runner's scope).
+void queryAllOnThreads(const StaticIndex& inIndex, const BoxColumns& inQueries,
+                       const std::vector<uint32_t>& inQueryIndexes, int inThreads,
+                       PairList& outPairs) {
+  const ThreadsScope scope(inThreads);
+  inIndex.queryAll(inQueries, inQueryIndexes, outPairs);
+}
+
 /// Builds the index on inIndexed of inBoxes and expects the oracle from query() one by one and
 /// from queryAll() with 1, 2 and 3 threads.
 void expectMatches(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexed,
@@ -160,14 +176,14 @@ void expectMatches(const BoxColumns& inBoxes, const std::vector<uint32_t>& inInd
   const PairList expected = bruteForceCross(inBoxes, inIndexed, inQueries, inQueryIndexes);
   for (int build_threads : {1, 2}) {
     StaticIndex index;
-    index.build(inBoxes, inIndexed, build_threads);
+    buildOnThreads(index, inBoxes, inIndexed, build_threads);
     ASSERT_EQ(index.size(), inIndexed.size()) << inLabel;
     PairList one_by_one;
     for (uint32_t q : inQueryIndexes) index.query(inQueries, q, one_by_one);
     EXPECT_TRUE(samePairs(expected, one_by_one)) << inLabel << ", query()";
     for (int threads : {1, 2, 3}) {
       PairList all;
-      index.queryAll(inQueries, inQueryIndexes, threads, all);
+      queryAllOnThreads(index, inQueries, inQueryIndexes, threads, all);
       EXPECT_TRUE(samePairs(expected, all)) << inLabel << ", queryAll threads " << threads;
     }
   }
@@ -246,9 +262,9 @@ TEST(StaticIndex, SignedZeroAndUlpGaps) {
   const double hi_s[3] = {5.0, 5.0, 5.0};
   queries.add(12, lo_s, hi_s);
   StaticIndex index;
-  index.build(indexed, allIndexes(indexed), 1);
+  buildOnThreads(index, indexed, allIndexes(indexed), 1);
   PairList pairs;
-  index.queryAll(queries, allIndexes(queries), 1, pairs);
+  queryAllOnThreads(index, queries, allIndexes(queries), 1, pairs);
   sortPairsCanonical(pairs);
   const PairList expected = {{1, 10}, {1, 11}, {2, 11}, {2, 12}};
   EXPECT_EQ(pairs, expected);
@@ -300,7 +316,7 @@ TEST(StaticIndex, Remove) {
   addFilters(indexed, 5);
   const BoxColumns queries = adversarialBoxes(200, 10.0, 0.2, 10000, 6);
   StaticIndex index;
-  index.build(indexed, allIndexes(indexed), 2);
+  buildOnThreads(index, indexed, allIndexes(indexed), 2);
   std::vector<uint32_t> removed;
   Random random(7);
   for (int k = 0; k < 150; ++k) {
@@ -316,7 +332,7 @@ TEST(StaticIndex, Remove) {
       bruteForceCross(indexed, allIndexes(indexed), queries, allIndexes(queries), removed);
   for (int threads : {1, 2, 3}) {
     PairList pairs;
-    index.queryAll(queries, allIndexes(queries), threads, pairs);
+    queryAllOnThreads(index, queries, allIndexes(queries), threads, pairs);
     EXPECT_TRUE(samePairs(expected, pairs)) << "threads " << threads;
   }
 }
@@ -324,22 +340,22 @@ TEST(StaticIndex, Remove) {
 TEST(StaticIndex, EmptySides) {
   const BoxColumns boxes = adversarialBoxes(100, 10.0, 0.2, 0, 11);
   StaticIndex empty;
-  empty.build(boxes, {}, 2);
+  buildOnThreads(empty, boxes, {}, 2);
   EXPECT_EQ(empty.size(), 0u);
   EXPECT_FALSE(empty.remove(3));
   PairList pairs;
-  empty.queryAll(boxes, allIndexes(boxes), 2, pairs);
+  queryAllOnThreads(empty, boxes, allIndexes(boxes), 2, pairs);
   EXPECT_TRUE(pairs.empty());
   StaticIndex never_built;
-  never_built.queryAll(boxes, allIndexes(boxes), 3, pairs);
+  queryAllOnThreads(never_built, boxes, allIndexes(boxes), 3, pairs);
   EXPECT_TRUE(pairs.empty());
 
   StaticIndex full;
-  full.build(boxes, allIndexes(boxes), 2);
-  full.queryAll(boxes, {}, 3, pairs);
+  buildOnThreads(full, boxes, allIndexes(boxes), 2);
+  queryAllOnThreads(full, boxes, {}, 3, pairs);
   EXPECT_TRUE(pairs.empty());
   BoxColumns no_boxes;
-  full.queryAll(no_boxes, {}, 1, pairs);
+  queryAllOnThreads(full, no_boxes, {}, 1, pairs);
   EXPECT_TRUE(pairs.empty());
 }
 
@@ -349,11 +365,11 @@ TEST(StaticIndex, KeepsItsOwnCopyAndRebuilds) {
   const PairList expected =
       bruteForceCross(indexed, allIndexes(indexed), queries, allIndexes(queries));
   StaticIndex index;
-  index.build(adversarialBoxes(50, 3.0, 0.5, 0, 99), {0, 1, 2}, 1);  // replaced below
-  index.build(indexed, allIndexes(indexed), 2);
+  buildOnThreads(index, adversarialBoxes(50, 3.0, 0.5, 0, 99), {0, 1, 2}, 1);  // replaced below
+  buildOnThreads(index, indexed, allIndexes(indexed), 2);
   indexed.clear();
   PairList pairs;
-  index.queryAll(queries, allIndexes(queries), 2, pairs);
+  queryAllOnThreads(index, queries, allIndexes(queries), 2, pairs);
   EXPECT_TRUE(samePairs(expected, pairs));
 }
 
@@ -365,9 +381,9 @@ TEST(StaticIndex, FilteredOutQueriesAndAppending) {
   BoxColumns queries = adversarialBoxes(100, 10.0, 0.1, 1000, 32);
   addFilters(queries, 33);
   StaticIndex index;
-  index.build(boxes, allIndexes(boxes), 2);
+  buildOnThreads(index, boxes, allIndexes(boxes), 2);
   PairList pairs = {{7, 8}};  // appended to, never cleared
-  index.queryAll(queries, allIndexes(queries), 2, pairs);
+  queryAllOnThreads(index, queries, allIndexes(queries), 2, pairs);
   ASSERT_FALSE(pairs.empty());
   EXPECT_EQ(pairs.front(), (IdPair{7, 8}));
   pairs.erase(pairs.begin());
@@ -391,12 +407,12 @@ TEST(StaticIndex, UniformSceneHundredThousandStatic) {
   const PairList expected = bruteForceCross(boxes, indexed, boxes, moving);
   EXPECT_GT(expected.size(), 0u);
   StaticIndex index;
-  index.build(boxes, indexed, 2);
+  buildOnThreads(index, boxes, indexed, 2);
   EXPECT_GT(index.cellsOnAxis(0), 1u);
   EXPECT_EQ(index.largeCount(), 0u);
   for (int threads : {1, 2, 3}) {
     PairList pairs;
-    index.queryAll(boxes, moving, threads, pairs);
+    queryAllOnThreads(index, boxes, moving, threads, pairs);
     EXPECT_TRUE(samePairs(expected, pairs)) << "threads " << threads;
   }
 }

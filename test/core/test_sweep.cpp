@@ -9,11 +9,12 @@
 #include <limits>
 #include <vector>
 
-#include "core/sweep/axis_spread.h"
 #include "core/frame/box_columns.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/small_frame.h"
+#include "core/sweep/axis_spread.h"
 #include "core/sweep/key_origin.h"
 #include "core/sweep/radix_sort.h"
-#include "core/strategies/small_frame.h"
 #include "core/sweep/sort_keys.h"
 #include "core/sweep/sweep.h"
 #include "sap_broadphase/core/brute_force.h"
@@ -89,7 +90,8 @@ TEST(Candidates, ParallelEqualsSequentialForEveryThreadCount) {
       SweepWorkspace work;
       for (int threads : {1, 2, 3, 4, 7, 16}) {
         CandidateRanges parallel;
-        computeCandidatesParallel(order.data(), objects, threads, work, parallel);
+        const ThreadsScope scope(threads);
+        computeCandidatesParallel(order.data(), objects, work, parallel);
         EXPECT_TRUE(sameRanges(sequential, parallel))
             << objects << " objects, " << cells << " cells, " << threads << " threads";
       }
@@ -112,7 +114,8 @@ TEST(Candidates, ParallelInsideAnotherParallelRegion) {
   for (int threads : {2, 3, 4}) {
     SweepWorkspace work;
     CandidateRanges parallel;
-    computeCandidatesParallel(order.data(), objects, threads, work, parallel);
+    const ThreadsScope scope(threads);  // this OpenMP thread's own scope
+    computeCandidatesParallel(order.data(), objects, work, parallel);
     mismatches += !sameRanges(sequential, parallel);
   }
   omp_set_max_active_levels(saved_levels);
@@ -130,7 +133,8 @@ TEST(Candidates, ZeroObjectsWithAFreshWorkspace) {
         computeCandidatesSequential(nullptr, 0, active, sequential);
         SweepWorkspace work;
         CandidateRanges parallel;
-        computeCandidatesParallel(nullptr, 0, 3, work, parallel);
+        const ThreadsScope three_threads(3);
+        computeCandidatesParallel(nullptr, 0, work, parallel);
         std::exit(sequential.of_object.empty() && parallel.of_object.empty() ? 0 : 1);
       },
       ::testing::ExitedWithCode(0), "");
@@ -279,16 +283,17 @@ TEST(FrameSpread, MeasuresEachAxisOnceWhenFirstAsked) {
   addBox(boxes, 3, -inf, 0, 4, 7, 1);  // infinite low end: not in the span or the extents
   addBox(boxes, 1, 4, 0, 2, inf, 1);
   FrameSpread spread(boxes);
-  const AxisSpread expected = measureAxisSpread(boxes, 1, 1);
-  const AxisSpread& first = spread.axis(1, 2);
+  const AxisSpread expected = measureAxisSpread(boxes, 1);
+  const ThreadsScope two_threads(2);
+  const AxisSpread& first = spread.axis(1);
   EXPECT_EQ(first.lowest, 2.0);
   EXPECT_EQ(first.highest, 7.0);
   EXPECT_EQ(first.finite_boxes, 1u);
   EXPECT_EQ(first.extent_sum, expected.extent_sum);
   boxes.lo[1][0] = -50.0;  // a change after the measurement is not seen: measured once
-  EXPECT_EQ(spread.axis(1, 1).lowest, 2.0);
+  EXPECT_EQ(spread.axis(1).lowest, 2.0);
   boxes.lo[0][0] = -50.0;  // axis 0 was not measured yet: its first reading sees the change
-  EXPECT_EQ(spread.axis(0, 1).lowest, -50.0);
+  EXPECT_EQ(spread.axis(0).lowest, -50.0);
 }
 
 TEST(KeyOrigin, CentreOfTheFrameOnlyFarFromZero) {
@@ -296,13 +301,13 @@ TEST(KeyOrigin, CentreOfTheFrameOnlyFarFromZero) {
   addBox(boxes, 4.0e6, 995, -1, 4.0e6 + 2, 997, 1);
   addBox(boxes, 4.0e6 + 8, 1003, -3, 4.0e6 + 10, 1005, 3);
   FrameSpread spread(boxes);
-  const KeyOrigin origin = keyOriginOf(spread, 1);
+  const KeyOrigin origin = keyOriginOf(spread);
   EXPECT_EQ(origin.origin[0], 4.0e6 + 5) << "far from 0 against a span of 10: the centre";
   EXPECT_EQ(origin.origin[1], 1000.0) << "the centre lies 200 half-spans from 0";
   EXPECT_EQ(origin.origin[2], 0.0) << "around 0: the coordinates themselves";
   const BoxColumns no_boxes;
   FrameSpread empty_spread(no_boxes);
-  EXPECT_EQ(keyOriginOf(empty_spread, 1).origin[0], 0.0) << "no finite bound: 0";
+  EXPECT_EQ(keyOriginOf(empty_spread).origin[0], 0.0) << "no finite bound: 0";
 }
 
 }  // namespace

@@ -28,10 +28,10 @@ TEST(WorkUnits, EveryItemRunsOnceAtAnyThreadCountAndUnitSize) {
     for (std::size_t unit_items : {1u, 3u, 64u, 4096u}) {
       for (int threads = 1; threads <= 4; ++threads) {
         std::vector<std::atomic<int>> runs(items);
-        runOverItems(WorkUnits{items, unit_items}, threads,
-                     [&](std::size_t inBegin, std::size_t inEnd) {
-                       for (std::size_t i = inBegin; i < inEnd; ++i) runs[i].fetch_add(1);
-                     });
+        const ThreadsScope scope(threads);
+        runOverItems(WorkUnits{items, unit_items}, [&](std::size_t inBegin, std::size_t inEnd) {
+          for (std::size_t i = inBegin; i < inEnd; ++i) runs[i].fetch_add(1);
+        });
         for (std::size_t i = 0; i < items; ++i)
           ASSERT_EQ(runs[i].load(), 1) << "item " << i << " of " << items << ", units of "
                                        << unit_items << ", " << threads << " threads";
@@ -48,8 +48,9 @@ TEST(WorkUnits, FoldsInUnitOrderWhateverTheThreads) {
   for (double& value : values) value = random.between(-1.0, 1.0) * 1e10 + random.unit();
   const WorkUnits units{values.size(), 97};
   auto sumOf = [&](int inThreads) {
+    const ThreadsScope scope(inThreads);
     return reduceOverItems(
-        units, inThreads, 0.0,
+        units, 0.0,
         [&](std::size_t inBegin, std::size_t inEnd) {
           double sum = 0.0;
           for (std::size_t i = inBegin; i < inEnd; ++i) sum += values[i];
@@ -65,12 +66,16 @@ TEST(WorkUnits, FoldsInUnitOrderWhateverTheThreads) {
 TEST(WorkUnits, OneUnitOrOneThreadOpensNoRegion) {
   const uint64_t before = parallelRegionsOpened();
   int ran = 0;
-  runUnits(1, 4, [&](std::size_t) { ++ran; });
-  runUnits(5, 1, [&](std::size_t) { ++ran; });
+  {
+    const ThreadsScope four_threads(4);
+    runUnits(1, [&](std::size_t) { ++ran; });
+  }
+  runUnits(5, [&](std::size_t) { ++ran; });  // outside any scope: one thread
   EXPECT_EQ(ran, 6);
   EXPECT_EQ(parallelRegionsOpened(), before);
   std::atomic<int> parallel_ran{0};
-  runUnits(8, 2, [&](std::size_t) { parallel_ran.fetch_add(1); });
+  const ThreadsScope two_threads(2);
+  runUnits(8, [&](std::size_t) { parallel_ran.fetch_add(1); });
   EXPECT_EQ(parallel_ran.load(), 8);
   EXPECT_EQ(parallelRegionsOpened(), before + 1);
 }
@@ -79,9 +84,10 @@ TEST(WorkUnits, TheSpreadIsTheSameOnAnyThreadCount) {
   const BoxColumns boxes =
       columnsOf(test_support::randomBoxes(5 * kUnitBoxes + 123, 1000.0, 3.0, 11));
   for (int axis = 0; axis < 3; ++axis) {
-    const AxisSpread one = measureAxisSpread(boxes, axis, 1);
+    const AxisSpread one = measureAxisSpread(boxes, axis);
     for (int threads = 2; threads <= 4; ++threads) {
-      const AxisSpread many = measureAxisSpread(boxes, axis, threads);
+      const ThreadsScope scope(threads);
+      const AxisSpread many = measureAxisSpread(boxes, axis);
       EXPECT_EQ(many.lowest, one.lowest);
       EXPECT_EQ(many.highest, one.highest);
       EXPECT_EQ(many.extent_sum, one.extent_sum) << "axis " << axis << ", " << threads;

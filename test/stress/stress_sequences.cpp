@@ -205,7 +205,7 @@ BoxSet reversedOrder(const BoxSet& inBoxes) {
 KeyOrigin firstFrameKeyOrigin(const BoxSet& inBoxes) {
   const BoxColumns swept = columnsOf(inBoxes);
   FrameSpread spread(swept);
-  return keyOriginOf(spread, 1);
+  return keyOriginOf(spread);
 }
 
 bool keysOverlap(const KeyOrigin& inOrigin, const BoxSet& inBoxes, std::size_t a, std::size_t b) {

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "core/sweep/radix_sort.h"
 #include "core/runner/work_units.h"
+#include "core/sweep/radix_sort.h"
 
 namespace sap_broadphase {
 namespace {
@@ -196,14 +196,14 @@ void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3]
   }
 }
 
-void copyFrame(const BoxFrame& inFrame, BoxColumns& outBoxes, int inThreads) {
+void copyFrame(const BoxFrame& inFrame, BoxColumns& outBoxes) {
   outBoxes.resize(inFrame.size(), inFrame.hasFilters());
   const bool filtered = inFrame.hasFilters();
   std::size_t first_box = 0;
   for (std::size_t s = 0; s < inFrame.spanCount(); ++s) {
     const BoxSpan& span = inFrame.span(s);
     // A 2^20-box frame is 50 MB: copied in work units on the threads (one unit inline).
-    runOverItems(WorkUnits{span.count}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    runOverItems(WorkUnits{span.count}, [&](std::size_t inBegin, std::size_t inEnd) {
       for (std::size_t i = inBegin; i < inEnd; ++i) {
         const double* box = span.bounds + kBoundsPerBox * i;
         const std::size_t k = first_box + i;

@@ -44,10 +44,10 @@ struct BoxColumns {
   bool hasFilters() const { return !groups.empty() || !masks.empty(); }
 };
 
-/// Copies every box of inFrame into outBoxes (replaced, capacity reused), unchecked, on up to
-/// inThreads threads: for the engine's parts tested or measured on their own, and for query
-/// boxes. Ids beyond 32 bits wrap (check the frame first).
-void copyFrame(const BoxFrame& inFrame, BoxColumns& outBoxes, int inThreads = 1);
+/// Copies every box of inFrame into outBoxes (replaced, capacity reused), unchecked, on the
+/// threads of the runner's scope (passThreads()): for the engine's parts tested or measured on
+/// their own, and for query boxes. Ids beyond 32 bits wrap (check the frame first).
+void copyFrame(const BoxFrame& inFrame, BoxColumns& outBoxes);
 /// The same, returned.
 BoxColumns columnsOf(const BoxFrame& inFrame);
 

@@ -2,8 +2,8 @@
 #include "core/assert.h"
 #include "core/frame/box_columns.h"
 #include "core/runner/buffers.h"
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 
 #include <algorithm>
 #include <cmath>
@@ -212,12 +212,12 @@ void copyBlock(const RecordBlock& inBlock, bool inFiltered, std::size_t inBegin,
 // whole block keeps the copy a plain streaming one, and unchanged boxes in it are rewritten
 // with their own bits). The ids are copied too, so that ioLast equals the frame in every case.
 // ioLast has the frame's size, and groups and masks where the frame has them.
-FramePass compareAndCopyBlocks(const FrameReader& inFrame, int inThreads, BoxColumns& ioLast,
+FramePass compareAndCopyBlocks(const FrameReader& inFrame, BoxColumns& ioLast,
                                std::vector<uint8_t>& outUnchanged) {
   const std::size_t n = inFrame.size();
   outUnchanged.resize(n);
   const UnitChanges changes = reduceOverItems(
-      WorkUnits{n}, inThreads, UnitChanges{},
+      WorkUnits{n}, UnitChanges{},
       [&](std::size_t inBegin, std::size_t inEnd) {
         UnitChanges unit;
         RecordBlock block;
@@ -251,7 +251,7 @@ FramePass compareAndCopyBlocks(const FrameReader& inFrame, int inThreads, BoxCol
 
 }  // namespace
 
-const FrameDelta& FrameHistory::load(const BoxFrame& inFrame, int inThreads,
+const FrameDelta& FrameHistory::load(const BoxFrame& inFrame,
                                      std::optional<ValidationError>& outProblem) {
   const FrameReader reader(inFrame, span_first_boxes_);
   const bool had_last = valid_;
@@ -261,11 +261,11 @@ const FrameDelta& FrameHistory::load(const BoxFrame& inFrame, int inThreads,
       had_last && last_.size() == reader.size() && last_.hasFilters() == reader.filtered();
   if (!comparable) {
     // A first frame, or other ids: every box copied, then checked in full.
-    copyFrame(inFrame, last_, inThreads);
+    copyFrame(inFrame, last_);
     outProblem = checkColumns(last_, inFrame);
     if (had_last) delta_.relation = FrameRelation::kOtherIds;
   } else {
-    const FramePass pass = compareAndCopyBlocks(reader, inThreads, last_, unchanged_);
+    const FramePass pass = compareAndCopyBlocks(reader, last_, unchanged_);
     // Same ids as a frame that passed: no id can repeat, and only a box found unusable on the
     // way needs the full check (which names the lowest bad box with validate()'s words).
     outProblem = pass.other_ids || pass.unusable ? checkColumns(last_, inFrame) : std::nullopt;

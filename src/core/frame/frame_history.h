@@ -56,8 +56,7 @@ class FrameHistory {
   /// does and the history is forgotten (the next frame is a first frame). The copy counts as
   /// the last frame only after remember(), so a frame that throws in between leaves a first
   /// frame behind.
-  const FrameDelta& load(const BoxFrame& inFrame, int inThreads,
-                         std::optional<ValidationError>& outProblem);
+  const FrameDelta& load(const BoxFrame& inFrame, std::optional<ValidationError>& outProblem);
   /// The frame load() made, until the next load() or forget().
   const BoxColumns& loaded() const { return last_; }
   /// The last frame remember() made, still there after forget() (which only stops the next

@@ -2,8 +2,8 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 
 #include <algorithm>
 
@@ -61,14 +61,13 @@ void bucketSort(const Pairs& inPairs, std::size_t inTotal, uint32_t inLargestA,
   }
 }
 
-// bucketSort of the per-thread parts on up to inThreads threads: each part counted and placed by
+// bucketSort of the per-thread parts on the scope's threads: each part counted and placed by
 // one thread, the offsets' prefix sum split into ranges of a, the runs of equal a sorted by b in
 // chunks, all handed out dynamically. ioOffsets holds one row of counts per part; after placing,
 // the last part's row ends each run of a. Same result as bucketSort: the layout is part 0's
 // pairs of a, then part 1's, ..., and every run is then sorted by b.
 void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal,
-                     uint32_t inLargestA, int inThreads, Buffer<uint32_t>& ioOffsets,
-                     PairList& outSorted) {
+                     uint32_t inLargestA, Buffer<uint32_t>& ioOffsets, PairList& outSorted) {
   const std::size_t parts = inParts.size();
   const std::size_t row = std::size_t{inLargestA} + 1;
   resizeDiscarding(ioOffsets, parts * row);
@@ -77,15 +76,15 @@ void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal
   IdPair* sorted = outSorted.data();
   // The values of a are cut into more ranges than threads, and every step's parts or ranges are
   // claimed dynamically (work_units.h).
-  const int ranges = unitsForThreads(inThreads);
+  const int ranges = unitsForThreads(passThreads());
   std::vector<uint32_t> range_base(ranges + 1, 0);  // pairs before each range of a
   auto rangeBegin = [&](std::size_t inRange) { return row * inRange / ranges; };
-  runUnits(parts, inThreads, [&](std::size_t inPart) {
+  runUnits(parts, [&](std::size_t inPart) {
     uint32_t* counts = offsets + inPart * row;
     std::fill(counts, counts + row, 0u);
     inParts[inPart].forEach([&](const IdPair& inPair) { ++counts[inPair.a]; });
   });
-  runUnits(ranges, inThreads, [&](std::size_t inRange) {
+  runUnits(ranges, [&](std::size_t inRange) {
     uint32_t in_range = 0;
     for (std::size_t part = 0; part < parts; ++part)
       for (std::size_t a = rangeBegin(inRange); a < rangeBegin(inRange + 1); ++a)
@@ -94,7 +93,7 @@ void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal
   });
   for (int range = 0; range < ranges; ++range) range_base[range + 1] += range_base[range];
   SAP_ASSERT(range_base[ranges] == inTotal, "the ranges of a miss some pairs");
-  runUnits(ranges, inThreads, [&](std::size_t inRange) {
+  runUnits(ranges, [&](std::size_t inRange) {
     uint32_t next = range_base[inRange];
     for (std::size_t a = rangeBegin(inRange); a < rangeBegin(inRange + 1); ++a) {
       for (std::size_t part = 0; part < parts; ++part) {
@@ -105,13 +104,13 @@ void bucketSortParts(const std::vector<PairChunks>& inParts, std::size_t inTotal
       }
     }
   });
-  runUnits(parts, inThreads, [&](std::size_t inPart) {
+  runUnits(parts, [&](std::size_t inPart) {
     uint32_t* next_slot = offsets + inPart * row;
     inParts[inPart].forEach([&](const IdPair& inPair) { sorted[next_slot[inPair.a]++] = inPair; });
   });
   const uint32_t* run_end = offsets + (parts - 1) * row;
   constexpr std::size_t kRunChunk = tuning::kPairRunChunk;
-  runUnits((row + kRunChunk - 1) / kRunChunk, inThreads, [&](std::size_t inChunk) {
+  runUnits((row + kRunChunk - 1) / kRunChunk, [&](std::size_t inChunk) {
     const std::size_t first = inChunk * kRunChunk;
     const std::size_t last = std::min(row, first + kRunChunk);
     uint32_t begin = first == 0 ? 0 : run_end[first - 1];
@@ -191,18 +190,13 @@ void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch) {
 
 void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
                         PairSortScratch& ioScratch) {
-  sortPairsCanonical(inParts, outPairs, ioScratch, 1);
-}
-
-void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
-                        PairSortScratch& ioScratch, int inThreads) {
   std::size_t total = 0;
   for (const PairChunks& part : inParts) total += part.size();
   const int threads =
-      static_cast<int>(std::min<std::size_t>(std::max(1, inThreads), inParts.size()));
+      static_cast<int>(std::min<std::size_t>(std::max(1, passThreads()), inParts.size()));
   // The largest a of each part, then of all: the same for any thread count.
   std::vector<uint32_t> largest_of_part(inParts.size(), 0);
-  runUnits(inParts.size(), inThreads, [&](std::size_t inPart) {
+  runUnits(inParts.size(), [&](std::size_t inPart) {
     uint32_t largest = 0;
     inParts[inPart].forEach([&](const IdPair& inPair) { largest = std::max(largest, inPair.a); });
     largest_of_part[inPart] = largest;
@@ -210,10 +204,12 @@ void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPai
   uint32_t largest_a = 0;
   for (uint32_t largest : largest_of_part) largest_a = std::max(largest_a, largest);
   if (denseEnough(largest_a, total)) {
-    if (threads > 1 && total >= tuning::kParallelMergePairs)
-      bucketSortParts(inParts, total, largest_a, threads, ioScratch.offsets, outPairs);
-    else
+    if (threads > 1 && total >= tuning::kParallelMergePairs) {
+      const NarrowedScope part_threads(threads);  // no more threads than parts
+      bucketSortParts(inParts, total, largest_a, ioScratch.offsets, outPairs);
+    } else {
       bucketSort(inParts, total, largest_a, ioScratch.offsets, outPairs);
+    }
   } else {
     resizeDiscarding(outPairs, total);
     std::size_t next = 0;

@@ -67,12 +67,10 @@ void sortPairsCanonical(PairList& ioPairs, PairSortScratch& ioScratch);
 /// Convenience overload with temporary buffers.
 void sortPairsCanonical(PairList& ioPairs);
 /// Merges the disjoint lists inParts into outPairs in canonical order, without first copying
-/// them into one list when ids are dense. inParts is left unchanged.
+/// them into one list when ids are dense. inParts is left unchanged. On the threads of the
+/// runner's scope (one part each), so the merge grows with n on every core rather than on one;
+/// the same result for any thread count.
 void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
                         PairSortScratch& ioScratch);
-/// The same on up to inThreads threads (one part each), so the merge grows with n on every
-/// core rather than on one. Same result for any thread count.
-void sortPairsCanonical(const std::vector<PairChunks>& inParts, PairList& outPairs,
-                        PairSortScratch& ioScratch, int inThreads);
 
 }  // namespace sap_broadphase

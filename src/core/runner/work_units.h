@@ -170,6 +170,22 @@ class ThreadsScope {
   RunnerScope scope_;
 };
 
+/// The scope's runner with at most inAtMost of the scope's threads, for the scope's life: a part
+/// of the frame's work that uses fewer threads than the frame (a sequential sweep on one, a scan
+/// too short to share) narrows the scope instead of taking a count.
+class NarrowedScope {
+ public:
+  explicit NarrowedScope(int inAtMost)
+      : scope_(currentRunner(passThreads()), std::max(1, std::min(inAtMost, passThreads()))) {}
+
+ private:
+  RunnerScope scope_;
+};
+
+/// The passes run on the scope's threads, through the overloads without a count below. The
+/// overloads that take inThreads serve the kept-candidate passes (skin_list), which are still
+/// handed the plan's count, and the runner's own tests; they go once nothing passes a count.
+
 /// Runs inBody(unit, worker) for every unit in [0, inUnits) on up to inThreads workers of this
 /// thread's runner (worker < inThreads); one unit or one thread runs inline, as the calling
 /// thread's worker (currentWorker(): 0 unless inside a unit).

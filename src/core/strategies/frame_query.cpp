@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "core/frame/pair_sort.h"
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
-#include "sap_broadphase/core/config.h"  // resolveThreadCount
+#include "core/tuning.h"
+#include "sap_broadphase/core/config.h"  // kMaxQueryHits
 
 namespace sap_broadphase {
 
@@ -52,40 +52,40 @@ bool FrameQuery::shouldIndex(std::size_t inQueries) const {
   return scanned + inQueries > tuning::kQueryScansPerIndexBuild;
 }
 
-void FrameQuery::buildIndex(int inThreads) const {
+void FrameQuery::buildIndex() const {
   std::lock_guard<std::mutex> lock(index_mutex_);
   if (indexed()) return;  // a concurrent query built it while this one waited
-  index_.build(*frame_, everyIndex(frame_->size()), inThreads);
+  index_.build(*frame_, everyIndex(frame_->size()));
   indexed_.store(true, std::memory_order_release);
 }
 
-void FrameQuery::query(const BoxColumns& inQueries, int inThreads, PairList& outHits) const {
+void FrameQuery::query(const BoxColumns& inQueries, PairList& outHits) const {
   if (frame_ == nullptr || frame_->size() == 0 || inQueries.size() == 0) return;
   if (!shouldIndex(inQueries.size())) {
-    scan(inQueries, inThreads, outHits);
+    scan(inQueries, outHits);
     return;
   }
-  buildIndex(inThreads);
-  index_.queryAll(inQueries, everyIndex(inQueries.size()), inThreads, outHits,
+  buildIndex();
+  index_.queryAll(inQueries, everyIndex(inQueries.size()), outHits,
                   StaticIndex::PairOrder::kQueryFirst);
 }
 
 // Frame boxes in blocks, each block tested against every query box: the primary axis first, as
 // the sweep does, since it rejects most boxes reading two of their six bounds.
-void FrameQuery::scan(const BoxColumns& inQueries, int inThreads, PairList& outHits) const {
+void FrameQuery::scan(const BoxColumns& inQueries, PairList& outHits) const {
   const BoxColumns& frame = *frame_;
   const std::size_t boxes = frame.size();
   const std::size_t blocks = (boxes + tuning::kQueryScanBlock - 1) / tuning::kQueryScanBlock;
-  const int threads = static_cast<int>(
-      std::min<std::size_t>(resolveThreadCount(inThreads),
-                            std::max<std::size_t>(1, boxes / tuning::kMinScannedBoxesPerThread)));
+  // A scan too short to share keeps to fewer of the scope's threads.
+  const NarrowedScope scan_threads(static_cast<int>(std::min<std::size_t>(
+      passThreads(), std::max<std::size_t>(1, boxes / tuning::kMinScannedBoxesPerThread))));
   // A block a unit, each block's hits in its own part, the parts joined in block order: the
   // same hits in the same order on any thread count.
   // Every block stops once the hits of all blocks passed kMaxQueryHits: the query is refused,
   // and the hits held stay within the bound and a query row of a block for each thread.
   std::vector<PairList> parts(blocks);
   std::atomic<std::size_t> found{0};
-  runUnits(blocks, threads, [&](std::size_t inBlock) {
+  runUnits(blocks, [&](std::size_t inBlock) {
     PairList& hits = parts[inBlock];
     const std::size_t begin = inBlock * tuning::kQueryScanBlock;
     const std::size_t end = std::min(boxes, begin + tuning::kQueryScanBlock);
@@ -108,12 +108,12 @@ void FrameQuery::scan(const BoxColumns& inQueries, int inThreads, PairList& outH
 }
 
 PairList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
-                       const StaticIndex& inScenery, int inThreads) {
+                       const StaticIndex& inScenery) {
   PairList hits;
-  inFrame.query(inQueries, inThreads, hits);
+  inFrame.query(inQueries, hits);
   checkQueryHits(hits.size());
   if (inScenery.size() > 0 && inQueries.size() > 0) {
-    inScenery.queryAll(inQueries, everyIndex(inQueries.size()), inThreads, hits,
+    inScenery.queryAll(inQueries, everyIndex(inQueries.size()), hits,
                        StaticIndex::PairOrder::kQueryFirst);
     checkQueryHits(hits.size());
   }

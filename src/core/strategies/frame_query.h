@@ -35,14 +35,14 @@ class FrameQuery {
   /// (closed intervals) and passes the group/mask filter both ways, in any order. inQueries
   /// are valid (validate()). May run concurrently with other query() calls, never with
   /// setFrame() or clear().
-  void query(const BoxColumns& inQueries, int inThreads, PairList& outHits) const;
+  void query(const BoxColumns& inQueries, PairList& outHits) const;
   /// True once this frame's index has been built (for tests and benchmarks).
   bool indexed() const { return indexed_.load(std::memory_order_acquire); }
 
  private:
   bool shouldIndex(std::size_t inQueries) const;
-  void buildIndex(int inThreads) const;
-  void scan(const BoxColumns& inQueries, int inThreads, PairList& outHits) const;
+  void buildIndex() const;
+  void scan(const BoxColumns& inQueries, PairList& outHits) const;
 
   const BoxColumns* frame_ = nullptr;
   // The index is built by whichever concurrent query first needs it; the others wait on the
@@ -56,9 +56,9 @@ class FrameQuery {
 
 /// Broadphase::query() for valid inQueries: the hits in the last frame (inFrame) and in the
 /// declared scenery (inScenery; its ids differ from the frame's), sorted by (query id, world
-/// id), on up to inThreads threads, each hit as {query id, world id} (the facade hands them out
-/// as QueryHits).
+/// id), on the threads of the runner's scope, each hit as {query id, world id} (the facade hands
+/// them out as QueryHits).
 PairList answerQueries(const BoxColumns& inQueries, const FrameQuery& inFrame,
-                       const StaticIndex& inScenery, int inThreads);
+                       const StaticIndex& inScenery);
 
 }  // namespace sap_broadphase

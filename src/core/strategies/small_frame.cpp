@@ -13,11 +13,11 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/key_origin.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1
@@ -268,15 +268,14 @@ __attribute__((target("avx2"))) void outwardBoundsAvx2(const BoxColumns& inBoxes
 // and the cells each box reaches (packed as four bytes: first and last cell on grid axis 0,
 // then on grid axis 1).
 void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
-                  const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
-                  SmallFrameWorkspace& ioWork) {
+                  const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   resizeDiscarding(ioWork.order, n);
   resizeDiscarding(ioWork.scratch, n);
   resizeDiscarding(ioWork.bounds, 6 * std::size_t{n});
   resizeDiscarding(ioWork.cell_range, n);
   const int axes[3] = {inAxis, (inAxis + 1) % 3, (inAxis + 2) % 3};
-  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
     const auto first = static_cast<uint32_t>(inBegin), end = static_cast<uint32_t>(inEnd);
 #if SAP_SMALL_FRAME_AVX2
     if (inAvx2)
@@ -300,10 +299,10 @@ void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAx
 // boxes in sorted order would give, whatever the thread count), and cell_start each cell's run
 // (its entries and kBlock of padding).
 void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint32_t inCells,
-                       uint32_t inCells1, int inThreads, SmallFrameWorkspace& ioWork) {
+                       uint32_t inCells1, SmallFrameWorkspace& ioWork) {
   Buffer<uint32_t>& counts = ioWork.unit_cell_count;
   resizeDiscarding(counts, inUnits.count() * inCells);
-  runUnits(inUnits.count(), inThreads, [&](std::size_t inUnit) {
+  runUnits(inUnits.count(), [&](std::size_t inUnit) {
     uint32_t* row = counts.data() + inUnit * inCells;
     std::fill(row, row + inCells, 0u);
     for (std::size_t k = inUnits.begin(inUnit); k < inUnits.end(inUnit); ++k)
@@ -330,21 +329,20 @@ void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint3
 // runs a unit of the sorted boxes at a time on the frame's threads, each unit into the entries
 // placeUnitsInCells gave it.
 void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
-               const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
-               SmallFrameWorkspace& ioWork) {
+               const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
-  measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, inThreads, ioWork);
+  measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, ioWork);
   const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
   const uint32_t cells = inGrid[0].cells * inGrid[1].cells;
   const WorkUnits units{n};
-  placeUnitsInCells(sorted, units, cells, inGrid[1].cells, inThreads, ioWork);
+  placeUnitsInCells(sorted, units, cells, inGrid[1].cells, ioWork);
   const uint32_t entries = ioWork.cell_start[cells];
   for (int slot = 0; slot < 3; ++slot) {
     resizeDiscarding(ioWork.lo[slot], entries);
     resizeDiscarding(ioWork.hi[slot], entries);
   }
   resizeDiscarding(ioWork.box_of, entries);
-  runUnits(units.count(), inThreads, [&](std::size_t inUnit) {
+  runUnits(units.count(), [&](std::size_t inUnit) {
     uint32_t* cursor = ioWork.unit_cell_count.data() + inUnit * cells;
     for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
       const auto box = static_cast<uint32_t>(sorted[k]);
@@ -405,41 +403,42 @@ void sweepCell(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAv
 
 // Sweeps every cell, runs of cells (units) on the frame's threads, each worker into its own
 // list; the lists are merged into canonical order.
-void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
+void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
                 SmallFrameWorkspace& ioWork, PairList& outPairs) {
   const uint32_t entries = ioWork.cell_start.back();
+  const int threads = passThreads();
   const auto unit_entries = static_cast<uint32_t>(
-      inThreads <= 1 ? entries
-                     : std::max<std::size_t>(kUnitBoxes / tuning::kSmallFrameSweepUnitsPerBoxUnit,
-                                             entries / (kUnitsPerThread * inThreads)));
+      threads <= 1 ? entries
+                   : std::max<std::size_t>(kUnitBoxes / tuning::kSmallFrameSweepUnitsPerBoxUnit,
+                                           entries / (kUnitsPerThread * threads)));
   cutCellsIntoUnits(ioWork.cell_start, unit_entries, ioWork.unit_first_cell);
   const std::vector<uint32_t>& first_cell = ioWork.unit_first_cell;
   const std::size_t units = first_cell.size() - 1;
-  const int team = teamForUnits(units, inThreads);
+  const int team = teamForUnits(units, threads);
   ioWork.pairs_per_worker.resize(std::max<std::size_t>(1, team));
   for (PairChunks& pairs : ioWork.pairs_per_worker) pairs.clear();
-  runUnitsOnWorkers(units, team, [&](std::size_t inUnit, int inWorker) {
+  runUnitsOnWorkers(units, [&](std::size_t inUnit, int inWorker) {
     SAP_ASSERT(inWorker < team, "a worker beyond the sweep's lists");
     for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell)
       sweepCell(inBoxes, inGrid, inAvx2, ioWork, cell, ioWork.pairs_per_worker[inWorker]);
   });
-  sortPairsCanonical(ioWork.pairs_per_worker, outPairs, ioWork.pair_scratch, team);
+  sortPairsCanonical(ioWork.pairs_per_worker, outPairs, ioWork.pair_scratch);
 }
 
 void pairWith(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-              PairList& outPairs, int inThreads, bool inAvx2) {
+              PairList& outPairs, bool inAvx2) {
   outPairs.clear();
   if (inBoxes.size() < 2) return;
   SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the small frame reads the spread of other boxes");
   const auto n = static_cast<uint32_t>(inBoxes.size());
-  for (int axis = 0; axis < 3; ++axis) ioSpread.axis(axis, inThreads);  // measured once, here
+  for (int axis = 0; axis < 3; ++axis) ioSpread.axis(axis);  // measured once, here
   const int axis = chooseSmallFrameAxis(ioSpread);
-  const KeyOrigin origin = keyOriginOf(ioSpread, inThreads);
+  const KeyOrigin origin = keyOriginOf(ioSpread);
   const GridAxis grid[2] = {gridAxis(ioSpread, origin, (axis + 1) % 3, n),
                             gridAxis(ioSpread, origin, (axis + 2) % 3, n)};
   ioWork.grid_cells = grid[0].cells * grid[1].cells;
-  fillCells(inBoxes, origin, axis, grid, inAvx2, inThreads, ioWork);
-  sweepCells(inBoxes, grid, inAvx2, inThreads, ioWork, outPairs);
+  fillCells(inBoxes, origin, axis, grid, inAvx2, ioWork);
+  sweepCells(inBoxes, grid, inAvx2, ioWork, outPairs);
 }
 
 }  // namespace
@@ -458,20 +457,19 @@ int chooseSmallFrameAxis(FrameSpread& ioSpread) {
 }
 
 void pairSmallFrame(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-                    PairList& outPairs, int inThreads) {
-  pairWith(inBoxes, ioSpread, ioWork, outPairs, inThreads, cpuHasAvx2());
+                    PairList& outPairs) {
+  pairWith(inBoxes, ioSpread, ioWork, outPairs, cpuHasAvx2());
 }
 
-void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs,
-                    int inThreads) {
+void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs) {
   FrameSpread spread(inBoxes);
-  pairSmallFrame(inBoxes, spread, ioWork, outPairs, inThreads);
+  pairSmallFrame(inBoxes, spread, ioWork, outPairs);
 }
 
 void pairSmallFramePortable(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork,
-                            PairList& outPairs, int inThreads) {
+                            PairList& outPairs) {
   FrameSpread spread(inBoxes);
-  pairWith(inBoxes, spread, ioWork, outPairs, inThreads, false);
+  pairWith(inBoxes, spread, ioWork, outPairs, false);
 }
 
 }  // namespace sap_broadphase

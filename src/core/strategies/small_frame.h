@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/sweep/axis_spread.h"
 #include "core/frame/box_columns.h"
-#include "core/runner/buffers.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/buffers.h"
+#include "core/sweep/axis_spread.h"
 
 namespace sap_broadphase {
 
@@ -52,18 +52,17 @@ struct SmallFrameWorkspace {
 int chooseSmallFrameAxis(FrameSpread& ioSpread);
 
 /// Every overlapping, filter-allowed pair of inBoxes (exactly bruteForcePairs' result), in
-/// canonical order, into outPairs (replaced), on up to inThreads workers of the runner (the
-/// same pairs for any count). AVX2 blocks of 8 candidates where the CPU has them, a portable
-/// loop otherwise (chosen at run time). ioSpread is the spread of inBoxes: the sweep axis and
-/// the key origin are read from it.
+/// canonical order, into outPairs (replaced), on the threads of the runner's scope
+/// (passThreads(); the same pairs for any count). AVX2 blocks of 8 candidates where the CPU has
+/// them, a portable loop otherwise (chosen at run time). ioSpread is the spread of inBoxes: the
+/// sweep axis and the key origin are read from it.
 void pairSmallFrame(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorkspace& ioWork,
-                    PairList& outPairs, int inThreads = 1);
+                    PairList& outPairs);
 /// The same, measuring the spread of inBoxes itself.
-void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs,
-                    int inThreads = 1);
+void pairSmallFrame(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork, PairList& outPairs);
 
 /// The same, forced onto the portable loop (for tests and benchmarks on AVX2 machines).
 void pairSmallFramePortable(const BoxColumns& inBoxes, SmallFrameWorkspace& ioWork,
-                            PairList& outPairs, int inThreads = 1);
+                            PairList& outPairs);
 
 }  // namespace sap_broadphase

@@ -1,18 +1,17 @@
 #include "core/strategies/static_index.h"
 
 #include "core/assert.h"
-#include "core/sweep/axis_spread.h"
 #include "core/runner/buffers.h"
+#include "core/sweep/axis_spread.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "core/sweep/radix_sort.h"
-#include "sap_broadphase/core/config.h"  // resolveThreadCount
 
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 
 namespace sap_broadphase {
 
@@ -65,11 +64,9 @@ bool overlapsAndAllowed(const Slot& inSlot, const QueryBox& inBox) {
 
 }  // namespace
 
-void StaticIndex::build(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes,
-                        int inThreads) {
-  const int threads = resolveThreadCount(inThreads);
-  chooseGrid(inBoxes, inIndexes, threads);
-  placeBoxes(inBoxes, inIndexes, threads);
+void StaticIndex::build(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes) {
+  chooseGrid(inBoxes, inIndexes);
+  placeBoxes(inBoxes, inIndexes);
   fillCells();
   buildIdLookup();
   SAP_ASSERT(holdsEveryBoxOnce(inBoxes, inIndexes), "the static index lost or repeated a box");
@@ -95,11 +92,10 @@ bool StaticIndex::holdsEveryBoxOnce(const BoxColumns& inBoxes,
   return true;
 }
 
-void StaticIndex::chooseGrid(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes,
-                             int inThreads) {
+void StaticIndex::chooseGrid(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes) {
   AxisSpread spreads[3];
   for (int axis = 0; axis < 3; ++axis) {
-    spreads[axis] = measureAxisSpread(inBoxes, axis, inThreads, &inIndexes);
+    spreads[axis] = measureAxisSpread(inBoxes, axis, &inIndexes);
     dims_[axis] = wantedCells(spreads[axis]);
   }
   // Halving the finest axis keeps cells as close to cubes (in extents) as the cap allows.
@@ -120,13 +116,12 @@ void StaticIndex::chooseGrid(const BoxColumns& inBoxes, const std::vector<uint32
   }
 }
 
-void StaticIndex::placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes,
-                             int inThreads) {
+void StaticIndex::placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes) {
   const std::size_t count = inIndexes.size();
   constexpr uint64_t kLarge = std::numeric_limits<uint64_t>::max();
   // Each box's home cell (the cell of its low corner), or kLarge.
   Buffer<uint64_t> home(count);
-  runOverItems(WorkUnits{count}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
     for (std::size_t k = inBegin; k < inEnd; ++k) {
       const uint32_t i = inIndexes[k];
       uint64_t covered = 1;
@@ -159,7 +154,7 @@ void StaticIndex::placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32
     uint32_t any_mask = 0;
   };
   const Filters filters = reduceOverItems(
-      WorkUnits{count}, inThreads, Filters{},
+      WorkUnits{count}, Filters{},
       [&](std::size_t inBegin, std::size_t inEnd) {
         Filters unit;
         for (std::size_t k = inBegin; k < inEnd; ++k) {
@@ -361,7 +356,7 @@ void StaticIndex::queryRange(const BoxColumns& inQueries,
 }
 
 void StaticIndex::queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
-                           int inThreads, PairList& outPairs, PairOrder inOrder) const {
+                           PairList& outPairs, PairOrder inOrder) const {
   // Units of queries, each unit's pairs in its own part, the parts joined in unit order: the
   // sequential order for any thread count (a frame of one unit queries inline).
   const WorkUnits units{inQueryIndexes.size()};
@@ -370,7 +365,7 @@ void StaticIndex::queryAll(const BoxColumns& inQueries, const std::vector<uint32
     return;
   }
   std::vector<PairList> parts(units.count());
-  runUnits(units.count(), resolveThreadCount(inThreads), [&](std::size_t inUnit) {
+  runUnits(units.count(), [&](std::size_t inUnit) {
     queryRange(inQueries, inQueryIndexes, units.begin(inUnit), units.end(inUnit), inOrder,
                parts[inUnit]);
   });

@@ -24,10 +24,10 @@ namespace sap_broadphase {
 /// Queries are const and may run concurrently; build() and remove() may not.
 class StaticIndex {
  public:
-  /// Indexes boxes inIndexes (distinct positions in inBoxes) of inBoxes with inThreads threads
-  /// (0 = all cores); keeps its own copy of their bounds, ids, groups and masks (the BoxColumns may
-  /// change afterwards). Replaces any earlier content.
-  void build(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
+  /// Indexes boxes inIndexes (distinct positions in inBoxes) of inBoxes on the threads of the
+  /// runner's scope (passThreads()); keeps its own copy of their bounds, ids, groups and masks (the
+  /// BoxColumns may change afterwards). Replaces any earlier content.
+  void build(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes);
   /// Number of indexed boxes not removed.
   std::size_t size() const { return live_count_; }
   /// How a pair is written: makeIdPair(query id, indexed id), as the engine's pairs are, or
@@ -40,11 +40,11 @@ class StaticIndex {
   /// (a box queried against itself would give the pair (id, id)).
   void query(const BoxColumns& inQueries, std::size_t inQuery, PairList& outPairs,
              PairOrder inOrder = PairOrder::kCanonical) const;
-  /// All pairs between boxes inQueryIndexes of inQueries and the index, in parallel with
-  /// inThreads threads (0 = all cores), appended to outPairs (any order; the caller sorts
-  /// canonically). The order is the same on every run with the same thread count.
+  /// All pairs between boxes inQueryIndexes of inQueries and the index, on the threads of the
+  /// runner's scope, appended to outPairs (any order; the caller sorts canonically). The order
+  /// is the sequential one, whatever the thread count.
   void queryAll(const BoxColumns& inQueries, const std::vector<uint32_t>& inQueryIndexes,
-                int inThreads, PairList& outPairs, PairOrder inOrder = PairOrder::kCanonical) const;
+                PairList& outPairs, PairOrder inOrder = PairOrder::kCanonical) const;
   /// Marks the indexed box with id inId as removed (it no longer answers queries); false if
   /// no such box is indexed or it was already removed.
   bool remove(uint32_t inId);
@@ -75,8 +75,8 @@ class StaticIndex {
     if (position >= last_cell_[inAxis]) return dims_[inAxis] - 1;  // also +inf
     return static_cast<uint32_t>(position);
   }
-  void chooseGrid(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
-  void placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes, int inThreads);
+  void chooseGrid(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes);
+  void placeBoxes(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes);
   void fillCells();
   void buildIdLookup();
   bool holdsEveryBoxOnce(const BoxColumns& inBoxes, const std::vector<uint32_t>& inIndexes) const;

@@ -7,7 +7,7 @@
 
 namespace sap_broadphase {
 
-AxisSpread measureAxisSpread(const BoxColumns& inBoxes, int inAxis, int inThreads,
+AxisSpread measureAxisSpread(const BoxColumns& inBoxes, int inAxis,
                              const std::vector<uint32_t>* inIndexes) {
   const double* low = inBoxes.lo[inAxis].data();
   const double* high = inBoxes.hi[inAxis].data();
@@ -15,7 +15,7 @@ AxisSpread measureAxisSpread(const BoxColumns& inBoxes, int inAxis, int inThread
   const std::size_t count = inIndexes ? inIndexes->size() : inBoxes.size();
   // Per-unit partial sums folded in unit order: the same spread for any thread count.
   AxisSpread spread = reduceOverItems(
-      WorkUnits{count}, inThreads, AxisSpread{},
+      WorkUnits{count}, AxisSpread{},
       [&](std::size_t inBegin, std::size_t inEnd) {
         AxisSpread unit;
         for (std::size_t k = inBegin; k < inEnd; ++k) {

@@ -28,8 +28,9 @@ struct AxisSpread {
   }
 };
 
-/// The spread of the boxes of inBoxes on axis inAxis, of those at inIndexes only when given.
-AxisSpread measureAxisSpread(const BoxColumns& inBoxes, int inAxis, int inThreads,
+/// The spread of the boxes of inBoxes on axis inAxis, of those at inIndexes only when given,
+/// measured on the threads of the runner's scope (passThreads()).
+AxisSpread measureAxisSpread(const BoxColumns& inBoxes, int inAxis,
                              const std::vector<uint32_t>* inIndexes = nullptr);
 
 /// The spread of one box set on each axis, each axis measured once, when first asked for: a
@@ -40,15 +41,18 @@ class FrameSpread {
  public:
   explicit FrameSpread(const BoxColumns& inBoxes) : boxes_(&inBoxes) {}
 
-  /// The spread on inAxis, measured on up to inThreads threads if not measured yet (the same
+  /// The spread on inAxis, measured on the scope's threads if not measured yet (the same
   /// spread for any thread count).
-  const AxisSpread& axis(int inAxis, int inThreads) {
+  const AxisSpread& axis(int inAxis) {
     if (!measured_[inAxis]) {
-      spreads_[inAxis] = measureAxisSpread(*boxes_, inAxis, inThreads);
+      spreads_[inAxis] = measureAxisSpread(*boxes_, inAxis);
       measured_[inAxis] = true;
     }
     return spreads_[inAxis];
   }
+  /// The same for callers that still name a count: the count is not read (the spread is the
+  /// same for any count, and the threads are the scope's). Goes once they no longer pass one.
+  const AxisSpread& axis(int inAxis, int /*inUnusedThreads*/) { return axis(inAxis); }
   const BoxColumns& boxes() const { return *boxes_; }
 
  private:

@@ -14,10 +14,9 @@ double axisKeyOrigin(const AxisSpread& inSpread) {
   return std::fabs(centre) > tuning::kFarFromOriginInSpans * half_span ? centre : 0.0;
 }
 
-KeyOrigin keyOriginOf(FrameSpread& ioSpread, int inThreads) {
+KeyOrigin keyOriginOf(FrameSpread& ioSpread) {
   KeyOrigin origin;
-  for (int axis = 0; axis < 3; ++axis)
-    origin.origin[axis] = axisKeyOrigin(ioSpread.axis(axis, inThreads));
+  for (int axis = 0; axis < 3; ++axis) origin.origin[axis] = axisKeyOrigin(ioSpread.axis(axis));
   return origin;
 }
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/sweep/axis_spread.h"
 #include "core/frame/box_columns.h"
+#include "core/sweep/axis_spread.h"
 #include "core/sweep/sort_keys.h"
 
 namespace sap_broadphase {
@@ -32,9 +32,9 @@ struct KeyOrigin {
 double axisKeyOrigin(const AxisSpread& inSpread);
 
 /// The key origin a sweep of inSpread's boxes starts from: axisKeyOrigin() of each axis
-/// (measured on inThreads threads if not measured yet). Later frames keep an origin while the
+/// (measured on the scope's threads if not measured yet). Later frames keep an origin while the
 /// frame stays near it.
-KeyOrigin keyOriginOf(FrameSpread& ioSpread, int inThreads);
+KeyOrigin keyOriginOf(FrameSpread& ioSpread);
 
 // x - origin = outDifference + (returned error), exactly (TwoSum, Knuth), unless x is
 // infinite (then the error is NaN and the difference the same infinity).

@@ -7,9 +7,9 @@
 #include <limits>
 
 #include "core/assert.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -111,28 +111,27 @@ void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex
 }
 
 double PartitionedSorter::sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions,
-                               int inThreads, AxisBounds& ioBounds, uint32_t* outIndex) {
+                               AxisBounds& ioBounds, uint32_t* outIndex) {
   resizeDiscarding(owned_packed_, inCount);
   resizeDiscarding(owned_scratch_, inCount);
   for (uint32_t k = 0; k < inCount; ++k) owned_packed_[k] = packKeyIndex(inKeys[k], k);
-  return sortPacked(owned_packed_.data(), owned_scratch_.data(), inCount, inPartitions, inThreads,
-                    ioBounds, outIndex);
+  return sortPacked(owned_packed_.data(), owned_scratch_.data(), inCount, inPartitions, ioBounds,
+                    outIndex);
 }
 
 double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, uint32_t inCount,
-                                     int inPartitions, int inThreads, AxisBounds& ioBounds,
-                                     uint32_t* outIndex) {
+                                     int inPartitions, AxisBounds& ioBounds, uint32_t* outIndex) {
   if (inCount == 0) return 0.0;
   const int partitions = std::clamp(inPartitions, 1, kMaxSortPartitions);
   if (!ioBounds.from_previous_frame ||
       ioBounds.bounds.size() != static_cast<std::size_t>(partitions - 1))
-    initialiseBoundsFromSpan(ioPacked, inCount, partitions, inThreads, ioBounds);
+    initialiseBoundsFromSpan(ioPacked, inCount, partitions, ioBounds);
   SAP_ASSERT(std::is_sorted(ioBounds.bounds.begin(), ioBounds.bounds.end()),
              "partition bounds B out of order");
-  scatterIntoPartitions(ioPacked, ioScratch, inCount, ioBounds, inThreads);
+  scatterIntoPartitions(ioPacked, ioScratch, inCount, ioBounds);
   SAP_ASSERT(partition_begin_.back() == inCount,
              "the partitions do not cover every rank exactly once");
-  sortPartitionsAndExtract(ioScratch, ioPacked, inCount, inThreads, outIndex);
+  sortPartitionsAndExtract(ioScratch, ioPacked, inCount, outIndex);
   // Algorithm 2, lines 6-7: next frame's bounds are this frame's keys at ranks p * floor(2n/m).
   std::copy(bound_samples_.begin(), bound_samples_.end(), ioBounds.bounds.begin());
   ioBounds.from_previous_frame = true;
@@ -141,14 +140,13 @@ double PartitionedSorter::sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, ui
 
 // First frame (or after an axis swap): b_p = min + p * span / m over the finite coordinates.
 void PartitionedSorter::initialiseBoundsFromSpan(const uint64_t* inPacked, uint32_t inCount,
-                                                 int inPartitions, int inThreads,
-                                                 AxisBounds& ioBounds) {
+                                                 int inPartitions, AxisBounds& ioBounds) {
   struct Span {
     float lowest = std::numeric_limits<float>::infinity();
     float highest = -std::numeric_limits<float>::infinity();
   };
   const auto [lowest, highest] = reduceOverItems(
-      WorkUnits{inCount}, inThreads, Span{},
+      WorkUnits{inCount}, Span{},
       [&](std::size_t inBegin, std::size_t inEnd) {
         Span unit;
         for (std::size_t k = inBegin; k < inEnd; ++k) {
@@ -179,14 +177,13 @@ void PartitionedSorter::initialiseBoundsFromSpan(const uint64_t* inPacked, uint3
 // claimed dynamically) is counted, then placed, so every partition receives its items in index
 // order (the sort stays stable).
 void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t* outScattered,
-                                              uint32_t inCount, const AxisBounds& inBounds,
-                                              int inThreads) {
+                                              uint32_t inCount, const AxisBounds& inBounds) {
   const int partitions = static_cast<int>(inBounds.bounds.size()) + 1;
   const int bound_count = partitions - 1;
   SAP_ASSERT(partitions >= 1 && partitions <= kMaxSortPartitions,
              "more sort partitions than partition_of_'s 8 bits number");
   const uint32_t* bounds = inBounds.bounds.data();
-  const int units = unitsForThreads(inThreads);
+  const int units = unitsForThreads(passThreads());
   // Each unit's counters sit a cache line past the previous unit's: counters that shared a
   // line would bounce between the cores on every item.
   const std::size_t stride =
@@ -201,12 +198,12 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
   };
   uint8_t* partition_of = partition_of_.data();
   // The prefix table, a share a unit (65536 entries, a serial part otherwise).
-  runUnits(units, inThreads, [&](std::size_t inUnit) {
+  runUnits(units, [&](std::size_t inUnit) {
     const int unit = static_cast<int>(inUnit);
     fillPrefixTable(bounds, bound_count, share(kPrefixCount, unit, units),
                     share(kPrefixCount, unit + 1, units), prefix_table_.data());
   });
-  runUnits(units, inThreads, [&](std::size_t inUnit) {
+  runUnits(units, [&](std::size_t inUnit) {
     const int unit = static_cast<int>(inUnit);
     uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
     const uint32_t end = share(inCount, unit + 1, units);
@@ -228,7 +225,7 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
     partition_size_[p] = static_cast<uint32_t>(offset - partition_begin_[p]);
   }
   partition_begin_[partitions] = offset;
-  runUnits(units, inThreads, [&](std::size_t inUnit) {
+  runUnits(units, [&](std::size_t inUnit) {
     const int unit = static_cast<int>(inUnit);
     uint32_t* unit_counts = &counts_[static_cast<std::size_t>(unit) * stride];
     const uint32_t end = share(inCount, unit + 1, units);
@@ -240,12 +237,11 @@ void PartitionedSorter::scatterIntoPartitions(const uint64_t* inPacked, uint64_t
 // Algorithm 2, lines 4-5: the partitions are independent and handed out dynamically. Keys at
 // the sorted positions p * floor(count / m) are kept as next frame's bounds.
 void PartitionedSorter::sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* ioScratch,
-                                                 uint32_t inCount, int inThreads,
-                                                 uint32_t* outIndex) {
+                                                 uint32_t inCount, uint32_t* outIndex) {
   const int partitions = static_cast<int>(partition_size_.size());
   const std::size_t sample_step = inCount / partitions;
   bound_samples_.assign(partitions - 1, 0);
-  runUnits(partitions, inThreads, [&](std::size_t inPartition) {
+  runUnits(partitions, [&](std::size_t inPartition) {
     const std::size_t begin = partition_begin_[inPartition];
     const std::size_t size = partition_size_[inPartition];
     if (size == 0) return;

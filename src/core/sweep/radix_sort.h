@@ -40,22 +40,23 @@ struct AxisBounds {
 /// then updates B from the sorted order and measures the dispersion D of eq. (1).
 class PartitionedSorter {
  public:
-  /// Sorts inKeys[0..inCount) into outIndex using inPartitions partitions and inThreads
-  /// threads; reads and updates ioBounds. Returns D for this sort. Uses buffers of its own.
-  double sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions, int inThreads,
-              AxisBounds& ioBounds, uint32_t* outIndex);
+  /// Sorts inKeys[0..inCount) into outIndex using inPartitions partitions on the
+  /// threads of the runner's scope (passThreads()); reads and updates ioBounds. Returns D for this
+  /// sort. Uses buffers of its own.
+  double sort(const uint32_t* inKeys, uint32_t inCount, int inPartitions, AxisBounds& ioBounds,
+              uint32_t* outIndex);
   /// The same on caller-owned buffers: ioPacked holds packKeyIndex(key_k, k) for k in
   /// [0, inCount), ioScratch room for inCount words; both are overwritten.
   double sortPacked(uint64_t* ioPacked, uint64_t* ioScratch, uint32_t inCount, int inPartitions,
-                    int inThreads, AxisBounds& ioBounds, uint32_t* outIndex);
+                    AxisBounds& ioBounds, uint32_t* outIndex);
 
  private:
   void initialiseBoundsFromSpan(const uint64_t* inPacked, uint32_t inCount, int inPartitions,
-                                int inThreads, AxisBounds& ioBounds);
+                                AxisBounds& ioBounds);
   void scatterIntoPartitions(const uint64_t* inPacked, uint64_t* outScattered, uint32_t inCount,
-                             const AxisBounds& inBounds, int inThreads);
+                             const AxisBounds& inBounds);
   void sortPartitionsAndExtract(uint64_t* ioItems, uint64_t* ioScratch, uint32_t inCount,
-                                int inThreads, uint32_t* outIndex);
+                                uint32_t* outIndex);
   double dispersion(uint32_t inCount) const;
 
   Buffer<uint64_t> owned_packed_;  // sort()'s buffers; sortPacked() uses the caller's

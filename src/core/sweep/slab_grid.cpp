@@ -11,11 +11,11 @@
 
 namespace sap_broadphase {
 
-SlabGrid chooseSlabGrid(FrameSpread& ioSpread, int inAxis, int inRequested, int inThreads) {
+SlabGrid chooseSlabGrid(FrameSpread& ioSpread, int inAxis, int inRequested) {
   SlabGrid grid;
   const std::size_t n = ioSpread.boxes().size();
   if (inRequested == 1 || n < 2 || (inRequested <= 0 && n < tuning::kMinBoxesForSlabs)) return grid;
-  const AxisSpread& spread = ioSpread.axis(inAxis, inThreads);
+  const AxisSpread& spread = ioSpread.axis(inAxis);
   const double span = spread.span();
   if (!(span > 0.0) || !std::isfinite(span) || spread.finite_boxes == 0) return grid;
   int count = inRequested;

@@ -34,7 +34,7 @@ struct SlabGrid {
 /// Chooses slabs for the third axis inAxis: about two mean box extents wide over the span of
 /// the finite coordinates, at most kMaxSlabs, one slab when boxes are few or the span is
 /// degenerate (empty, infinite). inRequested > 0 forces that many slabs (1 = the paper).
-/// ioSpread is the spread of the boxes (measured on inThreads threads if not yet).
-SlabGrid chooseSlabGrid(FrameSpread& ioSpread, int inAxis, int inRequested, int inThreads);
+/// ioSpread is the spread of the boxes (measured on the scope's threads if not yet).
+SlabGrid chooseSlabGrid(FrameSpread& ioSpread, int inAxis, int inRequested);
 
 }  // namespace sap_broadphase

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/frame/box_columns.h"
-#include "core/runner/buffers.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/buffers.h"
 #include "core/sweep/slab_grid.h"
 #include "core/sweep/succ_tree.h"
 #include "core/tuning.h"
@@ -105,10 +105,10 @@ struct SweepWorkspace {
 void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObjects,
                                  SuccTree& ioActive, CandidateRanges& outRanges);
 
-/// Algorithm 3: the same result computed by up to inThreads threads on equal slices of the
-/// order (more slices than threads, claimed dynamically), with per-slice sets (of objects, not
+/// Algorithm 3: the same result computed by the scope's threads (passThreads()) on equal slices of
+/// the order (more slices than threads, claimed dynamically), with per-slice sets (of objects, not
 /// ranks) joined by an all-prefix symmetric difference.
-void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
+void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges);
 
 /// Algorithm 1, lines 15-23: every pair, found once, by one thread. Appends to outPairs. When
@@ -126,7 +126,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
 /// be many more of them than threads. On coherent frames the scatter is one pass straight
 /// into room sized from the last frame's segments.
 /// outPairsPerThread[t] receives thread t's pairs.
-void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
+void pairParallel(const PairingInput& inInput, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread);
 
 }  // namespace sap_broadphase

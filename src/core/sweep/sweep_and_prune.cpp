@@ -5,13 +5,13 @@
 #include <utility>
 
 #include "core/assert.h"
-#include "core/sweep/axis_policy.h"
-#include "core/sweep/axis_spread.h"
 #include "core/runner/buffers.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
+#include "core/sweep/axis_policy.h"
+#include "core/sweep/axis_spread.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 
@@ -46,9 +46,9 @@ void SweepAndPrune::releaseBuffers() {
 
 // A placed origin is kept while the frame stays around it (a moved origin shifts every key,
 // and B with them).
-void SweepAndPrune::placeKeyOrigins(FrameSpread& ioSpread, int inThreads) {
+void SweepAndPrune::placeKeyOrigins(FrameSpread& ioSpread) {
   for (int axis = 0; axis < 3; ++axis) {
-    const AxisSpread& spread = ioSpread.axis(axis, inThreads);
+    const AxisSpread& spread = ioSpread.axis(axis);
     const double origin = axisKeyOrigin(spread);
     const double span = spread.hasSpan() ? spread.highest / 2 - spread.lowest / 2 : 0.0;  // half
     const double drift = std::fabs(origin - key_origin_.origin[axis]);
@@ -62,8 +62,7 @@ void SweepAndPrune::placeKeyOrigins(FrameSpread& ioSpread, int inThreads) {
 
 // Keys of one axis (lows at i, highs at i + n), packed with their indexes, then Algorithm 2.
 // Returns D.
-double SweepAndPrune::sortAxis(const BoxColumns& inBoxes, int inAxis, int inThreads,
-                               FrameReport& ioReport) {
+double SweepAndPrune::sortAxis(const BoxColumns& inBoxes, int inAxis, FrameReport& ioReport) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const std::size_t endpoints = 2 * std::size_t{n};
   {
@@ -74,7 +73,7 @@ double SweepAndPrune::sortAxis(const BoxColumns& inBoxes, int inAxis, int inThre
     resizeDiscarding(sweep_order_, endpoints);
     uint64_t* packed = endpoint_words_.data();
     const KeyOrigin origin = key_origin_;
-    runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
       for (auto i = static_cast<uint32_t>(inBegin); i < inEnd; ++i) {
         packed[i] = packKeyIndex(origin.low(inAxis, low[i]), i);
         packed[i + n] = packKeyIndex(origin.high(inAxis, high[i]), i + n);
@@ -86,17 +85,17 @@ double SweepAndPrune::sortAxis(const BoxColumns& inBoxes, int inAxis, int inThre
   const int partitions =
       endpoints >= tuning::kMinPartitionedEndpoints ? tuning::kSortPartitions : 1;
   return sorter_.sortPacked(packed, packed + endpoints, static_cast<uint32_t>(endpoints),
-                            partitions, inThreads, bounds_[inAxis], sweep_order_.data());
+                            partitions, bounds_[inAxis], sweep_order_.data());
 }
 
 // Box data in primary-rank order, so a candidate range is a contiguous stretch of memory.
-void SweepAndPrune::gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSpread, int inThreads) {
+void SweepAndPrune::gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSpread) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   const bool filtered = inBoxes.hasFilters();
   resizeDiscarding(ranked_keys_, n);
   resizeDiscarding(ranked_filters_, filtered ? n : 0);
   const int third_axis = unusedAxis(primary_axis_, secondary_axis_);
-  slab_grid_ = chooseSlabGrid(ioSpread, third_axis, third_axis_slabs_, inThreads);
+  slab_grid_ = chooseSlabGrid(ioSpread, third_axis, third_axis_slabs_);
   const bool slabbed = slab_grid_.count > 1;
   resizeDiscarding(ranked_slabs_, slabbed ? n : 0);
   const double* third_low = inBoxes.lo[third_axis].data();
@@ -105,7 +104,7 @@ void SweepAndPrune::gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSprea
   // Reads the boxes in input order (sequential streams of the SoA arrays) and writes each one's
   // record at its rank: one scattered write a box instead of six scattered reads.
   const RankRange* ranges_of_object = ranges_.of_object.data();
-  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
     for (auto i = static_cast<uint32_t>(inBegin); i < inEnd; ++i) {
       const uint32_t rank = ranges_of_object[i].rank;
       RankedKeys& keys = ranked_keys_[rank];
@@ -123,8 +122,7 @@ void SweepAndPrune::gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSprea
   });
 }
 
-void SweepAndPrune::pair(const BoxColumns& inBoxes, FramePath inPath, int inThreads,
-                         FrameReport& ioReport) {
+void SweepAndPrune::pair(const BoxColumns& inBoxes, FramePath inPath, FrameReport& ioReport) {
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   PairingInput input;
   input.secondary_order = sweep_order_.data();
@@ -144,12 +142,12 @@ void SweepAndPrune::pair(const BoxColumns& inBoxes, FramePath inPath, int inThre
     pairs_per_thread_[0].clear();
     pairSequential(input, workspace_, pairs_per_thread_[0]);
   } else {
-    pairParallel(input, inThreads, workspace_, pairs_per_thread_);
+    pairParallel(input, workspace_, pairs_per_thread_);
   }
 }
 
 void SweepAndPrune::run(const BoxColumns& inBoxes, FrameSpread& ioSpread, FramePath inPath,
-                        int inThreads, FrameReport& ioReport, PairList& outPairs) {
+                        FrameReport& ioReport, PairList& outPairs) {
   SAP_ASSERT(&ioSpread.boxes() == &inBoxes, "the sweep reads the spread of other boxes");
   const uint32_t n = static_cast<uint32_t>(inBoxes.size());
   ioReport.primary_axis = primary_axis_;
@@ -158,36 +156,38 @@ void SweepAndPrune::run(const BoxColumns& inBoxes, FrameSpread& ioSpread, FrameP
     outPairs.clear();
     return;
   }
-  const int threads = inPath == FramePath::kParallel ? inThreads : 1;
+  // A sequential sweep (Algorithm 1) keeps its passes to one thread; a parallel one runs on the
+  // scope's.
+  const NarrowedScope sweep_threads(inPath == FramePath::kParallel ? passThreads() : 1);
   {
     PhaseTimer timer(ioReport.ms_keys);
-    placeKeyOrigins(ioSpread, threads);
+    placeKeyOrigins(ioSpread);
   }
   const bool warm =
       bounds_[primary_axis_].from_previous_frame && bounds_[secondary_axis_].from_previous_frame;
 
   // The primary order is consumed by candidate generation before the secondary axis is
   // sorted, so both orders share one buffer (sweep_order_).
-  ioReport.dispersion_primary = sortAxis(inBoxes, primary_axis_, threads, ioReport);
+  ioReport.dispersion_primary = sortAxis(inBoxes, primary_axis_, ioReport);
   {
     PhaseTimer timer(ioReport.ms_candidates);
     if (inPath == FramePath::kParallel)
-      computeCandidatesParallel(sweep_order_.data(), n, threads, workspace_, ranges_);
+      computeCandidatesParallel(sweep_order_.data(), n, workspace_, ranges_);
     else
       computeCandidatesSequential(sweep_order_.data(), n, sequential_tree_, ranges_);
   }
-  ioReport.dispersion_secondary = sortAxis(inBoxes, secondary_axis_, threads, ioReport);
+  ioReport.dispersion_secondary = sortAxis(inBoxes, secondary_axis_, ioReport);
   {
     PhaseTimer timer(ioReport.ms_pairing);
-    gatherByRank(inBoxes, ioSpread, threads);
-    pair(inBoxes, inPath, threads, ioReport);
+    gatherByRank(inBoxes, ioSpread);
+    pair(inBoxes, inPath, ioReport);
   }
   {
     PhaseTimer timer(ioReport.ms_output);
     // Each thread's pairs are disjoint from the others': merging them is the whole set. The
     // sweep order is dead by now: the sort borrows its memory for its histogram.
     std::swap(sweep_order_, pair_scratch_.offsets);
-    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_, threads);
+    sortPairsCanonical(pairs_per_thread_, outPairs, pair_scratch_);
     std::swap(sweep_order_, pair_scratch_.offsets);
   }
   decideAxes(warm && axis_swapping_ && 2 * std::size_t{n} >= tuning::kMinPartitionedEndpoints,

@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/frame/pair_sort.h"
 #include "core/runner/buffers.h"
 #include "core/sweep/key_origin.h"
-#include "core/frame/pair_sort.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/slab_grid.h"
 #include "core/sweep/succ_tree.h"
@@ -29,8 +29,9 @@ class SweepAndPrune {
   /// Every overlapping, filter-allowed pair of inBoxes into outPairs, in canonical order.
   /// inPath is FramePath::kSequential (Algorithm 1) or kParallel (Algorithms 2-4). Fills the
   /// report's sweep phases, dispersions, axes and slabs. ioSpread is the spread of inBoxes,
-  /// which the key origins and the slabs are placed from.
-  void run(const BoxColumns& inBoxes, FrameSpread& ioSpread, FramePath inPath, int inThreads,
+  /// which the key origins and the slabs are placed from. A parallel sweep runs on the scope's
+  /// threads (passThreads()), a sequential one on one of them.
+  void run(const BoxColumns& inBoxes, FrameSpread& ioSpread, FramePath inPath,
            FrameReport& ioReport, PairList& outPairs);
   /// The sweep axes in force (§5 may have swapped them).
   int primaryAxis() const { return primary_axis_; }
@@ -43,10 +44,10 @@ class SweepAndPrune {
   std::size_t capacityBoxes() const { return ranges_.of_object.capacity(); }
 
  private:
-  void placeKeyOrigins(FrameSpread& ioSpread, int inThreads);
-  double sortAxis(const BoxColumns& inBoxes, int inAxis, int inThreads, FrameReport& ioReport);
-  void gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSpread, int inThreads);
-  void pair(const BoxColumns& inBoxes, FramePath inPath, int inThreads, FrameReport& ioReport);
+  void placeKeyOrigins(FrameSpread& ioSpread);
+  double sortAxis(const BoxColumns& inBoxes, int inAxis, FrameReport& ioReport);
+  void gatherByRank(const BoxColumns& inBoxes, FrameSpread& ioSpread);
+  void pair(const BoxColumns& inBoxes, FramePath inPath, FrameReport& ioReport);
   void decideAxes(bool inWarm, FrameReport& ioReport);
 
   const bool exact_final_test_;

@@ -4,9 +4,9 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/sweep.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -159,11 +159,11 @@ void computeCandidatesSequential(const uint32_t* inPrimaryOrder, uint32_t inObje
   SAP_ASSERT(rangesAreConsistent(outRanges, inObjects), "candidate ranges not L <= R < U <= n");
 }
 
-void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects, int inThreads,
+void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObjects,
                                SweepWorkspace& ioWork, CandidateRanges& outRanges) {
   // More slices than threads, each phase's slices claimed dynamically (work_units.h): a
   // descheduled thread's slices are swept by the others.
-  const int slices = unitsForThreads(inThreads);
+  const int slices = unitsForThreads(passThreads());
   const std::size_t words = (std::size_t{inObjects} + 63) / 64;
   resizeDiscarding(outRanges.of_object, inObjects);
   resizeDiscarding(outRanges.object_of_rank, inObjects);
@@ -171,14 +171,14 @@ void computeCandidatesParallel(const uint32_t* inPrimaryOrder, uint32_t inObject
   ioWork.slice_start.resize(slices);
   ioWork.lows_before.assign(slices + 1, 0);
   RankRange* ranges = outRanges.of_object.data();
-  runUnits(slices, inThreads, [&](std::size_t inSlice) {
+  runUnits(slices, [&](std::size_t inSlice) {
     countAndCollectCrossing(inPrimaryOrder, inObjects, static_cast<int>(inSlice), slices, ioWork);
   });
   for (int s = 0; s < slices; ++s) ioWork.lows_before[s + 1] += ioWork.lows_before[s];
-  runUnits(slices, inThreads, [&](std::size_t inSlice) {
+  runUnits(slices, [&](std::size_t inSlice) {
     rankLeavingBoxes(inPrimaryOrder, inObjects, static_cast<int>(inSlice), slices, ioWork, ranges);
   });
-  runUnits(slices, inThreads, [&](std::size_t inSlice) {
+  runUnits(slices, [&](std::size_t inSlice) {
     const int slice = static_cast<int>(inSlice);
     SuccTree& active = ioWork.slice_start[slice];
     seedActiveFromEarlierSlices(inObjects, slice, ioWork, ranges, active);

@@ -7,9 +7,9 @@
 #include "core/assert.h"
 #include "core/runner/buffers.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/sweep.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -75,11 +75,11 @@ inline Endpoint endpointOfStream(const uint64_t* inStream, std::size_t inK) {
           secondary_stream::high(inStream, inK)};
 }
 
-// Writes the secondary stream of the whole order, on up to inThreads threads.
-void buildSecondaryStream(const PairingInput& inInput, int inThreads) {
+// Writes the secondary stream of the whole order, on the scope's threads.
+void buildSecondaryStream(const PairingInput& inInput) {
   const std::size_t endpoints = 2 * std::size_t{inInput.objects};
   uint64_t* stream = inInput.stream_scratch;
-  runOverItems(WorkUnits{endpoints}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(WorkUnits{endpoints}, [&](std::size_t inBegin, std::size_t inEnd) {
     for (std::size_t k = inBegin; k < inEnd; ++k) {
       const Endpoint endpoint = endpointOfOrder(inInput, k);
       stream[2 * k] = endpoint.rank_and_kind | (uint64_t{endpoint.low} << 32);
@@ -354,16 +354,16 @@ void forEachEndpointOfSlice(const PairingInput& inInput, const uint64_t* inStrea
 // Scatter from the exact counts: the secondary stream, a counting pass over it, then the
 // placement pass. Segments are packed without gaps. Also estimates each partition's work, its
 // entries plus the candidate ranks its low entries span, into ioWork.partition_work.
-void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
-                    const RankPartitions& inSplit, SweepWorkspace& ioWork) {
-  buildSecondaryStream(inInput, inThreads);
+void scatterCounted(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                    SweepWorkspace& ioWork) {
+  buildSecondaryStream(inInput);
   const uint64_t* stream = inInput.stream_scratch;
   const uint32_t partitions = inSplit.count;
   std::vector<std::size_t>& counts = ioWork.scatter_counts;
   const std::size_t stride = counterStride(partitions);
   counts.assign(std::size_t(inSlices) * stride, 0);
   ioWork.partition_work.assign(partitions, 0);
-  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+  runUnits(inSlices, [&](std::size_t inSlice) {
     // Entry counts at [0, partitions), work at [partitions, 2 * partitions).
     std::size_t* my_counts = &counts[inSlice * stride];
     std::size_t* my_work = my_counts + partitions;
@@ -393,7 +393,7 @@ void scatterCounted(const PairingInput& inInput, int inSlices, int inThreads,
   }
   resizeDiscarding(ioWork.partition_entries, offset);
   uint64_t* out = ioWork.partition_entries.data();
-  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+  runUnits(inSlices, [&](std::size_t inSlice) {
     const int slice = static_cast<int>(inSlice);
     std::size_t* my_counts = &counts[inSlice * stride];
     forEachEndpointOfSlice(inInput, stream, slice, inSlices, inSplit,
@@ -465,8 +465,8 @@ bool scatterSliceIntoRoom(const PairingInput& inInput, int inSlice, int inSlices
 // Scatter in one pass, straight from the secondary order and the boxes' records, into
 // segments sized from the last frame's (no stream, no counting pass). Returns false, with the
 // entries incomplete, when a segment outgrew its room: then the caller scatters counted.
-bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThreads,
-                           const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                           SweepWorkspace& ioWork) {
   const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   std::size_t offset = 0;
   for (std::size_t s = 0; s < segments; ++s) {
@@ -479,7 +479,7 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThre
   const std::size_t stride = counterStride(inSplit.count);
   ioWork.scatter_counts.assign(std::size_t(inSlices) * stride, 0);
   std::vector<uint8_t> slice_fits(static_cast<std::size_t>(inSlices), 1);
-  runUnits(inSlices, inThreads, [&](std::size_t inSlice) {
+  runUnits(inSlices, [&](std::size_t inSlice) {
     const int slice = static_cast<int>(inSlice);
     std::size_t* cursor = &ioWork.scatter_counts[std::size_t(slice) * stride];
     slice_fits[inSlice] = scatterSliceIntoRoom(inInput, slice, inSlices, inSplit, cursor, ioWork);
@@ -490,18 +490,18 @@ bool scatterIntoLastLayout(const PairingInput& inInput, int inSlices, int inThre
 // Copies each endpoint of the secondary order to the entry segments of the partitions it
 // matters to, keeping sweep order within each (slice s's segment of a partition holds the
 // entries of slice s of the order, so the segments in slice order are in sweep order), the
-// inSlices slices on up to inThreads threads. When the last frame had the same split, straight
+// inSlices slices on the scope's threads. When the last frame had the same split, straight
 // into its layout; otherwise, or when a segment outgrows it, counted.
-void scatterToPartitions(const PairingInput& inInput, int inSlices, int inThreads,
-                         const RankPartitions& inSplit, SweepWorkspace& ioWork) {
+void scatterToPartitions(const PairingInput& inInput, int inSlices, const RankPartitions& inSplit,
+                         SweepWorkspace& ioWork) {
   const std::size_t segments = std::size_t(inSplit.count) * inSlices;
   ioWork.segment_begin.resize(segments);
   ioWork.segment_end.resize(segments);
   ScatterLayout& layout = ioWork.last_layout;
   const bool same_split = layout.slices == inSlices && layout.shift == inSplit.shift &&
                           layout.partitions == inSplit.count;
-  if (!same_split || !scatterIntoLastLayout(inInput, inSlices, inThreads, inSplit, ioWork))
-    scatterCounted(inInput, inSlices, inThreads, inSplit, ioWork);
+  if (!same_split || !scatterIntoLastLayout(inInput, inSlices, inSplit, ioWork))
+    scatterCounted(inInput, inSlices, inSplit, ioWork);
   if (!same_split) layout.partition_ms.assign(inSplit.count, 0.0);
   layout.slices = inSlices;
   layout.shift = inSplit.shift;
@@ -526,13 +526,14 @@ void prepareTrees(std::vector<SuccTree>& ioTrees, std::size_t inFirst, int inCou
 }
 
 // The rank split: partitions of at most tuning::kPairingPartitionRanks ranks, and on several
-// threads at least tuning::kPairingPartitionsPerThread per thread, so that handing the partitions
-// out by decreasing measured work evens the threads out on clustered frames too. The size is the
-// largest power of two that gives at least that many partitions.
-RankPartitions partitionRanks(uint32_t inObjects, int inThreads) {
+// threads (the scope's) at least tuning::kPairingPartitionsPerThread per thread, so that handing
+// the partitions out by decreasing measured work evens the threads out on clustered frames too. The
+// size is the largest power of two that gives at least that many partitions.
+RankPartitions partitionRanks(uint32_t inObjects) {
+  const int threads = passThreads();
   const uint32_t by_cache =
       (inObjects + tuning::kPairingPartitionRanks - 1) / tuning::kPairingPartitionRanks;
-  const uint32_t by_threads = inThreads > 1 ? inThreads * tuning::kPairingPartitionsPerThread : 1;
+  const uint32_t by_threads = threads > 1 ? threads * tuning::kPairingPartitionsPerThread : 1;
   const uint32_t wanted = std::max(by_cache, by_threads);
   const uint32_t largest_size = std::max<uint32_t>(1, (inObjects + wanted - 1) / wanted);
   RankPartitions split;
@@ -608,10 +609,11 @@ void orderPartitions(const RankPartitions& inSplit, SweepWorkspace& ioWork) {
 }  // namespace
 
 void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChunks& outPairs) {
+  const NarrowedScope one_thread(1);  // Algorithm 1: every pass of it on the calling thread
   const uint32_t n = inInput.objects;
   if (n <= tuning::kPairingPartitionRanks ||
       uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= tuning::kSequentialTreeBits) {
-    buildSecondaryStream(inInput, 1);
+    buildSecondaryStream(inInput);
     prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
     PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
     sweep.run(WholeStreamReader{inInput.stream_scratch, 2 * std::size_t{n}, n});
@@ -622,19 +624,19 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
   // order; on the big trees every insert, erase and range walk would miss the cache.
-  const RankPartitions split = partitionRanks(n, 1);
-  scatterToPartitions(inInput, 1, 1, split, ioWork);
+  const RankPartitions split = partitionRanks(n);
+  scatterToPartitions(inInput, 1, split, ioWork);
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
   for (uint32_t p = 0; p < split.count; ++p)
     sweepPartition(inInput, ioWork, split, 1, p, ioWork.pairing.data(), outPairs);
 }
 
-void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& ioWork,
+void pairParallel(const PairingInput& inInput, SweepWorkspace& ioWork,
                   std::vector<PairChunks>& outPairsPerThread) {
-  const int threads = std::max(1, inThreads);
-  const RankPartitions split = partitionRanks(inInput.objects, threads);  // Δ and m
+  const int threads = std::max(1, passThreads());
+  const RankPartitions split = partitionRanks(inInput.objects);  // Δ and m
   const int slices = unitsForThreads(threads);
-  scatterToPartitions(inInput, slices, threads, split, ioWork);
+  scatterToPartitions(inInput, slices, split, ioWork);
   orderPartitions(split, ioWork);
   SAP_ASSERT(isPermutation(ioWork.partition_order, split.count),
              "partitions handed out twice or never");
@@ -643,7 +645,7 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   outPairsPerThread.resize(threads);
   for (PairChunks& pairs : outPairsPerThread) pairs.clear();  // a smaller team leaves some
   // Each worker sweeps its partitions with its own trees into its own pair list.
-  runUnitsOnWorkers(split.count, threads, [&](std::size_t inK, int inWorker) {
+  runUnitsOnWorkers(split.count, [&](std::size_t inK, int inWorker) {
     SuccTree* trees = &ioWork.pairing[std::size_t(inWorker) * slab_count];
     PairChunks& pairs = outPairsPerThread[inWorker];
     sweepPartition(inInput, ioWork, split, slices, ioWork.partition_order[inK], trees, pairs);
