@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "core/runner/work_units.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "test_support.h"
@@ -221,6 +222,57 @@ TEST(RadixSort, PackedSortIsStable) {
     const std::vector<uint32_t> expected = stableOrder(keys);
     for (std::size_t k = 0; k < keys.size(); ++k)
       ASSERT_EQ(static_cast<uint32_t>(sorted[k]), expected[k]) << k;
+  }
+}
+
+// Key sets of several units of items (kUnitBoxes), so that the packed sort runs in parallel:
+// random keys, few distinct keys, keys whose digits vary only in the top or only in the lowest
+// pass (the other passes skipped), and keys already in order.
+std::vector<std::vector<uint32_t>> multiUnitKeySets() {
+  TestRandom random(2024);
+  std::vector<std::vector<uint32_t>> sets;
+  for (std::size_t count : {2 * kUnitBoxes, 5 * kUnitBoxes + 17, std::size_t{1} << 18}) {
+    std::vector<uint32_t> keys(count);
+    for (uint32_t& key : keys) key = static_cast<uint32_t>(random.bits());
+    sets.push_back(keys);
+    for (uint32_t& key : keys) key = static_cast<uint32_t>(random.below(5)) * 0x01010101u;
+    sets.push_back(keys);
+    for (uint32_t& key : keys) key = static_cast<uint32_t>(random.below(1024)) << 22;
+    sets.push_back(keys);
+    for (uint32_t& key : keys) key = 0xABC00000u | static_cast<uint32_t>(random.below(2048));
+    sets.push_back(keys);
+    for (std::size_t k = 0; k < count; ++k) keys[k] = lowKey(static_cast<double>(k) - 1000.0);
+    sets.push_back(keys);
+  }
+  return sets;
+}
+
+// The packed sort on 1 to 4 threads of a scope, and inside a unit of a pass (where it runs
+// serially): the stable order every time.
+TEST(RadixSort, PackedSortIsStableOnAnyThreadCount) {
+  for (const std::vector<uint32_t>& keys : multiUnitKeySets()) {
+    const std::vector<uint32_t> expected = stableOrder(keys);
+    for (int threads = 1; threads <= 4; ++threads) {
+      const ThreadsScope scope(threads);
+      for (bool in_unit : {false, true}) {
+        std::vector<uint64_t> items(keys.size());
+        std::vector<uint64_t> scratch(keys.size());
+        for (std::size_t k = 0; k < keys.size(); ++k)
+          items[k] = packKeyIndex(keys[k], static_cast<uint32_t>(k));
+        const uint64_t* sorted = nullptr;
+        if (in_unit)
+          runUnits(2, [&](std::size_t inUnit) {
+            if (inUnit == 0) sorted = radixSortPacked(items.data(), scratch.data(), items.size());
+          });
+        else
+          sorted = radixSortPacked(items.data(), scratch.data(), items.size());
+        ASSERT_TRUE(sorted == items.data() || sorted == scratch.data());
+        for (std::size_t k = 0; k < keys.size(); ++k)
+          ASSERT_EQ(static_cast<uint32_t>(sorted[k]), expected[k])
+              << keys.size() << " keys, " << threads << " threads, in a unit: " << in_unit
+              << ", rank " << k;
+      }
+    }
   }
 }
 

@@ -13,11 +13,11 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/key_origin.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1
@@ -294,11 +294,15 @@ void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAx
   (void)inAvx2;
 }
 
+// Cells a unit of the passes over the cells handles (the cells' prefix and padding): a few
+// thousand cells at most, so a pass has a few units.
+constexpr std::size_t kCellsPerUnit = 256;
+
 // Where each unit of the sorted boxes writes into each cell: every unit counts the entries it
 // adds to each cell (its row of unit_cell_count), then, cell by cell and unit by unit in
 // order, the counts become the units' first entries (the same layout as one pass over the
 // boxes in sorted order would give, whatever the thread count), and cell_start each cell's run
-// (its entries and kBlock of padding).
+// (its entries and kBlock of padding). Only the prefix over the cells' totals is serial.
 void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint32_t inCells,
                        uint32_t inCells1, int inThreads, SmallFrameWorkspace& ioWork) {
   Buffer<uint32_t>& counts = ioWork.unit_cell_count;
@@ -310,31 +314,49 @@ void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint3
       forEachCell(ioWork.cell_range[static_cast<uint32_t>(inSorted[k])], inCells1,
                   [&](uint32_t cell) { ++row[cell]; });
   });
-  resizeDiscarding(ioWork.cell_start, std::size_t{inCells} + 1);
-  uint32_t next = 0;
-  for (uint32_t cell = 0; cell < inCells; ++cell) {
-    ioWork.cell_start[cell] = next;
-    for (std::size_t unit = 0; unit < inUnits.count(); ++unit) {
-      uint32_t& count = counts[unit * inCells + cell];
-      const uint32_t entries = count;
-      count = next;  // from now on the unit's next entry in the cell
-      next += entries;
+  Buffer<uint32_t>& cell_start = ioWork.cell_start;
+  resizeDiscarding(cell_start, std::size_t{inCells} + 1);
+  const WorkUnits cell_units{inCells, kCellsPerUnit};
+  // Each cell's run length, in cell_start[cell + 1] until the prefix below.
+  runOverItems(cell_units, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t cell = inBegin; cell < inEnd; ++cell) {
+      uint32_t entries = kBlock;
+      for (std::size_t unit = 0; unit < inUnits.count(); ++unit)
+        entries += counts[unit * inCells + cell];
+      cell_start[cell + 1] = entries;
     }
-    next += kBlock;
-  }
-  ioWork.cell_start[inCells] = next;
+  });
+  cell_start[0] = 0;
+  for (uint32_t cell = 0; cell < inCells; ++cell) cell_start[cell + 1] += cell_start[cell];
+  runOverItems(cell_units, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t cell = inBegin; cell < inEnd; ++cell) {
+      uint32_t next = cell_start[cell];
+      for (std::size_t unit = 0; unit < inUnits.count(); ++unit) {
+        uint32_t& count = counts[unit * inCells + cell];
+        const uint32_t entries = count;
+        count = next;  // from now on the unit's next entry in the cell
+        next += entries;
+      }
+      SAP_ASSERT(next + kBlock == cell_start[cell + 1], "a cell's entries and padding disagree");
+    }
+  });
 }
 
 // Sorts the boxes by low key on the sweep axis and copies each, in that order, into every cell
-// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs. The copying
-// runs a unit of the sorted boxes at a time on the frame's threads, each unit into the entries
-// placeUnitsInCells gave it.
+// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs. The sort and the
+// copying run on the frame's threads, the copying a unit of the sorted boxes at a time, each
+// unit into the entries placeUnitsInCells gave it.
 void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
                const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
                SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
   measureBoxes(inBoxes, inOrigin, inAxis, inGrid, inAvx2, inThreads, ioWork);
-  const uint64_t* sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
+  const uint64_t* sorted = nullptr;
+  {
+    // The sort takes its threads from the scope: the kernel's own, whatever scope called it.
+    const RunnerScope sort_scope(currentRunner(inThreads), inThreads);
+    sorted = radixSortPacked(ioWork.order.data(), ioWork.scratch.data(), n);
+  }
   const uint32_t cells = inGrid[0].cells * inGrid[1].cells;
   const WorkUnits units{n};
   placeUnitsInCells(sorted, units, cells, inGrid[1].cells, inThreads, ioWork);
@@ -359,14 +381,19 @@ void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
       });
     }
   });
+  // The padding after each cell's run, a run of cells a unit.
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (uint32_t cell = 0; cell < cells; ++cell) {
-    for (uint32_t entry = ioWork.cell_start[cell + 1] - kBlock; entry < ioWork.cell_start[cell + 1];
-         ++entry) {
-      for (int slot = 0; slot < 3; ++slot) ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
-      ioWork.box_of[entry] = 0;
-    }
-  }
+  runOverItems(WorkUnits{cells, kCellsPerUnit}, inThreads,
+               [&](std::size_t inBegin, std::size_t inEnd) {
+                 for (std::size_t cell = inBegin; cell < inEnd; ++cell) {
+                   const uint32_t end = ioWork.cell_start[cell + 1];
+                   for (uint32_t entry = end - kBlock; entry < end; ++entry) {
+                     for (int slot = 0; slot < 3; ++slot)
+                       ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
+                     ioWork.box_of[entry] = 0;
+                   }
+                 }
+               });
 }
 
 // Cuts the cells into runs of consecutive cells of about inEntries entries each (a cell is
