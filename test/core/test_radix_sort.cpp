@@ -225,13 +225,13 @@ TEST(RadixSort, PackedSortIsStable) {
   }
 }
 
-// Key sets of several units of items (kUnitBoxes), so that the packed sort runs in parallel:
-// random keys, few distinct keys, keys whose digits vary only in the top or only in the lowest
-// pass (the other passes skipped), and keys already in order.
+// Key sets below and above the parallel sort's size (2^19 items; the larger one is several
+// units of kUnitBoxes a thread): random keys, few distinct keys, keys whose digits vary only in
+// the top or only in the lowest pass (the other passes skipped), and keys already in order.
 std::vector<std::vector<uint32_t>> multiUnitKeySets() {
   TestRandom random(2024);
   std::vector<std::vector<uint32_t>> sets;
-  for (std::size_t count : {2 * kUnitBoxes, 5 * kUnitBoxes + 17, std::size_t{1} << 18}) {
+  for (std::size_t count : {2 * kUnitBoxes, (std::size_t{1} << 19) + 17}) {
     std::vector<uint32_t> keys(count);
     for (uint32_t& key : keys) key = static_cast<uint32_t>(random.bits());
     sets.push_back(keys);

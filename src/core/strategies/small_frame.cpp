@@ -294,8 +294,8 @@ void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAx
   (void)inAvx2;
 }
 
-// Cells a unit of the passes over the cells handles (the cells' prefix and padding): a few
-// thousand cells at most, so a pass has a few units.
+// Cells a unit of the passes over the cells' prefix handles: a few thousand cells at most, so
+// a pass has a few units.
 constexpr std::size_t kCellsPerUnit = 256;
 
 // Where each unit of the sorted boxes writes into each cell: every unit counts the entries it
@@ -342,10 +342,10 @@ void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint3
   });
 }
 
-// Sorts the boxes by low key on the sweep axis and copies each, in that order, into every cell
-// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs. The sort and the
-// copying run on the frame's threads, the copying a unit of the sorted boxes at a time, each
-// unit into the entries placeUnitsInCells gave it.
+// Sorts the boxes by low key on the sweep axis and lists each, in that order, in every cell it
+// reaches (box_of): each cell's run is sorted by low key, its bounds copied in by gatherCell.
+// The sort and the listing run on the frame's threads, the listing a unit of the sorted boxes
+// at a time, each unit into the entries placeUnitsInCells gave it.
 void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
                const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
                SmallFrameWorkspace& ioWork) {
@@ -370,30 +370,32 @@ void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
     uint32_t* cursor = ioWork.unit_cell_count.data() + inUnit * cells;
     for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
       const auto box = static_cast<uint32_t>(sorted[k]);
-      const float* bounds = ioWork.bounds.data() + 6 * std::size_t{box};
-      forEachCell(ioWork.cell_range[box], inGrid[1].cells, [&](uint32_t cell) {
-        const uint32_t entry = cursor[cell]++;
-        for (int slot = 0; slot < 3; ++slot) {
-          ioWork.lo[slot][entry] = bounds[2 * slot];
-          ioWork.hi[slot][entry] = bounds[2 * slot + 1];
-        }
-        ioWork.box_of[entry] = box;
-      });
+      forEachCell(ioWork.cell_range[box], inGrid[1].cells,
+                  [&](uint32_t cell) { ioWork.box_of[cursor[cell]++] = box; });
     }
   });
-  // The padding after each cell's run, a run of cells a unit.
+}
+
+// Copies the bounds of the boxes of one cell's run into the run's arrays, and its padding: a
+// run is written in order, by the one worker that then sweeps it (while it is in its cache),
+// rather than a few entries at a time by every unit of boxes, whose writes would share cache
+// lines with other units' (a cell's share of a unit is a few entries).
+void gatherCell(uint32_t inCell, SmallFrameWorkspace& ioWork) {
+  const uint32_t first = ioWork.cell_start[inCell];
+  const uint32_t padding = ioWork.cell_start[inCell + 1] - kBlock;
+  const float* bounds = ioWork.bounds.data();
+  for (uint32_t entry = first; entry < padding; ++entry) {
+    const float* box_bounds = bounds + 6 * std::size_t{ioWork.box_of[entry]};
+    for (int slot = 0; slot < 3; ++slot) {
+      ioWork.lo[slot][entry] = box_bounds[2 * slot];
+      ioWork.hi[slot][entry] = box_bounds[2 * slot + 1];
+    }
+  }
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  runOverItems(WorkUnits{cells, kCellsPerUnit}, inThreads,
-               [&](std::size_t inBegin, std::size_t inEnd) {
-                 for (std::size_t cell = inBegin; cell < inEnd; ++cell) {
-                   const uint32_t end = ioWork.cell_start[cell + 1];
-                   for (uint32_t entry = end - kBlock; entry < end; ++entry) {
-                     for (int slot = 0; slot < 3; ++slot)
-                       ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
-                     ioWork.box_of[entry] = 0;
-                   }
-                 }
-               });
+  for (uint32_t entry = padding; entry < padding + kBlock; ++entry) {
+    for (int slot = 0; slot < 3; ++slot) ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
+    ioWork.box_of[entry] = 0;
+  }
 }
 
 // Cuts the cells into runs of consecutive cells of about inEntries entries each (a cell is
@@ -430,8 +432,8 @@ void sweepCell(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAv
   });
 }
 
-// Sweeps every cell, runs of cells (units) on the frame's threads, each worker into its own
-// list; the lists are merged into canonical order.
+// Gathers and sweeps every cell, runs of cells (units) on the frame's threads, each worker into
+// its own list; the lists are merged into canonical order.
 void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2, int inThreads,
                 SmallFrameWorkspace& ioWork, PairList& outPairs) {
   const uint32_t entries = ioWork.cell_start.back();
@@ -447,8 +449,10 @@ void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inA
   for (PairChunks& pairs : ioWork.pairs_per_worker) pairs.clear();
   runUnitsOnWorkers(units, team, [&](std::size_t inUnit, int inWorker) {
     SAP_ASSERT(inWorker < team, "a worker beyond the sweep's lists");
-    for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell)
+    for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell) {
+      gatherCell(cell, ioWork);
       sweepCell(inBoxes, inGrid, inAvx2, ioWork, cell, ioWork.pairs_per_worker[inWorker]);
+    }
   });
   sortPairsCanonical(ioWork.pairs_per_worker, outPairs, ioWork.pair_scratch, team);
 }

@@ -73,6 +73,12 @@ namespace {
 
 using DigitCounts = std::array<uint32_t, kDigitValues>;
 
+// Fewest items sorted in parallel. The parallel sort reads the items twice more than the serial
+// one (counting passes 2 and 3) and hands out up to seven passes, each a wait for the slowest
+// unit; below this the serial sort takes a few tenths of a millisecond and, on the loaded 2-core
+// VM, the parallel one was slower at 2^17 and 2^18 items (sap_bench has no quiet figure yet).
+constexpr std::size_t kParallelSortMinItems = std::size_t{1} << 19;
+
 // The serial sort: one pass counts every digit, then one scatter a digit that varies.
 uint64_t* radixSortPackedSerial(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
   std::array<DigitCounts, kPasses> histograms;  // 24 KiB, on the stack
@@ -109,16 +115,12 @@ std::vector<DigitCounts>& parallelSortCounters() {
   return counters;
 }
 
-// Digit values whose offsets one unit of the offset pass computes.
-constexpr uint32_t kDigitsPerOffsetUnit = 256;
-static_assert(kDigitValues % kDigitsPerOffsetUnit == 0, "the offset units cover every digit");
-
 // The same sort on inThreads workers of the runner. The items are cut into units (contiguous
 // slices, kUnitsPerThread a thread, none under kUnitBoxes items); each pass counts a unit's
 // digits, gives each (digit, unit) its first slot (digits in order, and within a digit the units
 // in order: the slots one pass over the items in order would give) and scatters each unit into
-// its slots. So the result is the stable order whatever the thread count, and each pass reads
-// and writes the items once more than the serial sort does only to count them.
+// its slots. So the result is the stable order whatever the thread count; each pass after the
+// first reads the items once more than the serial sort does, to count them.
 uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount,
                                   int inThreads) {
   const std::size_t slice = (inCount + unitsForThreads(inThreads) - 1) / unitsForThreads(inThreads);
@@ -155,27 +157,18 @@ uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::s
           ++counts[digitOf(source[k], pass)];
       });
     }
-    // Each digit's first slot: the items of all smaller digits. Then, a run of digits a unit,
-    // the units' slots within each digit.
-    DigitCounts digit_start;
-    uint32_t offset = 0;
+    // Each (digit, unit)'s first slot: the items of all smaller digits, then of the digit in
+    // earlier units. Serial: a few thousand counters a unit, cheaper than handing out a pass.
+    uint32_t slot = 0;
     for (uint32_t digit = 0; digit < kDigitValues; ++digit) {
-      digit_start[digit] = offset;
-      for (std::size_t unit = 0; unit < unit_count; ++unit) offset += countsOf(unit, pass)[digit];
-    }
-    SAP_ASSERT(offset == inCount, "the digit counts do not cover every item once");
-    runUnits(kDigitValues / kDigitsPerOffsetUnit, inThreads, [&](std::size_t inDigits) {
-      const auto first = static_cast<uint32_t>(inDigits * kDigitsPerOffsetUnit);
-      for (uint32_t digit = first; digit < first + kDigitsPerOffsetUnit; ++digit) {
-        uint32_t slot = digit_start[digit];
-        for (std::size_t unit = 0; unit < unit_count; ++unit) {
-          uint32_t& count = countsOf(unit, pass)[digit];
-          const uint32_t items = count;
-          count = slot;  // from now on the unit's next slot for the digit
-          slot += items;
-        }
+      for (std::size_t unit = 0; unit < unit_count; ++unit) {
+        uint32_t& count = countsOf(unit, pass)[digit];
+        const uint32_t items = count;
+        count = slot;  // from now on the unit's next slot for the digit
+        slot += items;
       }
-    });
+    }
+    SAP_ASSERT(slot == inCount, "the digit counts do not cover every item once");
     runUnits(unit_count, inThreads, [&](std::size_t inUnit) {
       DigitCounts& next_slot = countsOf(inUnit, pass);
       for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
@@ -201,7 +194,7 @@ uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t in
   // Several units on several threads, unless already inside a unit (Algorithm 2 sorts its
   // partitions one a unit): a nested pass would run inline and only pay the extra counting.
   const int threads = passThreads();
-  if (threads > 1 && inCount >= 2 * kUnitBoxes && !detail::runningAUnit())
+  if (threads > 1 && inCount >= kParallelSortMinItems && !detail::runningAUnit())
     return radixSortPackedParallel(ioItems, ioScratch, inCount, threads);
   return radixSortPackedSerial(ioItems, ioScratch, inCount);
 }
