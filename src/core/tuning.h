@@ -94,9 +94,9 @@ constexpr std::size_t kSmallFrameSweepUnitsPerBoxUnit = 4;
 /// parallel sweep's 490-612 on two threads and 370-380 for the kernel on one; at 2^15 the
 /// kernel on two threads 50 ms against 108 on one, at 2^13 1.17 against 1.11 (one unit of
 /// boxes: nothing to share), so parallel_min_boxes (2^15) stays the cut-off below which a
-/// frame runs on one thread. Above two threads the kernel's serial key sort and prefix are
-/// unmeasured against the paper's sweep, which scales with cores (its §7): the sweep keeps
-/// them.
+/// frame runs on one thread. Above two threads the kernel (its key sort serial below 2^19
+/// boxes) is unmeasured against the paper's sweep, which scales with cores (its §7): the sweep
+/// keeps them.
 constexpr int kKernelMostThreads = 2;
 
 // ---- Box queries against the last frame (frame_query.h) ----

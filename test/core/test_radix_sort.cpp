@@ -225,6 +225,57 @@ TEST(RadixSort, PackedSortIsStable) {
   }
 }
 
+// Key sets below and above the parallel sort's size (2^19 items; the larger one is several
+// units of kUnitBoxes a thread): random keys, few distinct keys, keys whose digits vary only in
+// the top or only in the lowest pass (the other passes skipped), and keys already in order.
+std::vector<std::vector<uint32_t>> multiUnitKeySets() {
+  TestRandom random(2024);
+  std::vector<std::vector<uint32_t>> sets;
+  for (std::size_t count : {2 * kUnitBoxes, (std::size_t{1} << 19) + 17}) {
+    std::vector<uint32_t> keys(count);
+    for (uint32_t& key : keys) key = static_cast<uint32_t>(random.bits());
+    sets.push_back(keys);
+    for (uint32_t& key : keys) key = static_cast<uint32_t>(random.below(5)) * 0x01010101u;
+    sets.push_back(keys);
+    for (uint32_t& key : keys) key = static_cast<uint32_t>(random.below(1024)) << 22;
+    sets.push_back(keys);
+    for (uint32_t& key : keys) key = 0xABC00000u | static_cast<uint32_t>(random.below(2048));
+    sets.push_back(keys);
+    for (std::size_t k = 0; k < count; ++k) keys[k] = lowKey(static_cast<double>(k) - 1000.0);
+    sets.push_back(keys);
+  }
+  return sets;
+}
+
+// The packed sort on 1 to 4 threads of a scope, and inside a unit of a pass (where it runs
+// serially): the stable order every time.
+TEST(RadixSort, PackedSortIsStableOnAnyThreadCount) {
+  for (const std::vector<uint32_t>& keys : multiUnitKeySets()) {
+    const std::vector<uint32_t> expected = stableOrder(keys);
+    for (int threads = 1; threads <= 4; ++threads) {
+      const ThreadsScope scope(threads);
+      for (bool in_unit : {false, true}) {
+        std::vector<uint64_t> items(keys.size());
+        std::vector<uint64_t> scratch(keys.size());
+        for (std::size_t k = 0; k < keys.size(); ++k)
+          items[k] = packKeyIndex(keys[k], static_cast<uint32_t>(k));
+        const uint64_t* sorted = nullptr;
+        if (in_unit)
+          runUnits(2, [&](std::size_t inUnit) {
+            if (inUnit == 0) sorted = radixSortPacked(items.data(), scratch.data(), items.size());
+          });
+        else
+          sorted = radixSortPacked(items.data(), scratch.data(), items.size());
+        ASSERT_TRUE(sorted == items.data() || sorted == scratch.data());
+        for (std::size_t k = 0; k < keys.size(); ++k)
+          ASSERT_EQ(static_cast<uint32_t>(sorted[k]), expected[k])
+              << keys.size() << " keys, " << threads << " threads, in a unit: " << in_unit
+              << ", rank " << k;
+      }
+    }
+  }
+}
+
 TEST(RadixSort, LowEndpointsComeBeforeHighEndpointsAtEqualCoordinates) {
   // Closed intervals: object i's low (index i) precedes any high (index >= n) with the same key.
   const std::vector<double> values = {1.0, 1.0, 1.0, 2.0, 0.0, -0.0};

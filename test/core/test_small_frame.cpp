@@ -58,9 +58,10 @@ TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
 // Boxes reaching across many cells, or infinitely far on a grid axis (first to last cell), and
 // boxes beyond the finite span: each pair once, however many cells the two boxes share.
 // Frames of several units of boxes (kUnitBoxes), so that every pass of the kernel hands units
-// to the runner's workers: the bounds, the per-unit cell counts and copies, and runs of cells
-// swept by different workers, on one to four threads, over several seeds and densities. The
-// layout of the cells is the same on every thread count, as are the pairs.
+// to the runner's workers: the bounds, the key sort, the per-unit cell counts, the cells'
+// prefix and padding, the copies, and runs of cells swept by different workers, on one to four
+// threads, over several seeds and densities. The layout of the cells is the same on every thread
+// count, as are the pairs.
 TEST(SmallFrameGrid, ParallelPassesMatchTheOracleOnOneToFourThreads) {
   const std::size_t n = 2 * kUnitBoxes + 2500;
   const std::pair<uint64_t, double> cases[] = {{11, 1.0}, {12, 3.0}, {13, 2.0}};
@@ -84,6 +85,9 @@ TEST(SmallFrameGrid, ParallelPassesMatchTheOracleOnOneToFourThreads) {
       EXPECT_TRUE(std::equal(one_thread.box_of.begin(), one_thread.box_of.end(),
                              work.box_of.begin(), work.box_of.end()))
           << at << ": the cells' layout depends on the threads";
+      EXPECT_TRUE(std::equal(one_thread.cell_start.begin(), one_thread.cell_start.end(),
+                             work.cell_start.begin(), work.cell_start.end()))
+          << at << ": the cells' runs depend on the threads";
       pairSmallFramePortable(boxes, work, pairs);
       EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << at << " (portable)";
     }

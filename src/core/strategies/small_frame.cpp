@@ -293,11 +293,15 @@ void measureBoxes(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAx
   (void)inAvx2;
 }
 
+// Cells a unit of the passes over the cells' prefix handles: a few thousand cells at most, so
+// a pass has a few units.
+constexpr std::size_t kCellsPerUnit = 256;
+
 // Where each unit of the sorted boxes writes into each cell: every unit counts the entries it
 // adds to each cell (its row of unit_cell_count), then, cell by cell and unit by unit in
 // order, the counts become the units' first entries (the same layout as one pass over the
 // boxes in sorted order would give, whatever the thread count), and cell_start each cell's run
-// (its entries and kBlock of padding).
+// (its entries and kBlock of padding). Only the prefix over the cells' totals is serial.
 void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint32_t inCells,
                        uint32_t inCells1, SmallFrameWorkspace& ioWork) {
   Buffer<uint32_t>& counts = ioWork.unit_cell_count;
@@ -309,25 +313,38 @@ void placeUnitsInCells(const uint64_t* inSorted, const WorkUnits& inUnits, uint3
       forEachCell(ioWork.cell_range[static_cast<uint32_t>(inSorted[k])], inCells1,
                   [&](uint32_t cell) { ++row[cell]; });
   });
-  resizeDiscarding(ioWork.cell_start, std::size_t{inCells} + 1);
-  uint32_t next = 0;
-  for (uint32_t cell = 0; cell < inCells; ++cell) {
-    ioWork.cell_start[cell] = next;
-    for (std::size_t unit = 0; unit < inUnits.count(); ++unit) {
-      uint32_t& count = counts[unit * inCells + cell];
-      const uint32_t entries = count;
-      count = next;  // from now on the unit's next entry in the cell
-      next += entries;
+  Buffer<uint32_t>& cell_start = ioWork.cell_start;
+  resizeDiscarding(cell_start, std::size_t{inCells} + 1);
+  const WorkUnits cell_units{inCells, kCellsPerUnit};
+  // Each cell's run length, in cell_start[cell + 1] until the prefix below.
+  runOverItems(cell_units, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t cell = inBegin; cell < inEnd; ++cell) {
+      uint32_t entries = kBlock;
+      for (std::size_t unit = 0; unit < inUnits.count(); ++unit)
+        entries += counts[unit * inCells + cell];
+      cell_start[cell + 1] = entries;
     }
-    next += kBlock;
-  }
-  ioWork.cell_start[inCells] = next;
+  });
+  cell_start[0] = 0;
+  for (uint32_t cell = 0; cell < inCells; ++cell) cell_start[cell + 1] += cell_start[cell];
+  runOverItems(cell_units, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t cell = inBegin; cell < inEnd; ++cell) {
+      uint32_t next = cell_start[cell];
+      for (std::size_t unit = 0; unit < inUnits.count(); ++unit) {
+        uint32_t& count = counts[unit * inCells + cell];
+        const uint32_t entries = count;
+        count = next;  // from now on the unit's next entry in the cell
+        next += entries;
+      }
+      SAP_ASSERT(next + kBlock == cell_start[cell + 1], "a cell's entries and padding disagree");
+    }
+  });
 }
 
-// Sorts the boxes by low key on the sweep axis and copies each, in that order, into every cell
-// it reaches: each cell's run is sorted by low key and followed by kBlock NaNs. The copying
-// runs a unit of the sorted boxes at a time on the frame's threads, each unit into the entries
-// placeUnitsInCells gave it.
+// Sorts the boxes by low key on the sweep axis and lists each, in that order, in every cell it
+// reaches (box_of): each cell's run is sorted by low key, its bounds copied in by gatherCell.
+// The sort and the listing run on the frame's threads, the listing a unit of the sorted boxes
+// at a time, each unit into the entries placeUnitsInCells gave it.
 void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
                const GridAxis (&inGrid)[2], bool inAvx2, SmallFrameWorkspace& ioWork) {
   const auto n = static_cast<uint32_t>(inBoxes.size());
@@ -346,24 +363,31 @@ void fillCells(const BoxColumns& inBoxes, const KeyOrigin& inOrigin, int inAxis,
     uint32_t* cursor = ioWork.unit_cell_count.data() + inUnit * cells;
     for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
       const auto box = static_cast<uint32_t>(sorted[k]);
-      const float* bounds = ioWork.bounds.data() + 6 * std::size_t{box};
-      forEachCell(ioWork.cell_range[box], inGrid[1].cells, [&](uint32_t cell) {
-        const uint32_t entry = cursor[cell]++;
-        for (int slot = 0; slot < 3; ++slot) {
-          ioWork.lo[slot][entry] = bounds[2 * slot];
-          ioWork.hi[slot][entry] = bounds[2 * slot + 1];
-        }
-        ioWork.box_of[entry] = box;
-      });
+      forEachCell(ioWork.cell_range[box], inGrid[1].cells,
+                  [&](uint32_t cell) { ioWork.box_of[cursor[cell]++] = box; });
     }
   });
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (uint32_t cell = 0; cell < cells; ++cell) {
-    for (uint32_t entry = ioWork.cell_start[cell + 1] - kBlock; entry < ioWork.cell_start[cell + 1];
-         ++entry) {
-      for (int slot = 0; slot < 3; ++slot) ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
-      ioWork.box_of[entry] = 0;
+}
+
+// Copies the bounds of the boxes of one cell's run into the run's arrays, and its padding: a
+// run is written in order, by the one worker that then sweeps it (while it is in its cache),
+// rather than a few entries at a time by every unit of boxes, whose writes would share cache
+// lines with other units' (a cell's share of a unit is a few entries).
+void gatherCell(uint32_t inCell, SmallFrameWorkspace& ioWork) {
+  const uint32_t first = ioWork.cell_start[inCell];
+  const uint32_t padding = ioWork.cell_start[inCell + 1] - kBlock;
+  const float* bounds = ioWork.bounds.data();
+  for (uint32_t entry = first; entry < padding; ++entry) {
+    const float* box_bounds = bounds + 6 * std::size_t{ioWork.box_of[entry]};
+    for (int slot = 0; slot < 3; ++slot) {
+      ioWork.lo[slot][entry] = box_bounds[2 * slot];
+      ioWork.hi[slot][entry] = box_bounds[2 * slot + 1];
     }
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (uint32_t entry = padding; entry < padding + kBlock; ++entry) {
+    for (int slot = 0; slot < 3; ++slot) ioWork.lo[slot][entry] = ioWork.hi[slot][entry] = nan;
+    ioWork.box_of[entry] = 0;
   }
 }
 
@@ -401,8 +425,8 @@ void sweepCell(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAv
   });
 }
 
-// Sweeps every cell, runs of cells (units) on the frame's threads, each worker into its own
-// list; the lists are merged into canonical order.
+// Gathers and sweeps every cell, runs of cells (units) on the frame's threads, each worker into
+// its own list; the lists are merged into canonical order.
 void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inAvx2,
                 SmallFrameWorkspace& ioWork, PairList& outPairs) {
   const uint32_t entries = ioWork.cell_start.back();
@@ -419,8 +443,10 @@ void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inA
   for (PairChunks& pairs : ioWork.pairs_per_worker) pairs.clear();
   runUnitsOnWorkers(units, [&](std::size_t inUnit, int inWorker) {
     SAP_ASSERT(inWorker < team, "a worker beyond the sweep's lists");
-    for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell)
+    for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell) {
+      gatherCell(cell, ioWork);
       sweepCell(inBoxes, inGrid, inAvx2, ioWork, cell, ioWork.pairs_per_worker[inWorker]);
+    }
   });
   sortPairsCanonical(ioWork.pairs_per_worker, outPairs, ioWork.pair_scratch);
 }

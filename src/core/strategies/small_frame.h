@@ -32,6 +32,7 @@ struct SmallFrameWorkspace {
   /// sweep axis (a box reaching several cells is in each), structure of arrays of the bounds
   /// with axis 0 the sweep axis. Each run is followed by kBlock NaNs, so a block of candidates
   /// may read past its last box: NaN compares false, so padding never overlaps anything.
+  /// A run's bounds are copied in by the worker that sweeps it, just before its sweep.
   Buffer<float> lo[3];
   Buffer<float> hi[3];
   Buffer<uint32_t> box_of;      ///< box index of each entry of a run

@@ -69,14 +69,19 @@ inline uint8_t lookupPartition(uint32_t inKey, const uint8_t* inTable, const uin
 
 }  // namespace
 
-uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
-  if (inCount < tuning::kSmallIndexSort) {
-    // Items are unique (distinct indexes), so sorting whole words is a stable sort by key
-    // provided equal keys arrive in index order, which every caller guarantees.
-    std::sort(ioItems, ioItems + inCount);
-    return ioItems;
-  }
-  std::array<std::array<uint32_t, kDigitValues>, kPasses> histograms;  // 24 KiB, on the stack
+namespace {
+
+using DigitCounts = std::array<uint32_t, kDigitValues>;
+
+// Fewest items sorted in parallel. The parallel sort reads the items twice more than the serial
+// one (counting passes 2 and 3) and hands out up to seven passes, each a wait for the slowest
+// unit; below this the serial sort takes a few tenths of a millisecond and, on the loaded 2-core
+// VM, the parallel one was slower at 2^17 and 2^18 items (sap_bench has no quiet figure yet).
+constexpr std::size_t kParallelSortMinItems = std::size_t{1} << 19;
+
+// The serial sort: one pass counts every digit, then one scatter a digit that varies.
+uint64_t* radixSortPackedSerial(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
+  std::array<DigitCounts, kPasses> histograms;  // 24 KiB, on the stack
   for (auto& histogram : histograms) histogram.fill(0);
   for (std::size_t k = 0; k < inCount; ++k)
     for (int pass = 0; pass < kPasses; ++pass) ++histograms[pass][digitOf(ioItems[k], pass)];
@@ -84,7 +89,7 @@ uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t in
   uint64_t* source = ioItems;
   uint64_t* target = ioScratch;
   for (int pass = 0; pass < kPasses; ++pass) {
-    std::array<uint32_t, kDigitValues>& histogram = histograms[pass];
+    DigitCounts& histogram = histograms[pass];
     // A digit equal for every item would copy the data without reordering it: skip the pass.
     if (histogram[digitOf(source[0], pass)] == inCount) continue;
     uint32_t offset = 0;
@@ -100,6 +105,98 @@ uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t in
     std::swap(source, target);
   }
   return source;
+}
+
+// The parallel sort's per-unit counters, [unit][pass] (then [unit] the unit's next slot of each
+// digit while it scatters). One set per calling thread, kept between sorts so that a frame's
+// sort allocates nothing; workers reach the caller's set through a reference.
+std::vector<DigitCounts>& parallelSortCounters() {
+  thread_local std::vector<DigitCounts> counters;
+  return counters;
+}
+
+// The same sort on inThreads workers of the runner. The items are cut into units (contiguous
+// slices, kUnitsPerThread a thread, none under kUnitBoxes items); each pass counts a unit's
+// digits, gives each (digit, unit) its first slot (digits in order, and within a digit the units
+// in order: the slots one pass over the items in order would give) and scatters each unit into
+// its slots. So the result is the stable order whatever the thread count; each pass after the
+// first reads the items once more than the serial sort does, to count them.
+uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount,
+                                  int inThreads) {
+  const std::size_t slice = (inCount + unitsForThreads(inThreads) - 1) / unitsForThreads(inThreads);
+  const WorkUnits units{inCount, std::max(kUnitBoxes, slice)};
+  const std::size_t unit_count = units.count();
+  std::vector<DigitCounts>& counters = parallelSortCounters();
+  if (counters.size() < unit_count * kPasses) counters.resize(unit_count * kPasses);
+  auto countsOf = [&](std::size_t inUnit, int inPass) -> DigitCounts& {
+    return counters[inUnit * kPasses + inPass];
+  };
+  // Every digit of every pass, counted once on the unsorted items: their totals decide which
+  // passes are skipped, and the first pass run uses its counts as they are.
+  runUnits(unit_count, inThreads, [&](std::size_t inUnit) {
+    for (int pass = 0; pass < kPasses; ++pass) countsOf(inUnit, pass).fill(0);
+    for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k)
+      for (int pass = 0; pass < kPasses; ++pass)
+        ++countsOf(inUnit, pass)[digitOf(ioItems[k], pass)];
+  });
+  uint64_t* source = ioItems;
+  uint64_t* target = ioScratch;
+  bool counted = true;  // the units' counts of this pass are of source's current order
+  for (int pass = 0; pass < kPasses; ++pass) {
+    const uint32_t shared_digit = digitOf(source[0], pass);
+    uint32_t with_shared_digit = 0;
+    for (std::size_t unit = 0; unit < unit_count; ++unit)
+      with_shared_digit += countsOf(unit, pass)[shared_digit];
+    // A digit equal for every item would copy the data without reordering it: skip the pass.
+    if (with_shared_digit == inCount) continue;
+    if (!counted) {
+      runUnits(unit_count, inThreads, [&](std::size_t inUnit) {
+        DigitCounts& counts = countsOf(inUnit, pass);
+        counts.fill(0);
+        for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k)
+          ++counts[digitOf(source[k], pass)];
+      });
+    }
+    // Each (digit, unit)'s first slot: the items of all smaller digits, then of the digit in
+    // earlier units. Serial: a few thousand counters a unit, cheaper than handing out a pass.
+    uint32_t slot = 0;
+    for (uint32_t digit = 0; digit < kDigitValues; ++digit) {
+      for (std::size_t unit = 0; unit < unit_count; ++unit) {
+        uint32_t& count = countsOf(unit, pass)[digit];
+        const uint32_t items = count;
+        count = slot;  // from now on the unit's next slot for the digit
+        slot += items;
+      }
+    }
+    SAP_ASSERT(slot == inCount, "the digit counts do not cover every item once");
+    runUnits(unit_count, inThreads, [&](std::size_t inUnit) {
+      DigitCounts& next_slot = countsOf(inUnit, pass);
+      for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
+        const uint64_t item = source[k];
+        target[next_slot[digitOf(item, pass)]++] = item;
+      }
+    });
+    std::swap(source, target);
+    counted = false;
+  }
+  return source;
+}
+
+}  // namespace
+
+uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
+  if (inCount < tuning::kSmallIndexSort) {
+    // Items are unique (distinct indexes), so sorting whole words is a stable sort by key
+    // provided equal keys arrive in index order, which every caller guarantees.
+    std::sort(ioItems, ioItems + inCount);
+    return ioItems;
+  }
+  // Several units on several threads, unless already inside a unit (Algorithm 2 sorts its
+  // partitions one a unit): a nested pass would run inline and only pay the extra counting.
+  const int threads = passThreads();
+  if (threads > 1 && inCount >= kParallelSortMinItems && !detail::runningAUnit())
+    return radixSortPackedParallel(ioItems, ioScratch, inCount, threads);
+  return radixSortPackedSerial(ioItems, ioScratch, inCount);
 }
 
 void radixIndexSort(const uint32_t* inKeys, uint32_t inCount, uint32_t* outIndex) {

@@ -21,7 +21,9 @@ inline uint64_t packKeyIndex(uint32_t inKey, uint32_t inIndex) {
 }
 
 /// Sorts packed items by key (upper 32 bits), stably. ioScratch must hold inCount items.
-/// Returns the buffer holding the result: ioItems or ioScratch.
+/// Returns the buffer holding the result: ioItems or ioScratch. From 2^19 items it
+/// runs on the threads of the caller's scope (passThreads(); serial inside a unit of a pass),
+/// with the same result on any count.
 uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount);
 
 /// Stable sequential index sort: outIndex[k] is the index of the k-th smallest key.
