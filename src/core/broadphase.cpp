@@ -21,16 +21,16 @@
 #include "core/frame/contact_events.h"
 #include "core/frame/frame_history.h"
 #include "core/frame/frame_plan.h"
-#include "core/strategies/frame_query.h"
-#include "core/runner/memory_policy.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/memory_policy.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/frame_query.h"
 #include "core/strategies/skin_reuse.h"
 #include "core/strategies/small_frame.h"
 #include "core/strategies/static_index.h"
 #include "core/sweep/sweep_and_prune.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 
@@ -153,7 +153,12 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
           PhaseTimer timer(report.ms_pairing);
           pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs, inPlan.threads);
         }
+        // The kept candidates answer the frames that follow without a sweep: the kernel's
+        // buffers would sit idle through them, beside the kept-candidate passes' own. They are
+        // given back before the candidates are kept, and the next sweep sizes them again.
+        buffers.small_frame = SmallFrameWorkspace();
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
+        returnFreedHeapPages();  // the lists the kept candidates replaced
       } else {
         PhaseTimer timer(report.ms_pairing);
         skin.forget();
@@ -166,7 +171,9 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
         const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         sweep.run(grown, grown_spread, inPlan.path, inPlan.threads, report, pairs);
+        sweep.releaseBuffers();  // idle through the kept-candidate frames, as the kernel's
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
+        returnFreedHeapPages();
       } else {
         skin.forget();
         sweep.run(boxes, ioSpread, inPlan.path, inPlan.threads, report, pairs);

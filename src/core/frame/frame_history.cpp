@@ -2,8 +2,8 @@
 #include "core/assert.h"
 #include "core/frame/box_columns.h"
 #include "core/runner/buffers.h"
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 
 #include <algorithm>
 #include <cmath>
@@ -215,7 +215,7 @@ void copyBlock(const RecordBlock& inBlock, bool inFiltered, std::size_t inBegin,
 FramePass compareAndCopyBlocks(const FrameReader& inFrame, int inThreads, BoxColumns& ioLast,
                                std::vector<uint8_t>& outUnchanged) {
   const std::size_t n = inFrame.size();
-  outUnchanged.resize(n);
+  resizeResident(outUnchanged, n);
   const UnitChanges changes = reduceOverItems(
       WorkUnits{n}, inThreads, UnitChanges{},
       [&](std::size_t inBegin, std::size_t inEnd) {
