@@ -2,9 +2,12 @@
 //
 // memory.csv: the peak of the default engine in steady use (uniform scene moving 1 % of a mean
 // edge a frame, enough frames for the kept candidates to be rebuilt at least once), against the
-// target of 120 bytes per box plus 8 per pair. The peak resident set (VmHWM) is reset through
-// /proc/self/clear_refs after the scene exists, so the growth during the engine's frames is the
-// engine's own (buffers and pair output).
+// target of 120 bytes per box plus 8 per pair, and beside it PhysX's PABP (on the same threads)
+// and ABP over the same frames when PhysX is built. Each contender runs in a forked process of
+// its own that makes the scene and then resets its peak resident set (VmHWM, through
+// /proc/self/clear_refs), so the growth during the frames is the contender's own: the engine's
+// buffers and pair output; PhysX's structures, the input arrays it reads (float bounds, groups,
+// distances, handles) and the found and lost pairs it reports, no pair set accumulated from them.
 //
 // memory_parts.csv: bytes per box of each structure the default holds, measured on the same
 // scene with the engine's parts run one after the other on one thread, as a sweep frame with the
@@ -13,7 +16,12 @@
 // the resident growth of one plain sweep beyond its pair list), one pair list, the grown boxes,
 // the kept candidates, a kept-candidate pass's buffers and the skin's sorting scratch. Capacities
 // where the engine's part can tell them (history, skin), resident growth for the sweep.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
+#include <memory>
 #include <utility>
 
 #include "bench_memory.h"
@@ -25,6 +33,7 @@
 #include "core/sweep/sweep_and_prune.h"
 #include "engine_runner.h"
 #include "experiments.h"
+#include "peers/peer.h"
 
 namespace sap_bench {
 namespace {
@@ -106,6 +115,83 @@ void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& 
   row("skin_scratch", skin.scratch, "capacity");
 }
 
+/// The peak memory of one contender's steady frames, measured in a process of its own.
+struct SteadyPeak {
+  std::size_t grown = 0;    ///< peak resident growth above the process with its scene made
+  std::size_t process = 0;  ///< the process's peak resident set
+  std::size_t pairs = 0;    ///< the most pairs of a frame (the engine's)
+  int grown_sweeps = 0;     ///< frames after the first that grew and kept candidates (engine)
+  bool peak_reset = false;
+  bool ran = false;
+};
+
+/// Runs inFrames(simulator, peak) in a forked child that makes the scene, resets its peak and
+/// sends its SteadyPeak back through a pipe: every contender's heap, pages and peak are its own,
+/// and each starts from the same process. ran stays false when the child failed.
+template <class Frames>
+SteadyPeak peakInChild(const sap_broadphase::SceneConfig& inScene, Frames&& inFrames) {
+  SteadyPeak peak;
+  int fds[2];
+  if (pipe(fds) != 0) return peak;
+  std::fflush(nullptr);
+  const pid_t child = fork();
+  if (child < 0) {
+    close(fds[0]), close(fds[1]);
+    return peak;
+  }
+  if (child == 0) {
+    close(fds[0]);
+    SteadyPeak measured;
+    {
+      sap_broadphase::SceneSimulator simulator(inScene);
+      PeakMeter meter;
+      meter.start();
+      inFrames(simulator, measured);
+      measured.grown = meter.grownBytes();
+      measured.process = meter.processPeakBytes();
+      measured.peak_reset = meter.peakReset();
+      measured.ran = true;
+    }
+    const char* at = reinterpret_cast<const char*>(&measured);
+    std::size_t left = sizeof(measured);
+    while (left > 0) {
+      const ssize_t written = write(fds[1], at, left);
+      if (written <= 0) break;
+      at += written, left -= static_cast<std::size_t>(written);
+    }
+    close(fds[1]);
+    _exit(0);  // no destructors or atexit handlers of the parent's objects
+  }
+  close(fds[1]);
+  SteadyPeak received;
+  char* at = reinterpret_cast<char*>(&received);
+  std::size_t left = sizeof(received);
+  while (left > 0) {
+    const ssize_t got = read(fds[0], at, left);
+    if (got <= 0) break;
+    at += got, left -= static_cast<std::size_t>(got);
+  }
+  close(fds[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  if (left == 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0) peak = received;
+  return peak;
+}
+
+/// A peer's steady frames keeping no pair set (Peer::stepKeepingNoPairs), in a child of its own;
+/// not run (ran false) without the peer.
+SteadyPeak peerPeak(Peer* ioPeer, const sap_broadphase::SceneConfig& inScene, int inFrames) {
+  if (!ioPeer) return SteadyPeak();
+  return peakInChild(inScene, [&](sap_broadphase::SceneSimulator& ioSimulator, SteadyPeak&) {
+    ioPeer->begin();
+    for (int f = 0; f < inFrames; ++f) {
+      if (f > 0) ioSimulator.step();
+      if (!ioPeer->stepKeepingNoPairs(ioSimulator.boxes())) _exit(1);
+    }
+    ioPeer->begin();
+  });
+}
+
 }  // namespace
 
 void runMemory(const Options& inOptions) {
@@ -113,42 +199,75 @@ void runMemory(const Options& inOptions) {
   const int frames = inOptions.framesOr(40, 3);
   const int threads = sap_broadphase::resolveThreadCount(inOptions.threads);
   Table table(
-      "Peak memory of the default engine over steady frames at 1 % motion (bytes; target "
-      "120/box + 8/pair)",
+      "Peak memory of the default engine over steady frames at 1 % motion, beside PhysX's PABP "
+      "and ABP on the same frames (bytes; each in a process of its own; target 120/box + "
+      "8/pair)",
       {"n", "d", "pairs", "frames", "grown_sweeps", "engine_peak_bytes", "bytes_per_box",
-       "budget_bytes", "within_budget", "process_peak_bytes", "peak_reset"});
+       "budget_bytes", "within_budget", "process_peak_bytes", "peak_reset", "pabp_peak_bytes",
+       "pabp_process_peak_bytes", "abp_peak_bytes", "abp_process_peak_bytes", "ratio_to_pabp",
+       "process_ratio_to_pabp"});
   Table parts(
       "Bytes per box of each structure of the default (one thread; sweep frame with the "
       "chosen skin)",
       {"n", "d", "skin", "pairs", "candidates", "structure", "bytes", "bytes_per_box",
        "measured_as"});
+  // The PhysX peers the size sweep runs (ABP on one thread, PABP on the chosen threads); none
+  // when PhysX is not built.
+  std::unique_ptr<Peer> pabp, abp;
+  for (auto& peer : makePeers(threads)) {
+    if (peer->family() != "physx") continue;
+    if (peer->name() == "physx_abp")
+      abp = std::move(peer);
+    else if (peer->name() != "physx_mbp")
+      pabp = std::move(peer);
+  }
+  // Every contender's frames in a forked child, before this process runs an engine (a child
+  // must not inherit an OpenMP team); the parts table afterwards, in this process.
+  const std::vector<double> densities = {0.05, 0.35};
   for (std::size_t n : sizes) {
-    for (double density : {0.05, 0.35}) {
+    for (double density : densities) {
       const sap_broadphase::SceneConfig scene = movingScene(n, density, inOptions.seed);
-      sap_broadphase::SceneSimulator simulator(scene);
-      PeakMeter meter;
-      meter.start();
-      std::size_t pairs = 0;
-      int grown_sweeps = 0;
-      {
-        sap_broadphase::BroadphaseConfig config;
-        config.threads = threads;
-        sap_broadphase::Broadphase engine(config);
-        for (int f = 0; f < frames; ++f) {
-          if (f > 0) simulator.step();
-          pairs = std::max(pairs, engine.update(simulator.boxes()).size());
-          const auto& stats = engine.stats();
-          grown_sweeps += f > 0 && stats.path != sap_broadphase::FramePath::kSkin &&
-                          stats.skin_choice == sap_broadphase::SkinChoice::kChosen;
-        }
-      }
-      const std::size_t used = meter.grownBytes();
-      const std::size_t budget = 120 * n + 8 * pairs;
-      table.addRow({fmtSize(n), fmt(density, 2), fmtCount(pairs), std::to_string(frames),
-                    std::to_string(grown_sweeps), fmtCount(used),
-                    fmt(static_cast<double>(used) / n), fmtCount(budget),
-                    used <= budget ? "yes" : "NO", fmtCount(meter.processPeakBytes()),
-                    meter.peakReset() ? "yes" : "no"});
+      const SteadyPeak ours =
+          peakInChild(scene, [&](sap_broadphase::SceneSimulator& ioSimulator, SteadyPeak& ioPeak) {
+            sap_broadphase::BroadphaseConfig config;
+            config.threads = threads;
+            sap_broadphase::Broadphase engine(config);
+            for (int f = 0; f < frames; ++f) {
+              if (f > 0) ioSimulator.step();
+              ioPeak.pairs = std::max(ioPeak.pairs, engine.update(ioSimulator.boxes()).size());
+              const auto& stats = engine.stats();
+              ioPeak.grown_sweeps += f > 0 && stats.path != sap_broadphase::FramePath::kSkin &&
+                                     stats.skin_choice == sap_broadphase::SkinChoice::kChosen;
+            }
+          });
+      const SteadyPeak pabp_peak = peerPeak(pabp.get(), scene, frames);
+      const SteadyPeak abp_peak = peerPeak(abp.get(), scene, frames);
+      const std::size_t budget = 120 * n + 8 * ours.pairs;
+      const auto bytesOr = [](const SteadyPeak& inPeak, std::size_t inBytes) {
+        return inPeak.ran ? fmtCount(inBytes) : std::string("-");
+      };
+      const auto ratio = [](const SteadyPeak& inOurs, const SteadyPeak& inPeer,
+                            std::size_t SteadyPeak::*inField) {
+        return inOurs.ran && inPeer.ran && inPeer.*inField > 0
+                   ? fmt(static_cast<double>(inOurs.*inField) / inPeer.*inField, 3)
+                   : std::string("-");
+      };
+      table.addRow({fmtSize(n), fmt(density, 2), fmtCount(ours.pairs), std::to_string(frames),
+                    std::to_string(ours.grown_sweeps), bytesOr(ours, ours.grown),
+                    ours.ran ? fmt(static_cast<double>(ours.grown) / n) : "-", fmtCount(budget),
+                    !ours.ran              ? "-"
+                    : ours.grown <= budget ? "yes"
+                                           : "NO",
+                    bytesOr(ours, ours.process), ours.peak_reset ? "yes" : "no",
+                    bytesOr(pabp_peak, pabp_peak.grown), bytesOr(pabp_peak, pabp_peak.process),
+                    bytesOr(abp_peak, abp_peak.grown), bytesOr(abp_peak, abp_peak.process),
+                    ratio(ours, pabp_peak, &SteadyPeak::grown),
+                    ratio(ours, pabp_peak, &SteadyPeak::process)});
+    }
+  }
+  for (std::size_t n : sizes) {
+    for (double density : densities) {
+      const sap_broadphase::SceneConfig scene = movingScene(n, density, inOptions.seed);
       const double skin = chosenSkin(scene, threads);
       if (skin > 0.0) addParts(scene, skin, parts);
     }

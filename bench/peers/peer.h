@@ -45,6 +45,10 @@ class Peer {
   virtual void begin() {}
   /// True when step() keeps proxies across frames (else step() is oneShot()).
   virtual bool incremental() const { return false; }
+  /// A steady frame for a memory measure: as step(), but no pair set is accumulated or handed
+  /// back, so that what the process holds is the library's own (its structures, the input arrays
+  /// it reads, the found and lost pairs it reports). False when the peer has no such frame.
+  virtual bool stepKeepingNoPairs(const sap_broadphase::BoxSet&) { return false; }
   /// True when the peer runs its frames in a child process of its own (peer_runs.h,
   /// runPeerPass), so that its heap, page faults and peak memory are its own.
   virtual bool ownProcess() const { return false; }

@@ -283,14 +283,7 @@ class PhysxPeer : public Peer {
   PeerResult step(const BoxSet& inBoxes) override {
     foundation();
     Stopwatch clock;
-    if (!steady_ || steady_->size() != inBoxes.size()) {
-      steady_.reset();
-      current_.clear();
-      steady_ = std::make_unique<BroadPhaseState>(type_, workers());
-      steady_->build(inBoxes);
-    } else {
-      steady_->move(inBoxes);
-    }
+    updateSteady(inBoxes);
     PxU32 createdCount = 0, deletedCount = 0;
     const Bp::BroadPhasePair* created = steady_->created(createdCount);
     const Bp::BroadPhasePair* deleted = steady_->deleted(deletedCount);
@@ -305,7 +298,29 @@ class PhysxPeer : public Peer {
     return result;
   }
 
+  bool stepKeepingNoPairs(const BoxSet& inBoxes) override {
+    foundation();
+    updateSteady(inBoxes);
+    PxU32 createdCount = 0, deletedCount = 0;
+    steady_->created(createdCount);
+    steady_->deleted(deletedCount);
+    steady_->endFrame();
+    return true;
+  }
+
  private:
+  /// Builds the steady state on the first frame (or a frame of another size), else moves it.
+  void updateSteady(const BoxSet& inBoxes) {
+    if (!steady_ || steady_->size() != inBoxes.size()) {
+      steady_.reset();
+      current_.clear();
+      steady_ = std::make_unique<BroadPhaseState>(type_, workers());
+      steady_->build(inBoxes);
+    } else {
+      steady_->move(inBoxes);
+    }
+  }
+
   /// The dispatcher's workers (PABP only), made on first use.
   Workers* workers() {
     if (type_ != PxBroadPhaseType::ePABP) return nullptr;

@@ -155,7 +155,12 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
           PhaseTimer timer(report.ms_pairing);
           pairSmallFrame(grown, grown_spread, buffers.small_frame, pairs);
         }
+        // The kept candidates answer the frames that follow without a sweep: the kernel's
+        // buffers would sit idle through them, beside the kept-candidate passes' own. They are
+        // given back before the candidates are kept, and the next sweep sizes them again.
+        buffers.small_frame = SmallFrameWorkspace();
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
+        returnFreedHeapPages();  // the lists the kept candidates replaced
       } else {
         PhaseTimer timer(report.ms_pairing);
         skin.forget();
@@ -168,7 +173,9 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
         const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         sweep.run(grown, grown_spread, inPlan.path, report, pairs);
+        sweep.releaseBuffers();  // idle through the kept-candidate frames, as the kernel's
         skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
+        returnFreedHeapPages();
       } else {
         skin.forget();
         sweep.run(boxes, ioSpread, inPlan.path, report, pairs);

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/frame/pair_sort.h"
@@ -84,6 +86,63 @@ TEST(PairSet, ChunksKeepInsertionOrderAcrossChunksAndClearKeepsNothing) {
   EXPECT_EQ(visited, 0u);
   chunks.push_back(IdPair{5, 6});  // reuses the first chunk
   EXPECT_EQ(chunks.size(), 1u);
+}
+
+TEST(PairSet, MovedChunksKeepTheirPairsAndTheSourceHoldsNone) {
+  PairChunks chunks;
+  const std::size_t count = PairChunks::kChunkPairs + 5;  // two chunks
+  for (uint32_t k = 0; k < count; ++k) chunks.push_back(IdPair{k, k + 2});
+  PairChunks moved(std::move(chunks));
+  EXPECT_EQ(moved.size(), count);
+  EXPECT_EQ(chunks.size(), 0u);  // NOLINT: a moved-from list is empty and usable
+  chunks.push_back(IdPair{1, 2});
+  EXPECT_EQ(chunks.size(), 1u);
+  PairChunks assigned;
+  assigned.push_back(IdPair{7, 8});
+  assigned = std::move(moved);  // frees the one chunk it held, takes the two
+  EXPECT_EQ(assigned.size(), count);
+  uint32_t expected = 0;
+  assigned.forEach([&](const IdPair& inPair) {
+    EXPECT_EQ(inPair, (IdPair{expected, expected + 2}));
+    ++expected;
+  });
+  EXPECT_EQ(expected, count);
+  std::vector<PairChunks> parts(2);
+  parts[0] = std::move(assigned);
+  parts.resize(40);  // moves the lists into new storage
+  EXPECT_EQ(parts[0].size(), count);
+}
+
+TEST(PairSet, ResizingAPairListKeepsOrDiscardsAsAsked) {
+  PairList pairs = {{1, 2}, {3, 4}};
+  resizeResident(pairs, 100000);  // grows past the capacity: the first pairs stay
+  ASSERT_EQ(pairs.size(), 100000u);
+  EXPECT_EQ(pairs[0], (IdPair{1, 2}));
+  EXPECT_EQ(pairs[1], (IdPair{3, 4}));
+  EXPECT_EQ(pairs[99999], (IdPair{0, 0}));  // new elements value-initialised
+  resizeDiscarding(pairs, 300000);
+  EXPECT_EQ(pairs.size(), 300000u);
+  EXPECT_GE(pairs.capacity(), 300000u);
+  resizeDiscarding(pairs, 10);  // shrinking keeps the storage
+  EXPECT_EQ(pairs.size(), 10u);
+  EXPECT_GE(pairs.capacity(), 300000u);
+}
+
+TEST(PairSet, HugePageBuffersAreAlignedWritableAndFreed) {
+  using Allocator = BufferAllocator<uint64_t>;
+  const std::size_t count = (Allocator::kHugePageBytes + 12345) / sizeof(uint64_t);
+  for (int round = 0; round < 3; ++round) {  // allocated and freed again: no leak, no reuse bug
+    uint64_t* memory = Allocator().allocate(count);
+    ASSERT_NE(memory, nullptr);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(memory) % Allocator::kHugePageBytes, 0u);
+    for (std::size_t k = 0; k < count; ++k) memory[k] = k;
+    EXPECT_EQ(memory[count - 1], count - 1);
+    Allocator().deallocate(memory, count);
+  }
+  Buffer<uint64_t> buffer;
+  resizeDiscarding(buffer, count);
+  buffer.back() = 7;
+  EXPECT_EQ(buffer.back(), 7u);
 }
 
 TEST(PairSet, SortMatchesStdSortForDenseAndSparseIds) {

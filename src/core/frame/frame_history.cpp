@@ -215,7 +215,7 @@ void copyBlock(const RecordBlock& inBlock, bool inFiltered, std::size_t inBegin,
 FramePass compareAndCopyBlocks(const FrameReader& inFrame, BoxColumns& ioLast,
                                std::vector<uint8_t>& outUnchanged) {
   const std::size_t n = inFrame.size();
-  outUnchanged.resize(n);
+  resizeResident(outUnchanged, n);
   const UnitChanges changes = reduceOverItems(
       WorkUnits{n}, UnitChanges{},
       [&](std::size_t inBegin, std::size_t inEnd) {

@@ -226,9 +226,19 @@ void sortPairsCanonical(PairList& ioPairs) {
 }
 
 void PairChunks::startChunk() {
-  if (used_chunks_ == chunks_.size()) chunks_.emplace_back(new IdPair[kChunkPairs]);
+  if (used_chunks_ == chunks_.size()) {
+    chunks_.reserve(chunks_.size() + 1);  // so that a throw below leaks no chunk
+    chunks_.push_back(BufferAllocator<IdPair>().allocate(kChunkPairs));
+  }
   ++used_chunks_;
   fill_ = 0;
+}
+
+void PairChunks::releaseChunks() {
+  for (IdPair* chunk : chunks_) BufferAllocator<IdPair>().deallocate(chunk, kChunkPairs);
+  chunks_.clear();
+  used_chunks_ = 0;
+  fill_ = kChunkPairs;
 }
 
 }  // namespace sap_broadphase

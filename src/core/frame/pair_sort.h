@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/runner/buffers.h"
@@ -15,10 +16,30 @@ namespace sap_broadphase {
 
 /// Pairs appended in fixed-size chunks, the pairing threads' output: growing never copies
 /// (a vector's doubling would keep old and new storage resident together) and clear() keeps
-/// the chunks for the next frame.
+/// the chunks for the next frame. A chunk is a BufferAllocator allocation: its pages are made
+/// resident in one call when it is made (the thread that fills it makes it), not faulted one
+/// 4 KiB page at a time as the pairs arrive.
 class PairChunks {
  public:
   static constexpr std::size_t kChunkPairs = tuning::kPairChunkPairs;
+
+  PairChunks() = default;
+  PairChunks(PairChunks&& ioOther) noexcept
+      : chunks_(std::move(ioOther.chunks_)),
+        used_chunks_(std::exchange(ioOther.used_chunks_, 0)),
+        fill_(std::exchange(ioOther.fill_, kChunkPairs)) {}
+  PairChunks& operator=(PairChunks&& ioOther) noexcept {
+    if (this != &ioOther) {
+      releaseChunks();
+      chunks_ = std::move(ioOther.chunks_);
+      used_chunks_ = std::exchange(ioOther.used_chunks_, 0);
+      fill_ = std::exchange(ioOther.fill_, kChunkPairs);
+    }
+    return *this;
+  }
+  PairChunks(const PairChunks&) = delete;
+  PairChunks& operator=(const PairChunks&) = delete;
+  ~PairChunks() { releaseChunks(); }
 
   /// Forgets the pairs, keeping the storage.
   void clear() {
@@ -39,15 +60,16 @@ class PairChunks {
   void forEach(Visit&& inVisit) const {
     for (std::size_t chunk = 0; chunk < used_chunks_; ++chunk) {
       const std::size_t count = chunk + 1 == used_chunks_ ? fill_ : kChunkPairs;
-      const IdPair* pairs = chunks_[chunk].get();
+      const IdPair* pairs = chunks_[chunk];
       for (std::size_t k = 0; k < count; ++k) inVisit(pairs[k]);
     }
   }
 
  private:
   void startChunk();
+  void releaseChunks();
 
-  std::vector<std::unique_ptr<IdPair[]>> chunks_;
+  std::vector<IdPair*> chunks_;  // each kChunkPairs pairs from BufferAllocator<IdPair>
   std::size_t used_chunks_ = 0;
   std::size_t fill_ = kChunkPairs;
 };

@@ -2,9 +2,12 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -21,9 +24,10 @@ constexpr std::size_t kCacheLineBytes = 64;
 /// - elements are default-initialised, so growing a buffer does not zero it: the first frame's
 ///   parallel phases are the first to touch its pages, each thread its own slice, instead of
 ///   one thread zeroing every page before the phase starts;
-/// - buffers of a huge page or more are aligned to it and advised as huge pages (Linux, THP in
-///   madvise mode): a first touch faults 2 MiB at a time instead of 4 KiB, and the random
-///   accesses of the scatters and gathers miss the TLB far less;
+/// - buffers of a huge page or more are mappings of their own (Linux), aligned to it and
+///   advised as huge pages (THP in madvise mode): a first touch faults 2 MiB at a time instead
+///   of 4 KiB, the random accesses of the scatters and gathers miss the TLB far less, and a
+///   freed buffer leaves the resident set at once (never kept in the heap);
 /// - buffers between kPopulateBytes and a huge page are mapped with their pages populated
 ///   (Linux): one system call instead of a page fault per 4 KiB, which a virtual machine makes
 ///   costly (a fresh engine's first frame at 2^14 boxes faulted some 600 pages);
@@ -56,9 +60,26 @@ struct BufferAllocator {
       else
         return static_cast<T*>(::operator new(bytes));
     }
-    const std::size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    const std::size_t rounded = hugeRounded(bytes);
+#if defined(__linux__)
+    // A mapping of its own rather than the heap: freeing it gives its pages back at once,
+    // where glibc, having raised its mmap threshold past the size of a freed block, would
+    // serve the next one from the heap and keep it resident after it is freed. Mapped one huge
+    // page more than needed, then trimmed to an aligned run.
+    void* mapped = mmap(nullptr, rounded + kHugePageBytes, PROT_READ | PROT_WRITE,
+                        MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (mapped == MAP_FAILED) throw std::bad_alloc();
+    const auto start = reinterpret_cast<std::uintptr_t>(mapped);
+    const std::uintptr_t aligned = (start + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    if (aligned > start) munmap(mapped, aligned - start);
+    if (aligned + rounded < start + rounded + kHugePageBytes)
+      munmap(reinterpret_cast<void*>(aligned + rounded),
+             start + rounded + kHugePageBytes - aligned - rounded);
+    void* memory = reinterpret_cast<void*>(aligned);
+#else
     void* memory = std::aligned_alloc(kHugePageBytes, rounded);
     if (!memory) throw std::bad_alloc();
+#endif
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     madvise(memory, rounded, MADV_HUGEPAGE);  // advice only: failure leaves small pages
 #endif
@@ -73,12 +94,19 @@ struct BufferAllocator {
     }
 #endif
     if (bytes >= kHugePageBytes) {
+#if defined(__linux__)
+      munmap(inMemory, hugeRounded(bytes));
+#else
       std::free(inMemory);
+#endif
     } else if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__) {
       ::operator delete (inMemory, std::align_val_t{alignof(T)});
     } else {
       ::operator delete(inMemory);
     }
+  }
+  static std::size_t hugeRounded(std::size_t inBytes) {
+    return (inBytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
   }
   static std::size_t pageRounded(std::size_t inBytes) {
     return (inBytes + kPageBytes - 1) / kPageBytes * kPageBytes;
@@ -105,17 +133,52 @@ struct BufferAllocator {
 template <typename T>
 using Buffer = std::vector<T, BufferAllocator<T>>;
 
+/// Makes the whole pages of [inBegin, inBegin + inBytes) resident in one system call (Linux
+/// 5.14+, MADV_POPULATE_WRITE) when the range spans BufferAllocator's populate size or more:
+/// fresh memory about to be written in full then takes no page fault a 4 KiB page, which a
+/// virtual machine makes costly. Advice only: where the kernel declines, the writes fault as
+/// before. Huge-page buffers are left to fault 2 MiB at a time, each thread its own pages.
+inline void populatePages(void* inBegin, std::size_t inBytes) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+  constexpr std::size_t kPage = BufferAllocator<char>::kPageBytes;
+  if (inBytes < BufferAllocator<char>::kPopulateBytes) return;
+  const auto begin = reinterpret_cast<std::uintptr_t>(inBegin);
+  const std::uintptr_t first = (begin + kPage - 1) / kPage * kPage;
+  const std::uintptr_t last = (begin + inBytes) / kPage * kPage;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+#else
+  (void)inBegin;
+  (void)inBytes;
+#endif
+}
+
 /// Makes ioBuffer hold inSize elements whose old contents do not matter. Growing frees the old
 /// storage before allocating the new, so the two are never resident together (a plain resize
 /// copies and keeps both for a moment), and leaves an eighth of headroom so that a frame
-/// slightly larger than the last does not allocate again.
+/// slightly larger than the last does not allocate again. Fresh storage of a std::allocator
+/// vector (a PairList: resize zeroes it) has the pages it is about to hold made resident in
+/// one call first, so the zeroing does not fault page by page.
 template <typename T, typename Allocator>
 void resizeDiscarding(std::vector<T, Allocator>& ioBuffer, std::size_t inSize) {
   if (inSize > ioBuffer.capacity()) {
     std::vector<T, Allocator>().swap(ioBuffer);
     ioBuffer.reserve(inSize + inSize / 8);
+    if constexpr (std::is_same_v<Allocator, std::allocator<T>>)
+      populatePages(ioBuffer.data(), inSize * sizeof(T));
   }
   ioBuffer.resize(inSize);
+}
+
+/// Resizes ioVector to inSize, keeping its elements. Growth past the capacity has the pages of
+/// the new elements made resident in one call first (populatePages), so that the zeroing of a
+/// std::vector's fresh elements does not fault page by page.
+template <typename T, typename Allocator>
+void resizeResident(std::vector<T, Allocator>& ioVector, std::size_t inSize) {
+  if (inSize > ioVector.capacity()) {
+    ioVector.reserve(inSize);
+    populatePages(ioVector.data() + ioVector.size(), (inSize - ioVector.size()) * sizeof(T));
+  }
+  ioVector.resize(inSize);
 }
 
 /// True when the two vectors hold the same elements, byte for byte (so -0.0 differs from 0.0).

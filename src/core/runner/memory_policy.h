@@ -5,6 +5,10 @@
 
 #include <cstddef>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace sap_broadphase {
 
 /// Consecutive small frames after which a buffer is given back.
@@ -32,5 +36,16 @@ class GiveBackWatch {
  private:
   std::size_t small_frames_ = 0;
 };
+
+/// Gives the heap's free pages back to the system (glibc). The engine's pair lists are
+/// std::vectors; once glibc has freed a large block it serves blocks of that size from the heap
+/// instead of mappings of their own, and keeps them resident after they are freed, so a kept
+/// engine's resident set would creep up by the lists of every frame that made large ones. Called
+/// after the frames that free such lists (a grown sweep), rarely: it walks the heap.
+inline void returnFreedHeapPages() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
 
 }  // namespace sap_broadphase
