@@ -21,16 +21,16 @@
 #include "core/frame/contact_events.h"
 #include "core/frame/frame_history.h"
 #include "core/frame/frame_plan.h"
-#include "core/strategies/frame_query.h"
-#include "core/runner/memory_policy.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/memory_policy.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/frame_query.h"
 #include "core/strategies/skin_reuse.h"
 #include "core/strategies/small_frame.h"
 #include "core/strategies/static_index.h"
 #include "core/sweep/sweep_and_prune.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 
@@ -144,6 +144,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
     }
     case FramePath::kSkin:
       skin.answerFromCandidates(inPlan.threads, report, pairs);
+      skin.advanceSuccessor(boxes, inPlan.threads, report);  // the next candidates, a step
       break;
     case FramePath::kSmallFrame:
       if (inPlan.sweep_skin > 0.0) {

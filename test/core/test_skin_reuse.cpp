@@ -108,6 +108,50 @@ TEST(SkinReuse, TheLargestSkinAt4000BoxesStaysWithinTheBudget) {
   }
 }
 
+// The next kept candidates are built a step a frame (snapshot, slabs, adoption) and take over
+// when the kept ones stop covering: boxes drifting at their own steady velocities never need a
+// grown sweep after the first, and every frame's pairs are the oracle's, on any thread count,
+// with sparse shuffled ids and filters.
+TEST(SkinReuse, SuccessorsBuiltAStepAFrameTakeOverAndAnswerExactly) {
+  constexpr double kMotion = 0.01;  // largest move of a bound a frame: a list lives 25 frames
+  for (const int threads : {1, 2}) {
+    for (const bool filtered : {false, true}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, filtered " << filtered);
+      BoxColumns boxes = test_support::shuffledSubset(
+          columnsOf(test_support::randomBoxes(3000, 40.0, 1.5, 31)), 1.0, true, 7);
+      if (filtered) test_support::addRandomFilters(boxes, 9);
+      test_support::TestRandom random(13);
+      std::vector<double> velocity(3 * boxes.size());
+      for (double& v : velocity) v = random.between(-kMotion, kMotion);
+      SkinReuse skin;
+      FrameReport report;
+      PairList pairs = bruteForcePairs(skin.grow(boxes, kSkin, threads, report));
+      skin.keepAndAnswer(boxes, threads, report, pairs);
+      ASSERT_EQ(pairs, bruteForcePairs(boxes));
+      FrameDelta delta;
+      delta.relation = FrameRelation::kSameIds;
+      delta.max_displacement = kMotion;
+      for (int frame = 1; frame <= 120; ++frame) {
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+          for (int axis = 0; axis < 3; ++axis) {
+            boxes.lo[axis][i] += velocity[3 * i + axis];
+            boxes.hi[axis][i] += velocity[3 * i + axis];
+          }
+        }
+        skin.startFrame(delta);
+        ASSERT_TRUE(skin.coversFrame(boxes, threads, report)) << "frame " << frame;
+        skin.answerFromCandidates(threads, report, pairs);
+        ASSERT_EQ(pairs, bruteForcePairs(boxes)) << "frame " << frame;
+        skin.advanceSuccessor(boxes, threads, report);
+      }
+      EXPECT_GE(skin.successorsTaken(), 4u);
+      EXPECT_GT(skin.skin(), kSkin);  // grown by the motion of the frames it took to build
+      skin.forget();
+      EXPECT_FALSE(skin.buildingSuccessor());
+    }
+  }
+}
+
 TEST(SkinReuse, MotionIsTheLargestDisplacementOfTheRecentWindow) {
   SkinReuse skin;
   FrameDelta delta;

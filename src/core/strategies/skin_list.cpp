@@ -12,10 +12,10 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -24,6 +24,23 @@ namespace {
 BoundsRecord recordOf(const BoxColumns& inBoxes, std::size_t i) {
   return {{inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i], 0.0},
           {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i], 0.0}};
+}
+
+/// std::nextafter(inValue, -infinity) without the library call: the next double below (NaN and
+/// -infinity stay as they are).
+inline double nextBelow(double inValue) {
+  if (!(inValue > -std::numeric_limits<double>::infinity())) return inValue;
+  if (inValue == 0.0) return -std::numeric_limits<double>::denorm_min();
+  uint64_t bits;
+  std::memcpy(&bits, &inValue, sizeof(bits));
+  bits = inValue > 0.0 ? bits - 1 : bits + 1;
+  std::memcpy(&inValue, &bits, sizeof(bits));
+  return inValue;
+}
+
+/// std::nextafter(inValue, +infinity) likewise.
+inline double nextAbove(double inValue) {
+  return -nextBelow(-inValue);
 }
 
 /// True when box i of inBoxes lies inside box i of inOuter (closed: equal bounds are inside).
@@ -184,7 +201,6 @@ bool SkinList::covers(const BoxColumns& inBoxes, int inThreads) const {
 
 const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, int inThreads) {
   const double margin = inSkin / 2;
-  const double infinity = std::numeric_limits<double>::infinity();
   const std::size_t n = inBoxes.size();
   releaseCandidates();  // dead from here until adopt(): the grown sweep's peak does without them
   reference_.ids = inBoxes.ids;
@@ -202,8 +218,8 @@ const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, in
       double* grown_high = reference_.hi[axis].data();
       for (std::size_t i = inBegin; i < inEnd; ++i) {
         // One step further out than the rounded sum: the inflated box contains the exact one.
-        grown_low[i] = std::nextafter(low[i] - margin, -infinity);
-        grown_high[i] = std::nextafter(high[i] + margin, infinity);
+        grown_low[i] = nextBelow(low[i] - margin);
+        grown_high[i] = nextAbove(high[i] + margin);
       }
     }
   });
@@ -228,19 +244,42 @@ void SkinList::adopt(const BoxColumns& inBoxes, const PairList& inCandidates) {
 }
 
 void SkinList::adopt(const BoxColumns& inBoxes, PairList&& ioCandidates) {
+  startAdopt(std::move(ioCandidates));
+  while (!continueAdopt(inBoxes)) {
+  }
+}
+
+void SkinList::startAdopt(PairList&& ioCandidates) {
   if (ioCandidates.size() > std::numeric_limits<uint32_t>::max())
     throw std::length_error("skin reuse keeps fewer than 2^32 candidate pairs");
   canonical_pairs_.swap(ioCandidates);
   PairList().swap(ioCandidates);  // the last candidates' memory, before the new ones' arrays
-  keepBoxIndexes(inBoxes);
-  keepSpatialOrder();
-  keepSpatialCandidates();
+  valid_ = frame_gathered_ = false;
+  adopt_step_ = 0;
+}
+
+// The parts of adopt(), each a pass over the candidates or the boxes.
+bool SkinList::continueAdopt(const BoxColumns& inBoxes) {
+  switch (adopt_step_++) {
+    case 0:
+      keepBoxIndexes(inBoxes);
+      return false;
+    case 1:
+      keepSpatialOrder();
+      return false;
+    case 2:
+      keepSpatialCandidates();
+      return false;
+    default:
+      break;
+  }
   sortRunsByPartner();
   adopt_scratch_bytes_ = scratchBytes();
   scratch_ = AdoptScratch();  // dead until the next adopt(): not held through the frames between
   valid_ = true;
   SAP_ASSERT(covers(inBoxes, 1), "a box outside its grown box in the skin list");
   SAP_ASSERT(holdsEveryCandidate(), "a kept candidate whose box has no spatial position");
+  return true;
 }
 
 bool SkinList::holdsEveryCandidate() const {

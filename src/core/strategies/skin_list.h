@@ -73,6 +73,11 @@ class SkinList {
   /// The same, taking the list instead of copying it: ioCandidates is left empty, and the
   /// last candidates' memory is given back before the new ones are sorted.
   void adopt(const BoxColumns& inBoxes, PairList&& ioCandidates);
+  /// adopt() in steps, for a caller that spreads it over frames: startAdopt() takes the
+  /// candidates, then each continueAdopt() (with the same inBoxes) does one part of the work
+  /// and returns true when the candidates are kept (valid() from then on, not before).
+  void startAdopt(PairList&& ioCandidates);
+  bool continueAdopt(const BoxColumns& inBoxes);
   /// True when every box of inBoxes lies inside its inflated box (same ids, groups and masks in
   /// the same order), and then the frame's bounds are gathered for collectGathered(). One read
   /// of the frame, so that the engine can know before planning whether the candidates answer
@@ -83,6 +88,8 @@ class SkinList {
   void collectGathered(int inThreads, PairList& outPairs);
   /// The containment test of gather() alone, without gathering.
   bool covers(const BoxColumns& inBoxes, int inThreads) const;
+  /// The inflated boxes of the last inflate() (ids, groups and masks included).
+  const BoxColumns& reference() const { return reference_; }
   /// True while candidates are kept (after adopt(), until clear() or the next inflate()).
   bool valid() const { return valid_; }
   /// Number of candidate pairs kept.
@@ -143,6 +150,7 @@ class SkinList {
   std::size_t adopt_scratch_bytes_ = 0;  // what the last adopt()'s working lists held
   Buffer<uint64_t> verdicts_;
   int verdict_rows_ = 1;  // the threads of the last test, each with its row
+  int adopt_step_ = 0;    // the next part of adopt() that continueAdopt() does
   bool valid_ = false;
   bool frame_gathered_ = false;  // gather() succeeded and collectGathered() has not run since
 };
