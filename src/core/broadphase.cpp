@@ -3,7 +3,8 @@
 //   a frame of records -> the frame history loads it: the one copy and check, and the delta
 //         since the last frame -> do the kept candidates still cover the boxes? -> plan, once ->
 //         one strategy:
-//            reuse | kept candidates | sweep (grown by a skin or plain) | small frame | brute
+//            reuse | kept candidates (then a step of their successor's build) | sweep (grown
+//            by a skin or plain) | small frame | brute
 //         -> learn the costs -> the declared scenery's pairs sorted on their own and merged
 //            into the strategy's canonical list -> the contact events: one merge with the
 //            last list -> remember the frame, give back memory a burst of large frames left
