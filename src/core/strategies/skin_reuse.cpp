@@ -81,7 +81,9 @@ const BoxColumns& SkinReuse::grow(const BoxColumns& inSwept, double inSkin, int 
                                   FrameReport& ioReport) {
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer grow_timer(times_.ms_grow);
-  abandonSuccessor();  // the grown sweep replaces the kept candidates at once
+  // The grown sweep replaces the kept candidates at once, and runs (a frame's memory peak)
+  // without a successor's boxes and candidates.
+  next_ = Successor();
   skin_ = inSkin;
   kept_age_ = 0;
   if (inSkin >= over_budget_skin_ && inSwept.size() == over_budget_boxes_) {
@@ -125,8 +127,9 @@ void SkinReuse::abandonSuccessor() {
 // successor takes W = 1 + slabs + kAdoptSteps frames (snapshot, slabs, adoption), and it takes
 // over when the kept candidates stop covering, W + slack frames after its snapshot: so it is
 // grown by s plus the motion of those frames, and then lives L frames more, as the plan meant.
-// Each cycle of L frames thus holds one build; about half of it is given to the slabs, so that
-// a slab is a small part of a grown sweep while the skin grows by at most about half.
+// Each cycle of L frames thus holds one build. The slabs take what the snapshot, the adoption
+// and the slack leave of it (at most kMostSuccessorSlabs), so that a slab is as small a part of
+// a grown sweep as the cycle allows; the successor's skin is then up to about twice the plan's.
 void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport) {
   if (next_.ready || planned_skin_ <= 0.0 || !kept_.valid()) return;
   PhaseTimer timer(ioReport.ms_skin);
@@ -147,8 +150,8 @@ void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, int inThreads, Frame
   }
 }
 
-// Step 1: the frame's boxes grown by inSkin, ordered by grown low end on
-// the axis where they spread widest (a slab of that order holds boxes near each other).
+// Step 1: the frame's boxes grown by inSkin, ordered by grown low end on the axis where they
+// spread widest (a slab of that order holds boxes near each other).
 void SkinReuse::snapshotSuccessor(const BoxColumns& inSwept, double inSkin, int inSlabs,
                                   int inThreads) {
   next_.skin = inSkin;
@@ -219,7 +222,8 @@ void SkinReuse::sweepSuccessorSlab(int inThreads) {
     }
   }
   PairList& pairs = next_.slab_pairs;
-  pairSmallFrame(boxes, next_.kernel, pairs, inThreads);
+  pairs.clear();
+  if (count >= 2) pairSmallFrame(boxes, next_.kernel, pairs, inThreads);
   // Positions back to ids; pairs of two boxes before the slab belong to an earlier slab.
   std::size_t kept = 0;
   for (const IdPair& pair : pairs) {
