@@ -100,7 +100,7 @@ void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& 
   }
   const std::size_t candidates = pairs.size();
   kept.adopt(boxes, std::move(pairs));
-  if (kept.gather(boxes, 1)) kept.collectGathered(1, pairs);
+  if (kept.gather(boxes)) kept.collectGathered(pairs);
   const SkinList::MemoryUse skin = kept.memoryUse();
   const auto row = [&](const std::string& inPart, std::size_t inBytes, const std::string& inHow) {
     ioTable.addRow({fmtSize(n), fmt(inScene.density, 2), fmt(inSkin, 3), fmtCount(frame_pairs),

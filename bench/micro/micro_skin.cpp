@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/frame/box_columns.h"
+#include "core/runner/work_units.h"
 #include "core/strategies/skin_list.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/scenes.h"
@@ -120,16 +121,17 @@ void reportPerCandidate(benchmark::State& ioState, const SkinScene& inScene) {
 void BM_SkinPass(benchmark::State& state) {
   const SkinScene& scene = skinScene(state);
   const int threads = static_cast<int>(state.range(2));
+  const ThreadsScope scope(threads);
   SkinList list;
   list.inflate(scene.swept, skinArg(state));
   list.adopt(scene.swept, scene.kept);
   PairList pairs;
   for (auto _ : state) {
-    if (!list.gather(scene.next, threads)) {
+    if (!list.gather(scene.next)) {
       state.SkipWithError("a box left its skin");
       break;
     }
-    list.collectGathered(threads, pairs);
+    list.collectGathered(pairs);
     benchmark::DoNotOptimize(pairs.data());
   }
   if (pairs != scene.exact) state.SkipWithError("pairs differ from the sweep's");

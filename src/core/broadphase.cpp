@@ -3,7 +3,8 @@
 //   a frame of records -> the frame history loads it: the one copy and check, and the delta
 //         since the last frame -> do the kept candidates still cover the boxes? -> plan, once ->
 //         one strategy:
-//            reuse | kept candidates | sweep (grown by a skin or plain) | small frame | brute
+//            reuse | kept candidates (then a step of their successor's build) | sweep (grown
+//            by a skin or plain) | small frame | brute
 //         -> learn the costs -> the declared scenery's pairs sorted on their own and merged
 //            into the strategy's canonical list -> the contact events: one merge with the
 //            last list -> remember the frame, give back memory a burst of large frames left
@@ -115,8 +116,7 @@ FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& in
   inputs.kept_skin = skin.skin();
   inputs.motion = skin.recentMotion();
   inputs.costs = skin.costs();
-  inputs.kept_covers =
-      planConsidersKeptCandidates(inputs) && skin.coversFrame(inBoxes, frame_threads, report);
+  inputs.kept_covers = planConsidersKeptCandidates(inputs) && skin.coversFrame(inBoxes, report);
   PhaseTimer timer(report.ms_plan);
   const FramePlan plan = planFrame(inputs);
   SAP_ASSERT(plan.path != FramePath::kSkin || inputs.kept_covers,
@@ -130,7 +130,7 @@ FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& in
 // Runs the plan's strategy: this frame's pairs of the boxes of ioSpread go into pairs, in
 // canonical order. ioSpread (the boxes' spread) is measured by whichever strategy needs it
 // first and read again by the cost learning after it. Runs in the plan's scope (its threads
-// are inPlan.threads); the kept-candidate passes are still handed that count.
+// are inPlan.threads), which every pass reads.
 void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
   const BoxColumns& boxes = ioSpread.boxes();
   switch (inPlan.path) {
@@ -145,11 +145,12 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
       break;
     }
     case FramePath::kSkin:
-      skin.answerFromCandidates(inPlan.threads, report, pairs);
+      skin.answerFromCandidates(report, pairs);
+      skin.advanceSuccessor(boxes, report);  // the next candidates, a step
       break;
     case FramePath::kSmallFrame:
       if (inPlan.sweep_skin > 0.0) {
-        const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
+        const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         {
           PhaseTimer timer(report.ms_pairing);
@@ -159,7 +160,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
         // buffers would sit idle through them, beside the kept-candidate passes' own. They are
         // given back before the candidates are kept, and the next sweep sizes them again.
         buffers.small_frame = SmallFrameWorkspace();
-        skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
+        skin.keepAndAnswer(boxes, report, pairs);
         returnFreedHeapPages();  // the lists the kept candidates replaced
       } else {
         PhaseTimer timer(report.ms_pairing);
@@ -170,11 +171,11 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
     case FramePath::kSequential:
     case FramePath::kParallel:
       if (inPlan.sweep_skin > 0.0) {
-        const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
+        const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
         sweep.run(grown, grown_spread, inPlan.path, report, pairs);
         sweep.releaseBuffers();  // idle through the kept-candidate frames, as the kernel's
-        skin.keepAndAnswer(boxes, inPlan.threads, report, pairs);
+        skin.keepAndAnswer(boxes, report, pairs);
         returnFreedHeapPages();
       } else {
         skin.forget();

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/runner/work_units.h"
 #include "core/strategies/skin_list.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
@@ -47,10 +48,11 @@ void expectExactForAllThreadCounts(SkinList& ioList, const BoxColumns& inBoxes,
                                    const char* inLabel) {
   const PairList oracle = bruteForcePairs(inBoxes);
   for (int threads = 1; threads <= 4; ++threads) {
-    EXPECT_TRUE(ioList.covers(inBoxes, threads)) << inLabel << ", threads " << threads;
+    const ThreadsScope scope(threads);
+    EXPECT_TRUE(ioList.covers(inBoxes)) << inLabel << ", threads " << threads;
     PairList pairs;
-    ASSERT_TRUE(ioList.gather(inBoxes, threads)) << inLabel << ", threads " << threads;
-    ioList.collectGathered(threads, pairs);
+    ASSERT_TRUE(ioList.gather(inBoxes)) << inLabel << ", threads " << threads;
+    ioList.collectGathered(pairs);
     EXPECT_TRUE(test_support::samePairs(oracle, pairs)) << inLabel << ", threads " << threads;
   }
 }
@@ -81,8 +83,9 @@ TEST(SkinList, BoxThatLeavesItsSkinForcesASweep) {
     BoxColumns frame = boxes;
     frame.hi[1][leaver] += skin;  // past the margin of skin / 2
     for (int threads = 1; threads <= 4; ++threads) {
-      EXPECT_FALSE(list.covers(frame, threads));
-      EXPECT_FALSE(list.gather(frame, threads)) << "box " << leaver;
+      const ThreadsScope scope(threads);
+      EXPECT_FALSE(list.covers(frame));
+      EXPECT_FALSE(list.gather(frame)) << "box " << leaver;
     }
     SkinList swept;
     keepCandidates(swept, frame, skin);
@@ -97,24 +100,24 @@ TEST(SkinList, ChangedIdsOrFiltersForceASweep) {
   keepCandidates(list, boxes, 0.4);
   BoxColumns reordered = boxes;
   std::swap(reordered.ids[3], reordered.ids[4]);
-  EXPECT_FALSE(list.gather(reordered, 1));
+  EXPECT_FALSE(list.gather(reordered));
   BoxColumns regrouped = boxes;
   regrouped.groups[9] ^= 0x4u;
-  EXPECT_FALSE(list.gather(regrouped, 1));
+  EXPECT_FALSE(list.gather(regrouped));
   BoxColumns remasked = boxes;
   remasked.masks[0] ^= 0x1u;
-  EXPECT_FALSE(list.gather(remasked, 2));
+  EXPECT_FALSE(list.gather(remasked));
   BoxColumns fewer = boxes;
   for (auto* column : {&fewer.ids, &fewer.groups, &fewer.masks}) column->pop_back();
   for (int axis = 0; axis < 3; ++axis) {
     fewer.lo[axis].pop_back();
     fewer.hi[axis].pop_back();
   }
-  EXPECT_FALSE(list.gather(fewer, 1));
-  EXPECT_TRUE(list.gather(boxes, 1));
+  EXPECT_FALSE(list.gather(fewer));
+  EXPECT_TRUE(list.gather(boxes));
   list.clear();
-  EXPECT_FALSE(list.gather(boxes, 1));
-  EXPECT_FALSE(list.covers(boxes, 1));
+  EXPECT_FALSE(list.gather(boxes));
+  EXPECT_FALSE(list.covers(boxes));
 }
 
 // Boxes that touch at zero from both sides, with zeros of either sign swapped between frames:
@@ -137,8 +140,8 @@ TEST(SkinList, SignedZerosTouch) {
   }
   expectExactForAllThreadCounts(list, flipped, "zeros of the other sign");
   PairList pairs;
-  ASSERT_TRUE(list.gather(flipped, 1));
-  list.collectGathered(1, pairs);
+  ASSERT_TRUE(list.gather(flipped));
+  list.collectGathered(pairs);
   EXPECT_EQ(pairs, (PairList{{10, 20}}));
 }
 

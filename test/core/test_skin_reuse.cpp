@@ -5,6 +5,7 @@
 
 #include "core/frame/frame_history.h"
 #include "core/frame/frame_plan.h"
+#include "core/runner/work_units.h"
 #include "core/strategies/skin_reuse.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
@@ -17,8 +18,9 @@ constexpr double kSkin = 0.5;
 
 /// A grown sweep of inBoxes as the engine runs it, with the oracle in the sweep's place.
 PairList growSweepAndKeep(SkinReuse& ioSkin, const BoxColumns& inBoxes, FrameReport& ioReport) {
-  PairList pairs = bruteForcePairs(ioSkin.grow(inBoxes, kSkin, 2, ioReport));
-  ioSkin.keepAndAnswer(inBoxes, 2, ioReport, pairs);
+  const ThreadsScope two(2);
+  PairList pairs = bruteForcePairs(ioSkin.grow(inBoxes, kSkin, ioReport));
+  ioSkin.keepAndAnswer(inBoxes, ioReport, pairs);
   return pairs;
 }
 
@@ -34,6 +36,7 @@ BoxColumns shiftedX(const BoxColumns& inBoxes, double inShift) {
 
 TEST(SkinReuse, KeptCandidatesAnswerExactlyWhileEveryBoxStaysInsideItsSkin) {
   const BoxColumns first = columnsOf(test_support::randomBoxes(3000, 40.0, 1.5, 11));
+  const ThreadsScope two(2);
   SkinReuse skin;
   FrameReport report;
   EXPECT_FALSE(skin.hasCandidates());
@@ -43,22 +46,22 @@ TEST(SkinReuse, KeptCandidatesAnswerExactlyWhileEveryBoxStaysInsideItsSkin) {
   EXPECT_GE(skin.candidates(), bruteForcePairs(first).size());
   // Every box moved by less than skin / 2: covered, and the candidates give the exact pairs.
   const BoxColumns inside = shiftedX(first, 0.2);
-  ASSERT_TRUE(skin.coversFrame(inside, 2, report));
+  ASSERT_TRUE(skin.coversFrame(inside, report));
   PairList pairs;
-  skin.answerFromCandidates(2, report, pairs);
+  skin.answerFromCandidates(report, pairs);
   EXPECT_EQ(pairs, bruteForcePairs(inside));
   EXPECT_EQ(report.skin_candidates, skin.candidates());
   // One box beyond its skin: not covered, known before any plan is made.
   BoxColumns outside = inside;
   outside.hi[1][7] += 0.3;
-  EXPECT_FALSE(skin.coversFrame(outside, 2, report));
+  EXPECT_FALSE(skin.coversFrame(outside, report));
   // Other ids are never covered.
   BoxColumns renamed = inside;
   renamed.ids[0] += 100000;
-  EXPECT_FALSE(skin.coversFrame(renamed, 2, report));
+  EXPECT_FALSE(skin.coversFrame(renamed, report));
   skin.forget();
   EXPECT_FALSE(skin.hasCandidates());
-  EXPECT_FALSE(skin.coversFrame(inside, 2, report));
+  EXPECT_FALSE(skin.coversFrame(inside, report));
 }
 
 // The candidate budget: a grown sweep over it keeps nothing, answers the frame exactly, and
@@ -67,9 +70,9 @@ TEST(SkinReuse, OverBudgetKeepsNoCandidatesAndAnswersExactly) {
   const BoxColumns boxes = columnsOf(test_support::randomBoxes(4000, 40.0, 1.5, 5));
   SkinReuse skin;
   FrameReport report;
-  PairList pairs = bruteForcePairs(skin.grow(boxes, 1e30, 1, report));
+  PairList pairs = bruteForcePairs(skin.grow(boxes, 1e30, report));
   ASSERT_GT(pairs.size(), keptCandidateBudget(boxes.size()));  // every pair: 7 998 000
-  skin.keepAndAnswer(boxes, 1, report, pairs);
+  skin.keepAndAnswer(boxes, report, pairs);
   EXPECT_EQ(pairs, bruteForcePairs(boxes));
   EXPECT_EQ(report.skin_choice, SkinChoice::kOverBudget);
   EXPECT_EQ(report.skin_candidates, 0u);
@@ -77,7 +80,7 @@ TEST(SkinReuse, OverBudgetKeepsNoCandidatesAndAnswersExactly) {
   EXPECT_EQ(skin.candidates(), 0u);
   // The next frame at that skin sweeps the boxes as they are.
   FrameReport next;
-  const BoxColumns& swept = skin.grow(boxes, 1e30, 1, next);
+  const BoxColumns& swept = skin.grow(boxes, 1e30, next);
   EXPECT_EQ(next.skin_choice, SkinChoice::kOverBudget);
   EXPECT_TRUE(skin.overBudget());
   for (std::size_t i = 0; i < boxes.size(); ++i) {  // grown by nothing (rounded outward)
@@ -104,6 +107,51 @@ TEST(SkinReuse, TheLargestSkinAt4000BoxesStaysWithinTheBudget) {
       EXPECT_EQ(engine.update(boxes), bruteForcePairs(boxes)) << "frame " << frame;
       EXPECT_EQ(engine.stats().skin_choice, SkinChoice::kOverBudget) << "frame " << frame;
       EXPECT_LE(engine.stats().skin_candidates, keptCandidateBudget(4000));
+    }
+  }
+}
+
+// The next kept candidates are built a step a frame (snapshot, slabs, adoption) and take over
+// when the kept ones stop covering: boxes drifting at their own steady velocities never need a
+// grown sweep after the first, and every frame's pairs are the oracle's, on any thread count,
+// with sparse shuffled ids and filters.
+TEST(SkinReuse, SuccessorsBuiltAStepAFrameTakeOverAndAnswerExactly) {
+  constexpr double kMotion = 0.01;  // largest move of a bound a frame: a list lives 25 frames
+  for (const int threads : {1, 2}) {
+    const ThreadsScope scope(threads);
+    for (const bool filtered : {false, true}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, filtered " << filtered);
+      BoxColumns boxes = test_support::shuffledSubset(
+          columnsOf(test_support::randomBoxes(3000, 40.0, 1.5, 31)), 1.0, true, 7);
+      if (filtered) test_support::addRandomFilters(boxes, 9);
+      test_support::TestRandom random(13);
+      std::vector<double> velocity(3 * boxes.size());
+      for (double& v : velocity) v = random.between(-kMotion, kMotion);
+      SkinReuse skin;
+      FrameReport report;
+      PairList pairs = bruteForcePairs(skin.grow(boxes, kSkin, report));
+      skin.keepAndAnswer(boxes, report, pairs);
+      ASSERT_EQ(pairs, bruteForcePairs(boxes));
+      FrameDelta delta;
+      delta.relation = FrameRelation::kSameIds;
+      delta.max_displacement = kMotion;
+      for (int frame = 1; frame <= 120; ++frame) {
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+          for (int axis = 0; axis < 3; ++axis) {
+            boxes.lo[axis][i] += velocity[3 * i + axis];
+            boxes.hi[axis][i] += velocity[3 * i + axis];
+          }
+        }
+        skin.startFrame(delta);
+        ASSERT_TRUE(skin.coversFrame(boxes, report)) << "frame " << frame;
+        skin.answerFromCandidates(report, pairs);
+        ASSERT_EQ(pairs, bruteForcePairs(boxes)) << "frame " << frame;
+        skin.advanceSuccessor(boxes, report);
+      }
+      EXPECT_GE(skin.successorsTaken(), 4u);
+      EXPECT_GT(skin.skin(), kSkin);  // grown by the motion of the frames it took to build
+      skin.forget();
+      EXPECT_FALSE(skin.buildingSuccessor());
     }
   }
 }

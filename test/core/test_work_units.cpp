@@ -229,7 +229,8 @@ TEST(WorkRunner, APassInsideAUnitRunsInline) {
   const RunnerScope scope(runner);
   std::vector<std::atomic<int>> runs(8 * 8);
   runner.run(8, 2, [&](std::size_t inOuter, int) {
-    runUnits(8, 2, [&](std::size_t inInner) { runs[inOuter * 8 + inInner].fetch_add(1); });
+    const RunnerScope two(runner, 2);  // two threads allowed, and still inline
+    runUnits(8, [&](std::size_t inInner) { runs[inOuter * 8 + inInner].fetch_add(1); });
   });
   for (std::size_t k = 0; k < runs.size(); ++k) ASSERT_EQ(runs[k].load(), 1) << k;
 }

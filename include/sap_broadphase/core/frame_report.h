@@ -109,7 +109,7 @@ enum class ReportUnit : uint8_t {
     "force frame)") \
   X(double, ms_skin, 0.0, kMilliseconds, "ms_pairing", \
     "skin reuse: growing the boxes, keeping the grown sweep's candidates, testing the " \
-    "kept candidates") \
+    "kept candidates, a step of building their successor") \
   X(double, ms_static, 0.0, kMilliseconds, "ms_static", "queries of the declared scenery's index") \
   X(double, ms_output, 0.0, kMilliseconds, "ms_output", \
     "ids, canonical pair order and contact events") \

@@ -182,46 +182,32 @@ class NarrowedScope {
   RunnerScope scope_;
 };
 
-/// The passes run on the scope's threads, through the overloads without a count below. The
-/// overloads that take inThreads serve the kept-candidate passes (skin_list), which are still
-/// handed the plan's count, and the runner's own tests; they go once nothing passes a count.
-
-/// Runs inBody(unit, worker) for every unit in [0, inUnits) on up to inThreads workers of this
-/// thread's runner (worker < inThreads); one unit or one thread runs inline, as the calling
-/// thread's worker (currentWorker(): 0 unless inside a unit).
+/// Runs inBody(unit, worker) for every unit in [0, inUnits) on up to passThreads() workers of
+/// this thread's runner (worker < passThreads()); one unit or one thread runs inline, as the
+/// calling thread's worker (currentWorker(): 0 unless inside a unit). No pass takes a thread
+/// count: the scope holds the one the plan decided.
 template <class Body>
-void runUnitsOnWorkers(std::size_t inUnits, int inThreads, Body&& inBody) {
-  const int team = teamForUnits(inUnits, inThreads);
+void runUnitsOnWorkers(std::size_t inUnits, Body&& inBody) {
+  const int threads = passThreads();
+  const int team = teamForUnits(inUnits, threads);
   if (team <= 1 || detail::runningAUnit()) {
     const int worker = currentWorker();
     for (std::size_t unit = 0; unit < inUnits; ++unit) inBody(unit, worker);
     return;
   }
-  currentRunner(inThreads).run(inUnits, team, inBody);
-}
-
-/// runUnitsOnWorkers on the threads of this thread's scope (passThreads()).
-template <class Body>
-void runUnitsOnWorkers(std::size_t inUnits, Body&& inBody) {
-  runUnitsOnWorkers(inUnits, passThreads(), std::forward<Body>(inBody));
+  currentRunner(threads).run(inUnits, team, inBody);
 }
 
 /// runUnitsOnWorkers for bodies that do not need their worker: inBody(unit).
 template <class Body>
-void runUnits(std::size_t inUnits, int inThreads, Body&& inBody) {
-  runUnitsOnWorkers(inUnits, inThreads, [&](std::size_t inUnit, int) { inBody(inUnit); });
-}
-
-/// runUnits on the threads of this thread's scope (passThreads()).
-template <class Body>
 void runUnits(std::size_t inUnits, Body&& inBody) {
-  runUnits(inUnits, passThreads(), std::forward<Body>(inBody));
+  runUnitsOnWorkers(inUnits, [&](std::size_t inUnit, int) { inBody(inUnit); });
 }
 
 /// runUnits over the units of inUnits, inBody(begin, end) on each unit's item range.
 template <class Body>
-void runOverItems(const WorkUnits& inUnits, int inThreads, Body&& inBody) {
-  runUnits(inUnits.count(), inThreads,
+void runOverItems(const WorkUnits& inUnits, Body&& inBody) {
+  runUnits(inUnits.count(),
            [&](std::size_t unit) { inBody(inUnits.begin(unit), inUnits.end(unit)); });
 }
 
@@ -229,27 +215,13 @@ void runOverItems(const WorkUnits& inUnits, int inThreads, Body&& inBody) {
 /// inInitial by inCombine(T&, const T&): the result does not depend on the thread count, even
 /// where the fold is a floating-point sum.
 template <class T, class Body, class Combine>
-T reduceOverItems(const WorkUnits& inUnits, int inThreads, T inInitial, Body&& inBody,
-                  Combine&& inCombine) {
+T reduceOverItems(const WorkUnits& inUnits, T inInitial, Body&& inBody, Combine&& inCombine) {
   std::vector<T> partial(inUnits.count(), inInitial);
-  runUnits(inUnits.count(), inThreads, [&](std::size_t unit) {
+  runUnits(inUnits.count(), [&](std::size_t unit) {
     partial[unit] = inBody(inUnits.begin(unit), inUnits.end(unit));
   });
   for (const T& part : partial) inCombine(inInitial, part);
   return inInitial;
-}
-
-/// runOverItems on the threads of this thread's scope (passThreads()).
-template <class Body>
-void runOverItems(const WorkUnits& inUnits, Body&& inBody) {
-  runOverItems(inUnits, passThreads(), std::forward<Body>(inBody));
-}
-
-/// reduceOverItems on the threads of this thread's scope (passThreads()).
-template <class T, class Body, class Combine>
-T reduceOverItems(const WorkUnits& inUnits, T inInitial, Body&& inBody, Combine&& inCombine) {
-  return reduceOverItems(inUnits, passThreads(), std::move(inInitial), std::forward<Body>(inBody),
-                         std::forward<Combine>(inCombine));
 }
 
 }  // namespace sap_broadphase

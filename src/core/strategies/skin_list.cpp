@@ -12,10 +12,10 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -24,6 +24,23 @@ namespace {
 BoundsRecord recordOf(const BoxColumns& inBoxes, std::size_t i) {
   return {{inBoxes.lo[0][i], inBoxes.lo[1][i], inBoxes.lo[2][i], 0.0},
           {inBoxes.hi[0][i], inBoxes.hi[1][i], inBoxes.hi[2][i], 0.0}};
+}
+
+/// std::nextafter(inValue, -infinity) without the library call: the next double below (NaN and
+/// -infinity stay as they are).
+inline double nextBelow(double inValue) {
+  if (!(inValue > -std::numeric_limits<double>::infinity())) return inValue;
+  if (inValue == 0.0) return -std::numeric_limits<double>::denorm_min();
+  uint64_t bits;
+  std::memcpy(&bits, &inValue, sizeof(bits));
+  bits = inValue > 0.0 ? bits - 1 : bits + 1;
+  std::memcpy(&inValue, &bits, sizeof(bits));
+  return inValue;
+}
+
+/// std::nextafter(inValue, +infinity) likewise.
+inline double nextAbove(double inValue) {
+  return -nextBelow(-inValue);
 }
 
 /// True when box i of inBoxes lies inside box i of inOuter (closed: equal bounds are inside).
@@ -168,11 +185,11 @@ std::size_t SkinList::scratchBytes() const {
          bytesOf(scratch_.order) + bytesOf(scratch_.fill);
 }
 
-bool SkinList::covers(const BoxColumns& inBoxes, int inThreads) const {
+bool SkinList::covers(const BoxColumns& inBoxes) const {
   if (!valid_ || !sameCounts(inBoxes)) return false;
   const std::size_t n = inBoxes.size();
   return reduceOverItems(
-      WorkUnits{n}, inThreads, true,
+      WorkUnits{n}, true,
       [&](std::size_t inBegin, std::size_t inEnd) {
         bool inside = sameIdsAndFilters(inBoxes, inBegin, inEnd);
         for (std::size_t i = inBegin; i < inEnd && inside; ++i)
@@ -182,9 +199,8 @@ bool SkinList::covers(const BoxColumns& inBoxes, int inThreads) const {
       [](bool& ioAll, bool inUnit) { ioAll = ioAll && inUnit; });
 }
 
-const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, int inThreads) {
+const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin) {
   const double margin = inSkin / 2;
-  const double infinity = std::numeric_limits<double>::infinity();
   const std::size_t n = inBoxes.size();
   releaseCandidates();  // dead from here until adopt(): the grown sweep's peak does without them
   reference_.ids = inBoxes.ids;
@@ -194,7 +210,7 @@ const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, in
     resizeDiscarding(reference_.lo[axis], inBoxes.size());
     resizeDiscarding(reference_.hi[axis], inBoxes.size());
   }
-  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
     for (int axis = 0; axis < 3; ++axis) {
       const double* low = inBoxes.lo[axis].data();
       const double* high = inBoxes.hi[axis].data();
@@ -202,8 +218,8 @@ const BoxColumns& SkinList::inflate(const BoxColumns& inBoxes, double inSkin, in
       double* grown_high = reference_.hi[axis].data();
       for (std::size_t i = inBegin; i < inEnd; ++i) {
         // One step further out than the rounded sum: the inflated box contains the exact one.
-        grown_low[i] = std::nextafter(low[i] - margin, -infinity);
-        grown_high[i] = std::nextafter(high[i] + margin, infinity);
+        grown_low[i] = nextBelow(low[i] - margin);
+        grown_high[i] = nextAbove(high[i] + margin);
       }
     }
   });
@@ -228,19 +244,42 @@ void SkinList::adopt(const BoxColumns& inBoxes, const PairList& inCandidates) {
 }
 
 void SkinList::adopt(const BoxColumns& inBoxes, PairList&& ioCandidates) {
+  startAdopt(std::move(ioCandidates));
+  while (!continueAdopt(inBoxes)) {
+  }
+}
+
+void SkinList::startAdopt(PairList&& ioCandidates) {
   if (ioCandidates.size() > std::numeric_limits<uint32_t>::max())
     throw std::length_error("skin reuse keeps fewer than 2^32 candidate pairs");
   canonical_pairs_.swap(ioCandidates);
   PairList().swap(ioCandidates);  // the last candidates' memory, before the new ones' arrays
-  keepBoxIndexes(inBoxes);
-  keepSpatialOrder();
-  keepSpatialCandidates();
+  valid_ = frame_gathered_ = false;
+  adopt_step_ = 0;
+}
+
+// The parts of adopt(), each a pass over the candidates or the boxes.
+bool SkinList::continueAdopt(const BoxColumns& inBoxes) {
+  switch (adopt_step_++) {
+    case 0:
+      keepBoxIndexes(inBoxes);
+      return false;
+    case 1:
+      keepSpatialOrder();
+      return false;
+    case 2:
+      keepSpatialCandidates();
+      return false;
+    default:
+      break;
+  }
   sortRunsByPartner();
   adopt_scratch_bytes_ = scratchBytes();
   scratch_ = AdoptScratch();  // dead until the next adopt(): not held through the frames between
   valid_ = true;
-  SAP_ASSERT(covers(inBoxes, 1), "a box outside its grown box in the skin list");
+  SAP_ASSERT(covers(inBoxes), "a box outside its grown box in the skin list");
   SAP_ASSERT(holdsEveryCandidate(), "a kept candidate whose box has no spatial position");
+  return true;
 }
 
 bool SkinList::holdsEveryCandidate() const {
@@ -369,16 +408,16 @@ void SkinList::sortRunsByPartner() {
   }
 }
 
-bool SkinList::gather(const BoxColumns& inBoxes, int inThreads) {
-  frame_gathered_ = valid_ && sameCounts(inBoxes) && gatherInside(inBoxes, inThreads);
+bool SkinList::gather(const BoxColumns& inBoxes) {
+  frame_gathered_ = valid_ && sameCounts(inBoxes) && gatherInside(inBoxes);
   return frame_gathered_;
 }
 
-void SkinList::collectGathered(int inThreads, PairList& outPairs) {
+void SkinList::collectGathered(PairList& outPairs) {
   SAP_ASSERT(frame_gathered_, "kept candidates tested without a frame gathered inside their skin");
   frame_gathered_ = false;
-  testSpatialCandidates(inThreads);
-  copyHits(inThreads, outPairs);
+  testSpatialCandidates();
+  copyHits(outPairs);
 }
 
 bool SkinList::sameCounts(const BoxColumns& inBoxes) const {
@@ -401,15 +440,15 @@ bool SkinList::sameIdsAndFilters(const BoxColumns& inBoxes, std::size_t inBegin,
 // written once at its position (boxes without candidates onto their thread's scratch record behind
 // the positions, which stays in the cache). Blocks of boxes end the pass early when one box has
 // left its skin.
-bool SkinList::gatherInside(const BoxColumns& inBoxes, int inThreads) {
+bool SkinList::gatherInside(const BoxColumns& inBoxes) {
   constexpr std::size_t kBlock = tuning::kGatherBlockBoxes;
   const std::size_t n = inBoxes.size();
-  resizeDiscarding(gathered_, std::size_t{spatial_count_} + std::max(1, inThreads));
+  resizeDiscarding(gathered_, std::size_t{spatial_count_} + std::max(1, passThreads()));
   const uint32_t* position_of = position_of_.data();
   BoundsRecord* gathered = gathered_.data();
   const uint32_t scratch = spatial_count_;
   std::atomic<bool> inside{true};
-  runOverItems(WorkUnits{n}, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
     const int thread = currentWorker();  // its scratch record (0 when run inline)
     bool mine = inside.load(std::memory_order_relaxed);
     for (std::size_t block = inBegin; mine && block < inEnd; block += kBlock) {
@@ -432,18 +471,18 @@ bool SkinList::gatherInside(const BoxColumns& inBoxes, int inThreads) {
 
 // In (first, partner) order: the first box's record is read again and again, the partner's
 // lies a little further on; the verdict goes to the candidate's canonical slot.
-void SkinList::testSpatialCandidates(int inThreads) {
+void SkinList::testSpatialCandidates() {
   const auto count = static_cast<std::ptrdiff_t>(partner_positions_.size());
   const std::size_t words = verdictWords();
-  resizeDiscarding(verdicts_, words * static_cast<std::size_t>(std::max(1, inThreads)));
+  resizeDiscarding(verdicts_, words * static_cast<std::size_t>(std::max(1, passThreads())));
   const uint32_t* run_begin = run_begin_.data();
   const uint32_t* partner = partner_positions_.data();
   const uint32_t* slot = canonical_slots_.data();
   const BoundsRecord* gathered = gathered_.data();
   const WorkUnits units{static_cast<std::size_t>(count)};
-  verdict_rows_ = teamForUnits(units.count(), inThreads);
+  verdict_rows_ = teamForUnits(units.count(), passThreads());
   std::fill(verdicts_.begin(), verdicts_.begin() + words * verdict_rows_, 0);
-  runOverItems(units, inThreads, [&](std::size_t inBegin, std::size_t inEnd) {
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
     // Each worker sets bits in its own row (row 0 when run inline); copyHits merges them.
     uint64_t* verdicts = verdicts_.data() + words * static_cast<std::size_t>(currentWorker());
     const auto end = static_cast<std::ptrdiff_t>(inEnd);
@@ -467,12 +506,12 @@ void SkinList::testSpatialCandidates(int inThreads) {
 // Canonical candidates whose verdict is set, in order: the words are cut into shares (more
 // than threads, claimed dynamically); each share's verdict rows are merged and counted, then
 // its hits copied behind the shares before it, so the list is the same for any thread count.
-void SkinList::copyHits(int inThreads, PairList& outPairs) {
+void SkinList::copyHits(PairList& outPairs) {
   const std::size_t words = verdictWords();
-  const int shares = unitsForThreads(inThreads);
+  const int shares = unitsForThreads(passThreads());
   std::vector<std::size_t> share_start(static_cast<std::size_t>(shares) + 1, 0);
   uint64_t* merged = verdicts_.data();  // the first row receives the others'
-  runUnits(shares, inThreads, [&](std::size_t inShare) {
+  runUnits(shares, [&](std::size_t inShare) {
     const int share = static_cast<int>(inShare);
     std::size_t hits = 0;
     for (std::size_t word = shareBegin(words, share, shares);
@@ -484,7 +523,7 @@ void SkinList::copyHits(int inThreads, PairList& outPairs) {
   });
   for (int share = 0; share < shares; ++share) share_start[share + 1] += share_start[share];
   resizeDiscarding(outPairs, share_start[shares]);
-  runUnits(shares, inThreads, [&](std::size_t inShare) {
+  runUnits(shares, [&](std::size_t inShare) {
     const int share = static_cast<int>(inShare);
     IdPair* out = outPairs.data() + share_start[share];
     for (std::size_t word = shareBegin(words, share, shares);

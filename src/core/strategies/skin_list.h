@@ -65,7 +65,7 @@ class SkinList {
   /// reference of the next candidates and returned for the sweep that finds them (valid until
   /// the next inflate()). The last candidates and a pass's buffers are given back first: the
   /// grown sweep that follows, a frame's memory peak, runs without them.
-  const BoxColumns& inflate(const BoxColumns& inBoxes, double inSkin, int inThreads = 1);
+  const BoxColumns& inflate(const BoxColumns& inBoxes, double inSkin);
   /// Keeps inCandidates (pairs of the inflated boxes, canonical order, filters honoured) as the
   /// candidates; inBoxes are the boxes given to inflate(). Throws std::length_error when there
   /// are 2^32 candidates or more (their rows are indexed in 32 bits).
@@ -73,16 +73,23 @@ class SkinList {
   /// The same, taking the list instead of copying it: ioCandidates is left empty, and the
   /// last candidates' memory is given back before the new ones are sorted.
   void adopt(const BoxColumns& inBoxes, PairList&& ioCandidates);
+  /// adopt() in steps, for a caller that spreads it over frames: startAdopt() takes the
+  /// candidates, then each continueAdopt() (with the same inBoxes) does one part of the work
+  /// and returns true when the candidates are kept (valid() from then on, not before).
+  void startAdopt(PairList&& ioCandidates);
+  bool continueAdopt(const BoxColumns& inBoxes);
   /// True when every box of inBoxes lies inside its inflated box (same ids, groups and masks in
   /// the same order), and then the frame's bounds are gathered for collectGathered(). One read
   /// of the frame, so that the engine can know before planning whether the candidates answer
   /// the frame; when they do not, the caller sweeps (inflate, sweep, adopt) instead.
-  bool gather(const BoxColumns& inBoxes, int inThreads);
+  bool gather(const BoxColumns& inBoxes);
   /// After gather() returned true for this frame: the candidates that overlap exactly in the
   /// gathered bounds, in canonical order, into outPairs.
-  void collectGathered(int inThreads, PairList& outPairs);
+  void collectGathered(PairList& outPairs);
   /// The containment test of gather() alone, without gathering.
-  bool covers(const BoxColumns& inBoxes, int inThreads) const;
+  bool covers(const BoxColumns& inBoxes) const;
+  /// The inflated boxes of the last inflate() (ids, groups and masks included).
+  const BoxColumns& reference() const { return reference_; }
   /// True while candidates are kept (after adopt(), until clear() or the next inflate()).
   bool valid() const { return valid_; }
   /// Number of candidate pairs kept.
@@ -109,9 +116,9 @@ class SkinList {
   void keepSpatialOrder();
   void keepSpatialCandidates();
   void sortRunsByPartner();
-  bool gatherInside(const BoxColumns& inBoxes, int inThreads);
-  void testSpatialCandidates(int inThreads);
-  void copyHits(int inThreads, PairList& outPairs);
+  bool gatherInside(const BoxColumns& inBoxes);
+  void testSpatialCandidates();
+  void copyHits(PairList& outPairs);
   std::size_t verdictWords() const { return (canonical_pairs_.size() + 63) / 64; }
 
   BoxColumns reference_;  // the inflated boxes of the last sweep (ids, groups, masks included)
@@ -143,6 +150,7 @@ class SkinList {
   std::size_t adopt_scratch_bytes_ = 0;  // what the last adopt()'s working lists held
   Buffer<uint64_t> verdicts_;
   int verdict_rows_ = 1;  // the threads of the last test, each with its row
+  int adopt_step_ = 0;    // the next part of adopt() that continueAdopt() does
   bool valid_ = false;
   bool frame_gathered_ = false;  // gather() succeeded and collectGathered() has not run since
 };

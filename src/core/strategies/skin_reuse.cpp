@@ -5,8 +5,10 @@
 #include <utility>
 
 #include "core/assert.h"
-#include "core/sweep/axis_spread.h"
 #include "core/runner/phase_timer.h"
+#include "core/sweep/axis_spread.h"
+#include "core/sweep/radix_sort.h"
+#include "core/sweep/sort_keys.h"
 
 namespace sap_broadphase {
 namespace {
@@ -17,13 +19,22 @@ double smoothed(double inAverage, double inSample) {
 
 // Mean finite box extent and the span of the finite bounds on each axis (the skin cost
 // model's picture of the frame).
-void measureExtents(FrameSpread& ioSpread, int inThreads, SkinCosts& ioCosts) {
+void measureExtents(FrameSpread& ioSpread, SkinCosts& ioCosts) {
   for (int axis = 0; axis < 3; ++axis) {
-    const AxisSpread& spread = ioSpread.axis(axis, inThreads);
+    const AxisSpread& spread = ioSpread.axis(axis);
     ioCosts.mean_extent[axis] = spread.meanExtent();
     ioCosts.span[axis] = spread.span();
   }
 }
+
+// The most slabs a successor's sweep is cut into: past this, a slab's fixed costs (the
+// kernel's grid, the boxes before the slab that reach into it) outweigh what it spreads.
+constexpr int kMostSuccessorSlabs = 16;
+// Frames between the successor's adoption and the frame the kept candidates are expected to
+// stop covering: the motion measured is the recent largest, not a bound.
+constexpr int kSuccessorSlackFrames = 1;
+// Frames the successor's adoption is spread over (SkinList::continueAdopt's parts).
+constexpr int kAdoptSteps = 4;
 
 }  // namespace
 
@@ -34,6 +45,8 @@ void SkinReuse::startFrame(const FrameDelta& inDelta) {
     std::fill(std::begin(recent_motion_), std::end(recent_motion_), 0.0);
     return;
   }
+  ++kept_age_;
+  ++next_.age;
   recent_motion_[motion_slot_] = inDelta.max_displacement;
   motion_slot_ = (motion_slot_ + 1) % tuning::kMotionWindow;
 }
@@ -42,25 +55,36 @@ double SkinReuse::recentMotion() const {
   return *std::max_element(std::begin(recent_motion_), std::end(recent_motion_));
 }
 
-bool SkinReuse::coversFrame(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport) {
+bool SkinReuse::coversFrame(const BoxColumns& inSwept, FrameReport& ioReport) {
   times_.ms_pass = 0.0;  // the pass that answers the frame starts with this gather
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer pass_timer(times_.ms_pass);
-  return kept_.gather(inSwept, inThreads);
+  if (kept_.gather(inSwept)) return true;
+  if (!next_.ready || !next_.list.gather(inSwept)) return false;
+  // The successor covers the frame (its own containment check): it takes over.
+  std::swap(kept_, next_.list);
+  skin_ = next_.skin;
+  kept_age_ = next_.age;
+  ++successors_taken_;
+  abandonSuccessor();
+  return true;
 }
 
-void SkinReuse::answerFromCandidates(int inThreads, FrameReport& ioReport, PairList& outPairs) {
+void SkinReuse::answerFromCandidates(FrameReport& ioReport, PairList& outPairs) {
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer pass_timer(times_.ms_pass);
   ioReport.skin_candidates = kept_.candidates();
-  kept_.collectGathered(inThreads, outPairs);
+  kept_.collectGathered(outPairs);
 }
 
-const BoxColumns& SkinReuse::grow(const BoxColumns& inSwept, double inSkin, int inThreads,
-                                  FrameReport& ioReport) {
+const BoxColumns& SkinReuse::grow(const BoxColumns& inSwept, double inSkin, FrameReport& ioReport) {
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer grow_timer(times_.ms_grow);
+  // The grown sweep replaces the kept candidates at once, and runs (a frame's memory peak)
+  // without a successor's boxes and candidates.
+  next_ = Successor();
   skin_ = inSkin;
+  kept_age_ = 0;
   if (inSkin >= over_budget_skin_ && inSwept.size() == over_budget_boxes_) {
     // This skin already found more candidates than the budget at this size: sweep the boxes
     // as they are (kept candidates of skin 0, for an unchanged frame) instead.
@@ -69,11 +93,11 @@ const BoxColumns& SkinReuse::grow(const BoxColumns& inSwept, double inSkin, int 
     ioReport.skin = 0.0;
     ioReport.skin_choice = SkinChoice::kOverBudget;
   }
-  return kept_.inflate(inSwept, skin_, inThreads);
+  planned_skin_ = skin_;
+  return kept_.inflate(inSwept, skin_);
 }
 
-void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameReport& ioReport,
-                              PairList& ioPairs) {
+void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, FrameReport& ioReport, PairList& ioPairs) {
   {
     PhaseTimer timer(ioReport.ms_skin);
     PhaseTimer keep_timer(times_.ms_keep);
@@ -84,10 +108,150 @@ void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, int inThreads, FrameRep
     kept_.adopt(inSwept, std::move(ioPairs));  // taken, not copied: ioPairs is rewritten below
   }
   // Every box lies inside its own grown box: the pass that answers the frame always runs.
-  const bool covered = coversFrame(inSwept, inThreads, ioReport);
+  const bool covered = coversFrame(inSwept, ioReport);
   SAP_ASSERT(covered, "a box outside the skin it was just grown by");
   static_cast<void>(covered);
-  answerFromCandidates(inThreads, ioReport, ioPairs);
+  answerFromCandidates(ioReport, ioPairs);
+}
+
+void SkinReuse::abandonSuccessor() {
+  next_.list.clear();
+  next_.steps = 0;
+  next_.ready = false;
+  next_.found.clear();
+}
+
+// The plan's skin s lets a list live L = s / (2 motion) frames from its snapshot. Building a
+// successor takes W = 1 + slabs + kAdoptSteps frames (snapshot, slabs, adoption), and it takes
+// over when the kept candidates stop covering, W + slack frames after its snapshot: so it is
+// grown by s plus the motion of those frames, and then lives L frames more, as the plan meant.
+// Each cycle of L frames thus holds one build. The slabs take what the snapshot, the adoption
+// and the slack leave of it (at most kMostSuccessorSlabs), so that a slab is as small a part of
+// a grown sweep as the cycle allows; the successor's skin is then up to about twice the plan's.
+void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, FrameReport& ioReport) {
+  if (next_.ready || planned_skin_ <= 0.0 || !kept_.valid()) return;
+  PhaseTimer timer(ioReport.ms_skin);
+  if (next_.steps == 0) {
+    const double motion = recentMotion();
+    if (!(motion > 0.0)) return;  // nothing moves: the kept candidates last
+    const double life = planned_skin_ / (2.0 * motion);
+    const double fixed_frames = 1.0 + kAdoptSteps + kSuccessorSlackFrames;
+    const int slabs =
+        static_cast<int>(std::clamp(life - fixed_frames, 1.0, double{kMostSuccessorSlabs}));
+    const double lead_frames = slabs + fixed_frames;
+    if (kept_age_ + lead_frames < skin_ / (2.0 * motion)) return;  // not due yet
+    snapshotSuccessor(inSwept, planned_skin_ + 2.0 * motion * lead_frames, slabs);
+  } else if (next_.steps <= next_.slabs) {
+    sweepSuccessorSlab();
+  } else {
+    adoptSuccessor();
+  }
+}
+
+// Step 1: the frame's boxes grown by inSkin, ordered by grown low end on the axis where they
+// spread widest (a slab of that order holds boxes near each other).
+void SkinReuse::snapshotSuccessor(const BoxColumns& inSwept, double inSkin, int inSlabs) {
+  next_.skin = inSkin;
+  next_.age = 0;
+  next_.slabs = inSlabs;
+  next_.steps = 1;
+  next_.found.clear();
+  const BoxColumns& grown = next_.list.inflate(inSwept, inSkin);
+  const std::size_t n = grown.size();
+  int axis = 0;
+  double widest = -1.0;
+  for (int a = 0; a < 3; ++a) {
+    const auto [low, high] = std::minmax_element(grown.lo[a].begin(), grown.lo[a].end());
+    const double spread = n == 0 ? 0.0 : *high - *low;
+    if (spread > widest) {
+      widest = spread;
+      axis = a;
+    }
+  }
+  next_.axis = axis;
+  Buffer<uint32_t>& keys = next_.order;  // the keys first, then (below) the order
+  resizeDiscarding(keys, n);
+  for (std::size_t i = 0; i < n; ++i) keys[i] = lowKey(grown.lo[axis][i]);
+  Buffer<uint32_t> order;
+  resizeDiscarding(order, n);
+  radixIndexSort(keys.data(), static_cast<uint32_t>(n), order.data());
+  next_.order.swap(order);
+  resizeDiscarding(next_.high_in_order, n);
+  for (std::size_t p = 0; p < n; ++p) next_.high_in_order[p] = grown.hi[axis][next_.order[p]];
+}
+
+// One slab: positions [begin, end) of the order, with every box before it whose grown high end
+// reaches the slab's lowest low end, swept by the small-frame kernel with positions as ids. A
+// pair belongs to the slab of its later box: if that box is in the slab and the pair overlaps,
+// the earlier box's high end is at least the later's low end, at least the slab's lowest, so
+// it is among the boxes swept. Over all slabs every pair of the grown boxes is found once.
+void SkinReuse::sweepSuccessorSlab() {
+  const BoxColumns& grown = next_.list.reference();
+  const std::size_t n = grown.size();
+  const int slab = next_.steps - 1;
+  const std::size_t begin = n * static_cast<std::size_t>(slab) / next_.slabs;
+  const std::size_t end = n * static_cast<std::size_t>(slab + 1) / next_.slabs;
+  const uint32_t* order = next_.order.data();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = begin; p < end; ++p)
+    lowest = std::min(lowest, grown.lo[next_.axis][order[p]]);
+  // Positions [begin, end) and those before begin that reach into the slab, in that order.
+  Buffer<uint32_t>& members = next_.slab_members;
+  members.clear();
+  for (std::size_t p = 0; p < begin; ++p)
+    if (next_.high_in_order[p] >= lowest) members.push_back(static_cast<uint32_t>(p));
+  for (std::size_t p = begin; p < end; ++p) members.push_back(static_cast<uint32_t>(p));
+  const std::size_t count = members.size();
+  BoxColumns& boxes = next_.slab_boxes;
+  boxes.resize(count, grown.hasFilters());
+  for (std::size_t k = 0; k < count; ++k) {
+    const uint32_t i = order[members[k]];
+    boxes.ids[k] = members[k];
+    for (int axis = 0; axis < 3; ++axis) {
+      boxes.lo[axis][k] = grown.lo[axis][i];
+      boxes.hi[axis][k] = grown.hi[axis][i];
+    }
+  }
+  if (boxes.hasFilters()) {
+    for (std::size_t k = 0; k < count; ++k) {
+      boxes.groups[k] = grown.group(order[members[k]]);
+      boxes.masks[k] = grown.mask(order[members[k]]);
+    }
+  }
+  PairList& pairs = next_.slab_pairs;
+  pairs.clear();
+  if (count >= 2) pairSmallFrame(boxes, next_.kernel, pairs);
+  // Positions back to ids; pairs of two boxes before the slab belong to an earlier slab.
+  std::size_t kept = 0;
+  for (const IdPair& pair : pairs) {
+    if (std::max(pair.a, pair.b) < begin) continue;
+    const uint32_t a = grown.ids[order[pair.a]];
+    const uint32_t b = grown.ids[order[pair.b]];
+    pairs[kept++] = IdPair{std::min(a, b), std::max(a, b)};
+  }
+  pairs.resize(kept);
+  sortPairsCanonical(pairs, next_.sort);
+  next_.merged.resize(next_.found.size() + pairs.size());
+  std::merge(next_.found.begin(), next_.found.end(), pairs.begin(), pairs.end(),
+             next_.merged.begin());
+  next_.found.swap(next_.merged);
+  ++next_.steps;
+}
+
+// The last steps: the candidates found become the successor's, adopted a part a frame
+// (SkinList::continueAdopt); over the budget, the successor is given up instead (the kept
+// candidates' end then brings a grown sweep, which decides).
+void SkinReuse::adoptSuccessor() {
+  const BoxColumns& grown = next_.list.reference();
+  if (next_.steps == next_.slabs + 1) {
+    if (next_.found.size() > keptCandidateBudget(grown.size())) {
+      abandonSuccessor();
+      return;
+    }
+    next_.list.startAdopt(std::move(next_.found));
+  }
+  next_.ready = next_.list.continueAdopt(grown);
+  ++next_.steps;
 }
 
 // Over the budget: the grown sweep's candidates answer this frame once, tested exactly, and
@@ -125,7 +289,7 @@ void SkinReuse::learn(const FramePlan& inPlan, FrameSpread& ioSwept, std::size_t
     costs_.reference_boxes = swept.size();
     costs_.reference_candidates = candidates;
     costs_.reference_skin = inPlan.sweep_skin;
-    measureExtents(ioSwept, inPlan.threads, costs_);
+    measureExtents(ioSwept, costs_);
     if (grown) {
       costs_.grow_ns_per_box = smoothed(costs_.grow_ns_per_box, times_.ms_grow * 1e6 / boxes);
       costs_.keep_ns_per_candidate =

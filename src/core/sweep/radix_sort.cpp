@@ -115,15 +115,15 @@ std::vector<DigitCounts>& parallelSortCounters() {
   return counters;
 }
 
-// The same sort on inThreads workers of the runner. The items are cut into units (contiguous
+// The same sort on the scope's threads (passThreads()). The items are cut into units (contiguous
 // slices, kUnitsPerThread a thread, none under kUnitBoxes items); each pass counts a unit's
 // digits, gives each (digit, unit) its first slot (digits in order, and within a digit the units
 // in order: the slots one pass over the items in order would give) and scatters each unit into
 // its slots. So the result is the stable order whatever the thread count; each pass after the
 // first reads the items once more than the serial sort does, to count them.
-uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount,
-                                  int inThreads) {
-  const std::size_t slice = (inCount + unitsForThreads(inThreads) - 1) / unitsForThreads(inThreads);
+uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::size_t inCount) {
+  const int units_wanted = unitsForThreads(passThreads());
+  const std::size_t slice = (inCount + units_wanted - 1) / units_wanted;
   const WorkUnits units{inCount, std::max(kUnitBoxes, slice)};
   const std::size_t unit_count = units.count();
   std::vector<DigitCounts>& counters = parallelSortCounters();
@@ -133,7 +133,7 @@ uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::s
   };
   // Every digit of every pass, counted once on the unsorted items: their totals decide which
   // passes are skipped, and the first pass run uses its counts as they are.
-  runUnits(unit_count, inThreads, [&](std::size_t inUnit) {
+  runUnits(unit_count, [&](std::size_t inUnit) {
     for (int pass = 0; pass < kPasses; ++pass) countsOf(inUnit, pass).fill(0);
     for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k)
       for (int pass = 0; pass < kPasses; ++pass)
@@ -150,7 +150,7 @@ uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::s
     // A digit equal for every item would copy the data without reordering it: skip the pass.
     if (with_shared_digit == inCount) continue;
     if (!counted) {
-      runUnits(unit_count, inThreads, [&](std::size_t inUnit) {
+      runUnits(unit_count, [&](std::size_t inUnit) {
         DigitCounts& counts = countsOf(inUnit, pass);
         counts.fill(0);
         for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k)
@@ -169,7 +169,7 @@ uint64_t* radixSortPackedParallel(uint64_t* ioItems, uint64_t* ioScratch, std::s
       }
     }
     SAP_ASSERT(slot == inCount, "the digit counts do not cover every item once");
-    runUnits(unit_count, inThreads, [&](std::size_t inUnit) {
+    runUnits(unit_count, [&](std::size_t inUnit) {
       DigitCounts& next_slot = countsOf(inUnit, pass);
       for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
         const uint64_t item = source[k];
@@ -195,7 +195,7 @@ uint64_t* radixSortPacked(uint64_t* ioItems, uint64_t* ioScratch, std::size_t in
   // partitions one a unit): a nested pass would run inline and only pay the extra counting.
   const int threads = passThreads();
   if (threads > 1 && inCount >= kParallelSortMinItems && !detail::runningAUnit())
-    return radixSortPackedParallel(ioItems, ioScratch, inCount, threads);
+    return radixSortPackedParallel(ioItems, ioScratch, inCount);
   return radixSortPackedSerial(ioItems, ioScratch, inCount);
 }
 
