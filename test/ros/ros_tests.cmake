@@ -5,7 +5,8 @@ find_package(rostest REQUIRED)
 
 # Topic round trips and the service against the oracle, refusals, a burst, markers.
 add_rostest_gtest(test_node test/ros/node.test
-  test/ros/test_node.cpp test/ros/node_client.cpp test/ros/test_frames.cpp)
+  test/ros/test_node.cpp test/ros/node_client.cpp test/ros/test_frames.cpp
+  test/ros/message_read_back.cpp)
 target_include_directories(test_node PRIVATE test/ros)
 target_link_libraries(test_node ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_node ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)
@@ -26,7 +27,8 @@ add_rostest(test/ros/rosbag.test DEPENDENCIES ${PROJECT_NAME}_node)
 catkin_add_gtest(test_ros_units
   test/ros/test_conversions.cpp test/ros/test_frames.cpp test/ros/test_markers.cpp
   test/ros/test_sources_units.cpp test/ros/test_node_tables.cpp
-  test/ros/test_source_ingest_units.cpp test/ros/test_units_main.cpp)
+  test/ros/test_source_ingest_units.cpp test/ros/test_units_main.cpp
+  test/ros/message_read_back.cpp)
 target_include_directories(test_ros_units PRIVATE test/ros src/ros)
 # test_node_tables reads msg/FrameStats.msg, docs/NODE.md, config/default.yaml and the launch
 # and rostest files.
@@ -37,14 +39,14 @@ add_dependencies(test_ros_units ${PROJECT_NAME}_generate_messages_cpp)
 # ScenePublisherNodelet feeding BroadphaseNodelet in one manager: boxes pass in process, every
 # answered frame equals the oracle's pairs.
 add_rostest_gtest(test_nodelet test/ros/nodelet.test
-  test/ros/test_nodelet.cpp test/ros/test_frames.cpp)
+  test/ros/test_nodelet.cpp test/ros/test_frames.cpp test/ros/message_read_back.cpp)
 target_include_directories(test_nodelet PRIVATE test/ros)
 target_link_libraries(test_nodelet ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
 add_dependencies(test_nodelet ${PROJECT_NAME}_nodelets ${PROJECT_NAME}_generate_messages_cpp)
 
 # Sources (several publishers and topics), tf2 into a fixed frame, static_boxes, pair_events.
 add_rostest_gtest(test_sources test/ros/sources.test
-  test/ros/test_sources.cpp test/ros/test_frames.cpp)
+  test/ros/test_sources.cpp test/ros/test_frames.cpp test/ros/message_read_back.cpp)
 target_include_directories(test_sources PRIVATE test/ros)
 target_link_libraries(test_sources ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
 add_dependencies(test_sources ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)

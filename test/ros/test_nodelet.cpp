@@ -14,10 +14,10 @@
 #include <ros/ros.h>
 #include <xmlrpcpp/XmlRpcClient.h>
 
+#include "message_read_back.h"
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/PairArray.h"
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/ros/conversions.h"
 #include "test_frames.h"
 
 namespace sap_broadphase {
