@@ -14,16 +14,15 @@ Every wait is for a condition, bounded by WAIT so that a broken node fails inste
 """
 import random
 import threading
-import time
 import unittest
-import xmlrpc.client
 
-import rosgraph
 import rospy
 import rostest
 import tf2_ros
 from geometry_msgs.msg import TransformStamped
 from sap_broadphase.msg import BoxArray, FrameStats, PairArray
+
+from ros_test_support import poll_until, sends_to, sorted_pairs, wait_until
 
 PACKAGE = "sap_broadphase"
 WAIT = 20.0  # seconds; a bound on waiting, never a speed check
@@ -58,16 +57,6 @@ def oracle(ids_a, bounds_a, ids_b=(), bounds_b=()):
     return sorted(pairs)
 
 
-def sends_to(node, topic, subscriber):
-    """True once node has an outbound connection on topic to subscriber."""
-    master = rosgraph.Master(rospy.get_name())
-    try:
-        info = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(rospy.get_name())[2]
-    except (rosgraph.MasterError, OSError):
-        return False
-    return any(len(c) > 4 and c[2] == "o" and c[4] == topic and c[1] == subscriber for c in info)
-
-
 def transform(parent, child, x, stamp):
     msg = TransformStamped()
     msg.header.frame_id = parent
@@ -92,9 +81,8 @@ class Node:
         self.stats_sub = rospy.Subscriber("/%s/stats" % namespace, FrameStats, self.on_stats)
 
     def on_pairs(self, msg):
-        flat = list(msg.pairs)
         with self.condition:
-            self.pairs[msg.header.stamp] = sorted(zip(flat[0::2], flat[1::2]))
+            self.pairs[msg.header.stamp] = sorted_pairs(msg)
             self.condition.notify_all()
 
     def on_stats(self, msg):
@@ -123,11 +111,7 @@ class TfTest(unittest.TestCase):
         cls.static_broadcaster = tf2_ros.StaticTransformBroadcaster()
 
     def wait_until(self, ready, what):
-        end = time.monotonic() + WAIT
-        while not ready():
-            if time.monotonic() > end or rospy.is_shutdown():
-                self.fail("no %s within %.0f s" % (what, WAIT))
-            time.sleep(0.05)
+        wait_until(ready, what, WAIT)
 
     def send_frame(self, node, ids, bounds, frame_id):
         msg = BoxArray()
@@ -169,13 +153,15 @@ class TfTest(unittest.TestCase):
         late_box = [1.5, 0.0, 0.0, 2.5, 1.0, 1.0]
         expected = oracle(ids + [5000], bounds + late_box)
         self.assertTrue(any(5000 in pair for pair in expected), "no pair with the late box")
-        end = time.monotonic() + WAIT
-        while time.monotonic() < end:
-            stamp = self.send_frame(node, ids, bounds, "robot_ok")
-            pairs = node.wait_pairs(stamp)
-            if pairs == expected:
-                break
-            time.sleep(0.2)  # the late robot's next frame (5 Hz): polled, not assumed
+        pairs = None
+
+        def joined():
+            nonlocal pairs
+            pairs = node.wait_pairs(self.send_frame(node, ids, bounds, "robot_ok"))
+            return pairs == expected
+
+        # The late robot's next frame (5 Hz) brings its box: polled, not assumed.
+        poll_until(joined, WAIT, interval=0.2)
         self.assertEqual(pairs, expected, "the late robot never joined once its transform came")
 
 
@@ -240,15 +226,17 @@ class TfTest(unittest.TestCase):
             expected = oracle(ids, bounds, scenery.ids, placed)
             self.assertTrue(any(pair[1] >= 100000 for pair in expected), "no scenery pair")
             stats = None
-            end = time.monotonic() + WAIT
-            while time.monotonic() < end:
+
+            def placed_in_world():
+                nonlocal stats
                 stamp = self.send_frame(node, ids, bounds, "map")
-                pairs = node.wait_pairs(stamp)
+                node.wait_pairs(stamp)
                 with node.condition:
                     stats = next((s for s in node.stats if s.header.stamp == stamp), None)
-                if stats is not None and stats.static_world_boxes == len(scenery.ids):
-                    break
-                time.sleep(0.2)  # the scenery lands between two frames: polled
+                return stats is not None and stats.static_world_boxes == len(scenery.ids)
+
+            # The scenery lands between two frames: polled, not assumed.
+            poll_until(placed_in_world, WAIT, interval=0.2)
             self.assertIsNotNone(stats, "no stats for the frames in map")
             self.assertEqual(stats.static_world_boxes, len(scenery.ids),
                              "the scenery stamped long ago was never placed (skipped: %d)"
