@@ -8,11 +8,13 @@ master's graph, a service's answer).
 """
 import os
 import subprocess
+import threading
 import time
 import xmlrpc.client
 
 import rosgraph
 import rospy
+from sap_broadphase.msg import PairArray
 
 REPO = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
 ARTIFACTS = os.path.join(REPO, "build", "artifacts")
@@ -75,3 +77,25 @@ def sorted_pairs(msg):
     """The pairs of a PairArray as a sorted list of (a, b) tuples."""
     flat = list(msg.pairs)
     return sorted(zip(flat[0::2], flat[1::2]))
+
+
+class PairsByStamp:
+    """The pairs a node publishes on topic, by stamp (sorted_pairs). condition guards them and
+    is notified at each message; a caller may pass its own, to wait on other messages too."""
+
+    def __init__(self, topic, condition=None, queue_size=100):
+        self.condition = condition or threading.Condition()
+        self.pairs = {}
+        self.subscriber = rospy.Subscriber(topic, PairArray, self.on_pairs, queue_size=queue_size)
+
+    def on_pairs(self, msg):
+        with self.condition:
+            self.pairs[msg.header.stamp] = sorted_pairs(msg)
+            self.condition.notify_all()
+
+    def wait_for(self, stamp, timeout):
+        """The pairs of the frame stamped stamp, or None if none came within timeout seconds."""
+        with self.condition:
+            if not self.condition.wait_for(lambda: stamp in self.pairs, timeout):
+                return None
+            return self.pairs[stamp]

@@ -13,16 +13,14 @@ instead of hanging it. Every process this test starts is stopped by its PID.
 """
 import os
 import subprocess
-import threading
 import unittest
 
 import rosbag
 import rospy
 import rostest
-from sap_broadphase.msg import PairArray
 from std_msgs.msg import UInt32
 
-from ros_test_support import artifact, sends_to, sorted_pairs, stop, wait_until
+from ros_test_support import PairsByStamp, artifact, sends_to, stop, wait_until
 
 PACKAGE = "sap_broadphase"
 ROBOTS = ["robot_a", "robot_b"]
@@ -30,24 +28,6 @@ FRAMES = 8  # per robot
 # The static transforms of replay.test: each robot's frame is its x offset in `map`.
 X_OFFSET = {"robot_a": 0.0, "robot_b": 0.5}
 WAIT = 60.0  # seconds; a bound on waiting, never a speed check
-
-
-class Answers:
-    """The pairs a node published, by stamp."""
-
-    def __init__(self, topic):
-        self.condition = threading.Condition()
-        self.pairs = {}
-        self.subscriber = rospy.Subscriber(topic, PairArray, self.on_pairs, queue_size=100)
-
-    def on_pairs(self, msg):
-        with self.condition:
-            self.pairs[msg.header.stamp] = sorted_pairs(msg)
-            self.condition.notify_all()
-
-    def wait_for(self, stamp):
-        with self.condition:
-            return self.condition.wait_for(lambda: stamp in self.pairs, WAIT)
 
 
 def world_pairs(frames):
@@ -83,8 +63,8 @@ class ReplayTest(unittest.TestCase):
     def setUp(self):
         self.processes = []
         rospy.init_node("test_replay", anonymous=True)
-        self.live = Answers("/live/pairs")
-        self.replay = Answers("/replay/pairs")
+        self.live = PairsByStamp("/live/pairs")
+        self.replay = PairsByStamp("/replay/pairs")
         self.steps = {robot: rospy.Publisher("/live/%s/step" % robot, UInt32, queue_size=100)
                       for robot in ROBOTS}
 
@@ -120,8 +100,8 @@ class ReplayTest(unittest.TestCase):
             for robot, stamp_base in zip(ROBOTS, (1000.0, 1000.5)):
                 stamp = rospy.Time.from_sec(stamp_base + i)
                 self.steps[robot].publish(UInt32(i))
-                self.assertTrue(self.live.wait_for(stamp), "no live pairs for %s frame %d"
-                                % (robot, i))
+                self.assertIsNotNone(self.live.wait_for(stamp, WAIT),
+                                     "no live pairs for %s frame %d" % (robot, i))
                 stamps.append(stamp)
         cross = [pair for pair in self.live.pairs[stamps[-1]] if pair[0] < 1000 <= pair[1]]
         self.assertGreater(len(cross), 0, "the robots' boxes should overlap, or nothing is tested")
@@ -149,9 +129,9 @@ class ReplayTest(unittest.TestCase):
         play = subprocess.Popen(["rosbag", "play", "-q", "--wait-for-subscribers", bag,
                                  "/live/boxes:=/replay/boxes"], stdout=log, stderr=log)
         self.processes.append(play)
-        self.assertTrue(self.replay.wait_for(max(in_bag)), "the last replayed frame (%s) was not "
-                        "answered; the replay node answered %s"
-                        % (max(in_bag), sorted(self.replay.pairs)))
+        self.assertIsNotNone(self.replay.wait_for(max(in_bag), WAIT),
+                             "the last replayed frame (%s) was not answered; the replay node "
+                             "answered %s" % (max(in_bag), sorted(self.replay.pairs)))
         with self.replay.condition:
             answers = dict(self.replay.pairs)
         for stamp, pairs in sorted(answers.items()):

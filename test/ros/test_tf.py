@@ -20,9 +20,9 @@ import rospy
 import rostest
 import tf2_ros
 from geometry_msgs.msg import TransformStamped
-from sap_broadphase.msg import BoxArray, FrameStats, PairArray
+from sap_broadphase.msg import BoxArray, FrameStats
 
-from ros_test_support import poll_until, sends_to, sorted_pairs, wait_until
+from ros_test_support import PairsByStamp, poll_until, sends_to, wait_until
 
 PACKAGE = "sap_broadphase"
 WAIT = 20.0  # seconds; a bound on waiting, never a speed check
@@ -72,18 +72,12 @@ class Node:
 
     def __init__(self, namespace):
         self.condition = threading.Condition()
-        self.pairs = {}
+        self.answers = PairsByStamp("/%s/pairs" % namespace, self.condition, queue_size=None)
         self.stats = []
         self.boxes = rospy.Publisher("/%s/boxes" % namespace, BoxArray, queue_size=10)
         self.static = rospy.Publisher("/%s/static_boxes" % namespace, BoxArray, queue_size=1,
                                       latch=True)
-        self.pairs_sub = rospy.Subscriber("/%s/pairs" % namespace, PairArray, self.on_pairs)
         self.stats_sub = rospy.Subscriber("/%s/stats" % namespace, FrameStats, self.on_stats)
-
-    def on_pairs(self, msg):
-        with self.condition:
-            self.pairs[msg.header.stamp] = sorted_pairs(msg)
-            self.condition.notify_all()
 
     def on_stats(self, msg):
         with self.condition:
@@ -92,15 +86,12 @@ class Node:
 
     def connected(self):
         return (self.boxes.get_num_connections() > 0 and self.static.get_num_connections() > 0
-                and self.pairs_sub.get_num_connections() > 0
+                and self.answers.subscriber.get_num_connections() > 0
                 and self.stats_sub.get_num_connections() > 0)
 
-    def wait_pairs(self, stamp, accept=lambda pairs: True, timeout=WAIT):
-        """The pairs of the frame stamped stamp once accept() takes them, or None."""
-        with self.condition:
-            found = self.condition.wait_for(
-                lambda: stamp in self.pairs and accept(self.pairs[stamp]), timeout)
-            return self.pairs[stamp] if found else None
+    def wait_pairs(self, stamp):
+        """The pairs of the frame stamped stamp, or None after WAIT."""
+        return self.answers.wait_for(stamp, WAIT)
 
 
 class TfTest(unittest.TestCase):
