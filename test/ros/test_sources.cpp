@@ -187,7 +187,7 @@ class Probe {
   }
 
  private:
-  /// Waits for a message of ioReceived (filled by a callback under mutex_), from index inSeen
+  /// Waits for a message of inReceived (filled by a callback under mutex_), from index inSeen
   /// on, that satisfies inAccept; calls inRepublish every half second meanwhile. Returns it, or
   /// nothing after kWait.
   template <typename Message>
