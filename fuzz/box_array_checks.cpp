@@ -12,6 +12,7 @@
 #include <ros/serialization.h>
 
 #include "fuzz_checks.h"
+#include "message_read_back.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/ros/conversions.h"
 
@@ -90,7 +91,7 @@ std::string checkRecords(const BoxArray& inMsg, const std::optional<std::string>
 std::string checkConverted(const BoxArray& inMsg) {
   const auto shape = checkBoxArrayShape(inMsg);
   BoxSet boxes;
-  const auto refusal = boxArrayToBoxSet(inMsg, boxes);
+  const auto refusal = test::boxArrayToBoxSet(inMsg, boxes);
   if (shape && !refusal) return "shape error '" + *shape + "' but the conversion accepted";
   if (shape && *refusal != *shape) return "conversion gave a different reason than the shape";
   if (!shape) {
@@ -115,7 +116,7 @@ std::string checkConverted(const BoxArray& inMsg) {
   BoxArray back;
   boxSetToBoxArray(boxes, inMsg.header, back);
   BoxSet again;
-  if (auto error = boxArrayToBoxSet(back, again)) return "boxSetToBoxArray output refused";
+  if (auto error = test::boxArrayToBoxSet(back, again)) return "boxSetToBoxArray output refused";
   if (again.ids != boxes.ids || again.groups != boxes.groups || again.masks != boxes.masks)
     return "ids or filters changed in the message round trip";
   if (boxes.size() > kMaxEngineBoxes) return "";
@@ -125,7 +126,7 @@ std::string checkConverted(const BoxArray& inMsg) {
   PairArray pairs_msg;
   pairListToPairArray(oracle_engine.update(boxes), inMsg.header, pairs_msg);
   PairList pairs;
-  if (!pairArrayToPairList(pairs_msg, pairs) || pairs != oracle_engine.update(boxes))
+  if (!test::pairArrayToPairList(pairs_msg, pairs) || pairs != oracle_engine.update(boxes))
     return "pairs changed in the PairArray round trip";
   return "";
 }

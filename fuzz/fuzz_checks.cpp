@@ -143,6 +143,20 @@ double decodeCoordinate(ByteReader& ioReader) {
   return ioReader.f64();
 }
 
+BoxSet smallGridBoxes(ByteReader& ioReader, uint32_t inCount) {
+  BoxSet boxes;
+  for (uint32_t i = 0; i < inCount; ++i) {
+    // Braced lists are read left to right: the byte order of the corpora stays as it was.
+    const double lo[3] = {static_cast<double>(ioReader.byte() % 16),
+                          static_cast<double>(ioReader.byte() % 16),
+                          static_cast<double>(ioReader.byte() % 16)};
+    const double hi[3] = {lo[0] + ioReader.byte() % 4, lo[1] + ioReader.byte() % 4,
+                          lo[2] + ioReader.byte() % 4};
+    boxes.add(i, lo, hi);
+  }
+  return boxes;
+}
+
 std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual) {
   std::ostringstream text;
   text << inWhat << ": expected " << inExpected.size() << " pairs, got " << inActual.size();

@@ -57,6 +57,11 @@ class ByteReader {
 /// a special value moved a few ulps, or raw bits.
 double decodeCoordinate(ByteReader& ioReader);
 
+/// inCount boxes with ids 0..inCount-1 on a small integer grid, so that many of them overlap:
+/// each corner in [0, 16), each edge in [0, 4), read from ioReader (six bytes a box, zeros past
+/// its end). The small random frame the settings and reconfigure targets run the engine on.
+BoxSet smallGridBoxes(ByteReader& ioReader, uint32_t inCount);
+
 /// "what: expected 3 pairs, got 4 [0] 1,2 vs 1,2 ..." for a failed comparison.
 std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual);
 

@@ -139,15 +139,7 @@ std::string checkAccepted(const NodeParams& inSettings) {
 /// The engine built from accepted settings on one small frame, against the oracle.
 std::string checkEngineRuns(BroadphaseConfig inConfig, ByteReader& ioReader) {
   inConfig.threads = std::min(inConfig.threads, 2);  // the fuzzer's own cores, not the cap's
-  BoxSet boxes;
-  for (uint32_t i = 0; i < 32; ++i) {
-    const double lo[3] = {static_cast<double>(ioReader.byte() % 16),
-                          static_cast<double>(ioReader.byte() % 16),
-                          static_cast<double>(ioReader.byte() % 16)};
-    const double hi[3] = {lo[0] + ioReader.byte() % 4, lo[1] + ioReader.byte() % 4,
-                          lo[2] + ioReader.byte() % 4};
-    boxes.add(i, lo, hi);
-  }
+  const BoxSet boxes = smallGridBoxes(ioReader, 32);
   Broadphase engine(inConfig);
   const PairList expected = bruteForcePairs(boxes);
   const PairList pairs = engine.update(boxes);

@@ -78,15 +78,7 @@ std::string checkRequest(ByteReader& ioReader) {
   }
   if (configProblem(config)) return "";
   config.threads = std::min(config.threads, 2);  // the fuzzer's own cores, not the cap's
-  BoxSet boxes;
-  for (uint32_t i = 0; i < 40; ++i) {
-    const double lo[3] = {static_cast<double>(ioReader.byte() % 16),
-                          static_cast<double>(ioReader.byte() % 16),
-                          static_cast<double>(ioReader.byte() % 16)};
-    const double hi[3] = {lo[0] + ioReader.byte() % 4, lo[1] + ioReader.byte() % 4,
-                          lo[2] + ioReader.byte() % 4};
-    boxes.add(i, lo, hi);
-  }
+  const BoxSet boxes = smallGridBoxes(ioReader, 40);
   try {
     Broadphase engine(config);
     const PairList expected = bruteForcePairs(boxes);

@@ -49,7 +49,7 @@ CXX=${CXX_FUZZ:-clang++}
 command -v "$CXX" >/dev/null || { echo "fuzz.sh: $CXX not found (apt-get install clang libclang-rt-dev libomp-dev)" >&2; exit 2; }
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 FLAGS="-std=c++17 -O1 -g -fno-omit-frame-pointer -fopenmp -Wall -Wextra $SAN"
-INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/src/ros -I$ROOT/fuzz -I$ROOT/test/stress -I$OUT/gen"
+INCLUDES="-I$ROOT/include -I$ROOT/src -I$ROOT/src/ros -I$ROOT/fuzz -I$ROOT/test/stress -I$ROOT/test/ros -I$OUT/gen"
 FLAGS="$FLAGS -DSAP_ADAPTERS_MSGS_DIR=\"$ROOT/src/ros/adapters_msgs\""
 mkdir -p "$OUT/obj" "$OUT/gen/sap_broadphase" "$OUT/crashes"
 
@@ -92,7 +92,7 @@ fi
 
 # Objects: instrumented for coverage (fuzzer-no-link) and the sanitizers; rebuilt when older
 # than their source or any header.
-newest_header=$(find "$ROOT/include" "$ROOT/src" "$ROOT/fuzz" "$ROOT/test/stress" -name '*.h' \
+newest_header=$(find "$ROOT/include" "$ROOT/src" "$ROOT/fuzz" "$ROOT/test/stress" "$ROOT/test/ros" -name '*.h' \
   -printf '%T@\n' | sort -n | tail -1)
 compile() {  # source object
   local src=$1 obj=$2
@@ -105,7 +105,8 @@ compile() {  # source object
 export -f compile
 export CXX FLAGS INCLUDES ROOT newest_header
 sources=("$ROOT"/src/core/*.cpp "$ROOT"/src/core/*/*.cpp "$ROOT/src/ros/conversions.cpp" "$ROOT/fuzz/fuzz_checks.cpp" \
-         "$ROOT/fuzz/box_array_checks.cpp" "$ROOT/fuzz/sequence_checks.cpp" \
+         "$ROOT/fuzz/box_array_checks.cpp" "$ROOT/test/ros/message_read_back.cpp" \
+         "$ROOT/fuzz/sequence_checks.cpp" \
          "$ROOT/fuzz/wire_checks.cpp" "$ROOT/src/ros/wire_layout.cpp" \
          "$ROOT/fuzz/settings_checks.cpp" "$ROOT/fuzz/sources_checks.cpp" \
          "$ROOT/fuzz/reconfigure_checks.cpp" "$ROOT/src/ros/adapters.cpp" \
@@ -124,7 +125,7 @@ link() {  # target extra-objects... extra-libs
 }
 link text
 link boxset
-link box_array "$OUT/obj/box_array_checks.o" "$OUT/obj/conversions.o" \
+link box_array "$OUT/obj/box_array_checks.o" "$OUT/obj/message_read_back.o" "$OUT/obj/conversions.o" \
   -lroscpp_serialization -lrostime -lcpp_common
 link sequence "$OUT/obj/sequence_checks.o"
 link wire "$OUT/obj/wire_checks.o" "$OUT/obj/wire_layout.o" -lroscpp_serialization -lrostime \

@@ -61,13 +61,6 @@ void copyBoxArray(const BoxArray& inMsg, BoxSet& outBoxes) {
   outBoxes.masks.assign(inMsg.masks.begin(), inMsg.masks.end());
 }
 
-std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes) {
-  if (auto shapeError = checkBoxArrayShape(inMsg)) return shapeError;
-  copyBoxArray(inMsg, outBoxes);
-  if (auto error = validate(outBoxes)) return error->message();
-  return std::nullopt;
-}
-
 void pairListToPairArray(const PairList& inPairs, const std_msgs::Header& inHeader,
                          PairArray& outMsg) {
   outMsg.header = inHeader;
@@ -87,14 +80,6 @@ void boxSetToBoxArray(const BoxSet& inBoxes, const std_msgs::Header& inHeader, B
   outMsg.bounds.assign(inBoxes.bounds.begin(), inBoxes.bounds.end());  // the same records
   outMsg.groups.assign(inBoxes.groups.begin(), inBoxes.groups.end());
   outMsg.masks.assign(inBoxes.masks.begin(), inBoxes.masks.end());
-}
-
-bool pairArrayToPairList(const PairArray& inMsg, PairList& outPairs) {
-  if (inMsg.pairs.size() % 2 != 0) return false;
-  outPairs.resize(inMsg.pairs.size() / 2);
-  for (std::size_t i = 0; i < outPairs.size(); ++i)
-    outPairs[i] = makeIdPair(inMsg.pairs[2 * i], inMsg.pairs[2 * i + 1]);
-  return true;
 }
 
 }  // namespace sap_broadphase

@@ -1,6 +1,8 @@
 // A test-side client of one BroadphaseNode.
 #include "node_client.h"
 
+#include "ros_test_support.h"
+
 namespace sap_broadphase {
 namespace test {
 
@@ -35,16 +37,12 @@ bool NodeClient::waitFor(double inSeconds, Predicate inReady,
 }
 
 bool NodeClient::waitConnected(double inSeconds) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(inSeconds);
-  while (ros::WallTime::now() < end) {
+  return pollUntil(inSeconds, [this] {
     const bool markers_ok = !markers_sub_ || markers_sub_.getNumPublishers() > 0;
-    if (boxes_pub_.getNumSubscribers() > 0 && pairs_sub_.getNumPublishers() > 0 &&
-        stats_sub_.getNumPublishers() > 0 && markers_ok &&
-        service_.waitForExistence(ros::Duration(0.1)))
-      return true;
-    ros::WallDuration(0.05).sleep();
-  }
-  return false;
+    return boxes_pub_.getNumSubscribers() > 0 && pairs_sub_.getNumPublishers() > 0 &&
+           stats_sub_.getNumPublishers() > 0 && markers_ok &&
+           service_.waitForExistence(ros::Duration(0.1));
+  });
 }
 
 ros::Time NodeClient::publish(BoxArray& ioBoxes) {

@@ -3,12 +3,22 @@
 # time-limit and no test asserts on wall-clock speed.
 find_package(rostest REQUIRED)
 
+# A rostest gtest of test/ros: its launch file, its sources, the test code the rostest gtests
+# share (frames and their oracle, messages read back, waits and main()) and the targets it
+# starts, linked with the ROS layer and the engine.
+function(sap_add_rostest_gtest target launch_file)
+  cmake_parse_arguments(ARG "" "" "SOURCES;STARTS" ${ARGN})
+  add_rostest_gtest(${target} ${launch_file} ${ARG_SOURCES} test/ros/test_frames.cpp
+    test/ros/message_read_back.cpp test/ros/ros_test_support.cpp)
+  target_include_directories(${target} PRIVATE test/ros)
+  target_link_libraries(${target} ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal
+    ${catkin_LIBRARIES})
+  add_dependencies(${target} ${ARG_STARTS} ${PROJECT_NAME}_generate_messages_cpp)
+endfunction()
+
 # Topic round trips and the service against the oracle, refusals, a burst, markers.
-add_rostest_gtest(test_node test/ros/node.test
-  test/ros/test_node.cpp test/ros/node_client.cpp test/ros/test_frames.cpp)
-target_include_directories(test_node PRIVATE test/ros)
-target_link_libraries(test_node ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
-add_dependencies(test_node ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)
+sap_add_rostest_gtest(test_node test/ros/node.test
+  SOURCES test/ros/test_node.cpp test/ros/node_client.cpp STARTS ${PROJECT_NAME}_node)
 
 # scene_publisher (10 Hz, 10^4 boxes) into the node: pairs and stats are published (no rate).
 add_rostest(test/ros/hz.test DEPENDENCIES ${PROJECT_NAME}_node ${PROJECT_NAME}_scene_publisher)
@@ -26,7 +36,8 @@ add_rostest(test/ros/rosbag.test DEPENDENCIES ${PROJECT_NAME}_node)
 catkin_add_gtest(test_ros_units
   test/ros/test_conversions.cpp test/ros/test_frames.cpp test/ros/test_markers.cpp
   test/ros/test_sources_units.cpp test/ros/test_node_tables.cpp
-  test/ros/test_source_ingest_units.cpp test/ros/test_units_main.cpp)
+  test/ros/test_source_ingest_units.cpp test/ros/test_units_main.cpp
+  test/ros/message_read_back.cpp)
 target_include_directories(test_ros_units PRIVATE test/ros src/ros)
 # test_node_tables reads msg/FrameStats.msg, docs/NODE.md, config/default.yaml and the launch
 # and rostest files.
@@ -36,18 +47,12 @@ add_dependencies(test_ros_units ${PROJECT_NAME}_generate_messages_cpp)
 
 # ScenePublisherNodelet feeding BroadphaseNodelet in one manager: boxes pass in process, every
 # answered frame equals the oracle's pairs.
-add_rostest_gtest(test_nodelet test/ros/nodelet.test
-  test/ros/test_nodelet.cpp test/ros/test_frames.cpp)
-target_include_directories(test_nodelet PRIVATE test/ros)
-target_link_libraries(test_nodelet ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal ${catkin_LIBRARIES})
-add_dependencies(test_nodelet ${PROJECT_NAME}_nodelets ${PROJECT_NAME}_generate_messages_cpp)
+sap_add_rostest_gtest(test_nodelet test/ros/nodelet.test
+  SOURCES test/ros/test_nodelet.cpp STARTS ${PROJECT_NAME}_nodelets)
 
 # Sources (several publishers and topics), tf2 into a fixed frame, static_boxes, pair_events.
-add_rostest_gtest(test_sources test/ros/sources.test
-  test/ros/test_sources.cpp test/ros/test_frames.cpp)
-target_include_directories(test_sources PRIVATE test/ros)
-target_link_libraries(test_sources ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES})
-add_dependencies(test_sources ${PROJECT_NAME}_node ${PROJECT_NAME}_generate_messages_cpp)
+sap_add_rostest_gtest(test_sources test/ros/sources.test
+  SOURCES test/ros/test_sources.cpp STARTS ${PROJECT_NAME}_node)
 
 # dynamic_reconfigure of the node and of BroadphaseNodelet (python client): threads and skin
 # changed at run time show in stats, pairs equal the oracle's, invalid values are refused.

@@ -21,6 +21,8 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rosgraph_msgs.msg import Clock
 from sap_broadphase.msg import BoxArray, FrameStats
 
+from ros_test_support import wait_until
+
 PACKAGE = "sap_broadphase"
 WAIT = 30.0  # seconds; a bound on waiting, never a speed check
 HOLD = 1.5  # wall seconds with the clock standing still: ten ~rate periods of wall time
@@ -53,11 +55,7 @@ class ClockTest(unittest.TestCase):
                 self.fail("%s within %.0f s" % (what, timeout))
 
     def wait_connected(self, what, ready):
-        end = time.monotonic() + WAIT
-        while not ready():
-            if time.monotonic() > end:
-                self.fail("no %s within %.0f s" % (what, WAIT))
-            time.sleep(0.05)
+        wait_until(ready, what, WAIT)
 
     def computed(self):
         with self.condition:

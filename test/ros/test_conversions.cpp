@@ -4,11 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include "message_read_back.h"
 #include "sap_broadphase/ros/conversions.h"
 #include "test_frames.h"
 
 namespace sap_broadphase {
 namespace {
+
+using test::boxArrayToBoxSet;
+using test::pairArrayToPairList;
 
 BoxArray twoBoxes() {
   BoxArray msg;

@@ -4,6 +4,7 @@
 #include <random>
 #include <unordered_set>
 
+#include "message_read_back.h"
 #include "sap_broadphase/ros/conversions.h"
 
 namespace sap_broadphase {

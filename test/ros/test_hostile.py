@@ -23,6 +23,7 @@ from sap_broadphase.srv import ComputePairs, ComputePairsRequest, ComputePairsRe
 from std_msgs.msg import Header
 from visualization_msgs.msg import Marker, MarkerArray
 
+from ros_test_support import poll_until
 from test_adapters import foreign_classes
 
 PACKAGE = "sap_broadphase"
@@ -138,9 +139,7 @@ class Hostile(unittest.TestCase):
             self.publishers[key] = rospy.Publisher(topic, raw_class(type_name, md5sum),
                                                    queue_size=10)
         pub = self.publishers[key]
-        deadline = rospy.get_time() + WAIT
-        while pub.get_num_connections() == 0 and rospy.get_time() < deadline:
-            rospy.sleep(0.05)
+        poll_until(lambda: pub.get_num_connections() > 0, WAIT)
         self.assertGreater(pub.get_num_connections(), 0, "the node never subscribed to " + topic)
         return pub
 
@@ -152,9 +151,7 @@ class Hostile(unittest.TestCase):
     def expect_alive(self):
         """The node still computes: a BoxArray frame on `boxes` is answered."""
         pub = rospy.Publisher("boxes", BoxArray, queue_size=10)
-        deadline = rospy.get_time() + WAIT
-        while pub.get_num_connections() == 0 and rospy.get_time() < deadline:
-            rospy.sleep(0.05)
+        poll_until(lambda: pub.get_num_connections() > 0, WAIT)
         stamp = rospy.Time(12345, len(self.pairs) + 1)
         msg = BoxArray(ids=[1, 2], bounds=[0, 0, 0, 1, 1, 1, 0.5, 0.5, 0.5, 2, 2, 2])
         msg.header.stamp = stamp
@@ -256,9 +253,7 @@ class Hostile(unittest.TestCase):
         count = 500
         pub = rospy.Publisher("burst_markers", raw_class(MarkerArray._type, MarkerArray._md5sum),
                               queue_size=None)  # synchronous: rospy itself drops nothing
-        deadline = rospy.get_time() + WAIT
-        while pub.get_num_connections() == 0 and rospy.get_time() < deadline:
-            rospy.sleep(0.05)
+        poll_until(lambda: pub.get_num_connections() > 0, WAIT)
         with self.lock:
             seen = len(self.stats)
         for k in range(count):

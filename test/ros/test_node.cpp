@@ -9,6 +9,7 @@
 #include <ros/ros.h>
 
 #include "node_client.h"
+#include "ros_test_support.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_frames.h"
 
@@ -278,12 +279,5 @@ TEST(Markers, CapHonouredAndReported) {
 }  // namespace sap_broadphase
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
+  return sap_broadphase::test::runRosTests(argc, argv, "test_node", 2);
 }

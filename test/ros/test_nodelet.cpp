@@ -14,10 +14,11 @@
 #include <ros/ros.h>
 #include <xmlrpcpp/XmlRpcClient.h>
 
+#include "message_read_back.h"
+#include "ros_test_support.h"
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/PairArray.h"
 #include "sap_broadphase/core/brute_force.h"
-#include "sap_broadphase/ros/conversions.h"
 #include "test_frames.h"
 
 namespace sap_broadphase {
@@ -134,12 +135,5 @@ TEST(NodeletRoundTrip, BoxesStayInsideTheManager) {
 }  // namespace sap_broadphase
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_nodelet");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
+  return sap_broadphase::test::runRosTests(argc, argv, "test_nodelet", 1);
 }

@@ -17,12 +17,13 @@ import os
 import selectors
 import subprocess
 import sys
-import time
 import unittest
 
 import rospy
 import rostest
 from sap_broadphase.srv import QueryBoxes, QueryBoxesRequest
+
+from ros_test_support import poll_until
 
 PACKAGE = "sap_broadphase"
 WAIT = 20.0  # seconds; a bound on waiting, never a speed check
@@ -73,12 +74,8 @@ class OneShotTest(unittest.TestCase):
         return len(answer.hits) > 0
 
     def wait_in_world(self, box_id):
-        end = time.monotonic() + WAIT
-        while time.monotonic() < end:
-            if self.in_world(box_id):
-                return True
-            time.sleep(0.02)  # polled: the answer is exact for the frame it was answered on
-        return False
+        # Polled: each answer is exact for the frame it was answered on.
+        return poll_until(lambda: self.in_world(box_id), WAIT, interval=0.02)
 
     @staticmethod
     def wait_published(publisher):

@@ -14,6 +14,8 @@ from rosgraph_msgs.msg import Log
 from sap_broadphase.msg import BoxArray, FrameStats
 from sap_broadphase.srv import QueryBoxes
 
+from ros_test_support import poll_until
+
 WAIT = 60.0
 SCENERY = {100: [0, 0, 0, 1, 1, 1], 101: [5, 5, 5, 6, 6, 6]}
 ROBOT_BOX = [0, 0, 0, 1, 1, 1]  # id 1, in frame robot: x 10..11 in map
@@ -59,21 +61,23 @@ class QueryBoxesTest(unittest.TestCase):
         """Asks until the answer is `expected` (the world fills as frames arrive); feed(), when
         given, publishes before each question (a frame may wait for tf and be skipped)."""
         service = service or self.query
-        deadline = rospy.get_time() + WAIT
         answer = None
-        while rospy.get_time() < deadline:
+
+        def answered():
+            nonlocal answer
             if feed:
                 feed()
             answer = service(request)
             self.assertTrue(answer.success, answer.message)
-            if pairs_of(answer.hits) == expected:
-                return
-            rospy.sleep(0.05)
-        self.fail("hits %s, expected %s" % (pairs_of(answer.hits), expected))
+            return pairs_of(answer.hits) == expected
+
+        if not poll_until(answered, WAIT):
+            self.fail("hits %s, expected %s" % (pairs_of(answer.hits) if answer else None,
+                                                expected))
 
     def publish_robot(self):
-        while self.boxes.get_num_connections() == 0:
-            rospy.sleep(0.05)
+        self.assertTrue(poll_until(lambda: self.boxes.get_num_connections() > 0, WAIT),
+                        "the node never subscribed to boxes")
         msg = box_array("robot", ROBOT_BOX, [1])
         msg.header.stamp = rospy.Time.now()
         self.boxes.publish(msg)
@@ -219,17 +223,18 @@ class QueryBoxesTest(unittest.TestCase):
     def test_7_sources_as_yaml_string_on_the_command_line(self):
         master = rosgraph.Master("/query_client")
         wanted = {"/cmdline/boxes", "/cmdline/obstacles"}
-        deadline = rospy.get_time() + WAIT
         subscribed = set()
-        while rospy.get_time() < deadline:
+
+        def all_subscribed():
+            nonlocal subscribed
             _, subscribers, _ = master.getSystemState()
             subscribed = {topic for topic, nodes in subscribers
                           if "/cmdline/sap_broadphase" in nodes}
-            if wanted <= subscribed:
-                return
-            rospy.sleep(0.1)
-        self.fail("/cmdline/sap_broadphase subscribes to %s, not %s" % (sorted(subscribed),
-                                                                      sorted(wanted)))
+            return wanted <= subscribed
+
+        self.assertTrue(poll_until(all_subscribed, WAIT, interval=0.1),
+                        "/cmdline/sap_broadphase subscribes to %s, not %s"
+                        % (sorted(subscribed), sorted(wanted)))
 
 
     def test_8_one_frame_drops_out_at_info_a_stream_at_warn(self):

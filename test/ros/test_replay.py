@@ -13,55 +13,21 @@ instead of hanging it. Every process this test starts is stopped by its PID.
 """
 import os
 import subprocess
-import threading
-import time
 import unittest
-import xmlrpc.client
 
 import rosbag
-import rosgraph
 import rospy
 import rostest
-from sap_broadphase.msg import PairArray
 from std_msgs.msg import UInt32
 
+from ros_test_support import PairsByStamp, artifact, sends_to, stop, wait_until
+
 PACKAGE = "sap_broadphase"
-REPO = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
-ARTIFACTS = os.path.join(REPO, "build", "artifacts")
 ROBOTS = ["robot_a", "robot_b"]
 FRAMES = 8  # per robot
 # The static transforms of replay.test: each robot's frame is its x offset in `map`.
 X_OFFSET = {"robot_a": 0.0, "robot_b": 0.5}
 WAIT = 60.0  # seconds; a bound on waiting, never a speed check
-
-
-def stop(process, timeout=5.0):
-    if process.poll() is None:
-        process.terminate()
-        try:
-            process.wait(timeout)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
-
-
-class Answers:
-    """The pairs a node published, by stamp."""
-
-    def __init__(self, topic):
-        self.condition = threading.Condition()
-        self.pairs = {}
-        self.subscriber = rospy.Subscriber(topic, PairArray, self.on_pairs, queue_size=100)
-
-    def on_pairs(self, msg):
-        pairs = list(msg.pairs)
-        with self.condition:
-            self.pairs[msg.header.stamp] = sorted(zip(pairs[0::2], pairs[1::2]))
-            self.condition.notify_all()
-
-    def wait_for(self, stamp):
-        with self.condition:
-            return self.condition.wait_for(lambda: stamp in self.pairs, WAIT)
 
 
 def world_pairs(frames):
@@ -96,10 +62,9 @@ def worlds_by_stamp(frames):
 class ReplayTest(unittest.TestCase):
     def setUp(self):
         self.processes = []
-        os.makedirs(ARTIFACTS, exist_ok=True)
         rospy.init_node("test_replay", anonymous=True)
-        self.live = Answers("/live/pairs")
-        self.replay = Answers("/replay/pairs")
+        self.live = PairsByStamp("/live/pairs")
+        self.replay = PairsByStamp("/replay/pairs")
         self.steps = {robot: rospy.Publisher("/live/%s/step" % robot, UInt32, queue_size=100)
                       for robot in ROBOTS}
 
@@ -107,29 +72,11 @@ class ReplayTest(unittest.TestCase):
         for process in reversed(self.processes):
             stop(process)
 
-    def wait_until(self, ready, what):
-        end = time.monotonic() + WAIT
-        while not ready():
-            if time.monotonic() > end or rospy.is_shutdown():
-                self.fail("no %s within %.0f s" % (what, WAIT))
-            time.sleep(0.05)
-
-    def sends_to(self, node, topic, subscriber):
-        """True once node has an outbound connection on topic to subscriber."""
-        master = rosgraph.Master(rospy.get_name())
-        try:
-            info = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(
-                rospy.get_name())[2]
-        except (rosgraph.MasterError, OSError):
-            return False
-        return any(len(c) > 4 and c[2] == "o" and c[4] == topic and c[1] == subscriber
-                   for c in info)
-
     def test_two_robots_recorded_and_replayed_give_the_same_pairs(self):
-        bag = os.path.join(ARTIFACTS, "replay_test.bag")
+        bag = artifact("replay_test.bag")
         if os.path.exists(bag):
             os.remove(bag)
-        log = open(os.path.join(ARTIFACTS, "replay_record.log"), "w")
+        log = open(artifact("replay_record.log"), "w")
         # --limit ends the recorder once it has written every frame of both robots.
         record = subprocess.Popen(["rosbag", "record", "--limit=%d" % (FRAMES * len(ROBOTS)),
                                    "-O", bag, "/live/boxes",
@@ -138,14 +85,14 @@ class ReplayTest(unittest.TestCase):
         me = rospy.get_name()
         for robot in ROBOTS:
             for subscriber in ("/replay_recorder", "/live/sap_broadphase"):
-                self.wait_until(lambda: self.sends_to("/live/" + robot, "/live/boxes", subscriber),
-                                "connection from %s to %s" % (robot, subscriber))
-            self.wait_until(lambda: self.steps[robot].get_num_connections() > 0,
-                            "subscriber of %s's steps" % robot)
+                wait_until(lambda: sends_to("/live/" + robot, "/live/boxes", subscriber),
+                           "connection from %s to %s" % (robot, subscriber), WAIT)
+            wait_until(lambda: self.steps[robot].get_num_connections() > 0,
+                       "subscriber of %s's steps" % robot, WAIT)
         for namespace in ("live", "replay"):
-            self.wait_until(lambda: self.sends_to("/%s/sap_broadphase" % namespace,
-                                                  "/%s/pairs" % namespace, me),
-                            "connection from the %s node's pairs" % namespace)
+            wait_until(lambda: sends_to("/%s/sap_broadphase" % namespace,
+                                        "/%s/pairs" % namespace, me),
+                       "connection from the %s node's pairs" % namespace, WAIT)
 
         # Live: the robots take turns, each frame answered before the next goes out.
         stamps = []
@@ -153,8 +100,8 @@ class ReplayTest(unittest.TestCase):
             for robot, stamp_base in zip(ROBOTS, (1000.0, 1000.5)):
                 stamp = rospy.Time.from_sec(stamp_base + i)
                 self.steps[robot].publish(UInt32(i))
-                self.assertTrue(self.live.wait_for(stamp), "no live pairs for %s frame %d"
-                                % (robot, i))
+                self.assertIsNotNone(self.live.wait_for(stamp, WAIT),
+                                     "no live pairs for %s frame %d" % (robot, i))
                 stamps.append(stamp)
         cross = [pair for pair in self.live.pairs[stamps[-1]] if pair[0] < 1000 <= pair[1]]
         self.assertGreater(len(cross), 0, "the robots' boxes should overlap, or nothing is tested")
@@ -178,13 +125,13 @@ class ReplayTest(unittest.TestCase):
         # standard input proved unreliable under load: a step could let two messages out and
         # the next none.)
         replay_worlds = worlds_by_stamp(bag_frames)
-        log = open(os.path.join(ARTIFACTS, "replay_play.log"), "w")
+        log = open(artifact("replay_play.log"), "w")
         play = subprocess.Popen(["rosbag", "play", "-q", "--wait-for-subscribers", bag,
                                  "/live/boxes:=/replay/boxes"], stdout=log, stderr=log)
         self.processes.append(play)
-        self.assertTrue(self.replay.wait_for(max(in_bag)), "the last replayed frame (%s) was not "
-                        "answered; the replay node answered %s"
-                        % (max(in_bag), sorted(self.replay.pairs)))
+        self.assertIsNotNone(self.replay.wait_for(max(in_bag), WAIT),
+                             "the last replayed frame (%s) was not answered; the replay node "
+                             "answered %s" % (max(in_bag), sorted(self.replay.pairs)))
         with self.replay.condition:
             answers = dict(self.replay.pairs)
         for stamp, pairs in sorted(answers.items()):

@@ -9,31 +9,18 @@ import os
 import random
 import subprocess
 import threading
-import time
 import unittest
-import xmlrpc.client
 
 import rosbag
-import rosgraph
 import rospy
 import rostest
 from sap_broadphase.msg import BoxArray, PairArray
 
+from ros_test_support import artifact, poll_until, sends_to, stop, subscribed
+
 PACKAGE = "sap_broadphase"
-REPO = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
-ARTIFACTS = os.path.join(REPO, "build", "artifacts")
 FRAMES = 10
 WAIT = 60.0  # seconds; a bound on waiting, never a speed check
-
-
-def stop(process, timeout=5.0):
-    if process.poll() is None:
-        process.terminate()
-        try:
-            process.wait(timeout)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
 
 
 def random_frame(seed, count=300):
@@ -51,7 +38,6 @@ class RosbagTest(unittest.TestCase):
         self.processes = []
         self.lock = threading.Lock()
         self.pairs = {}
-        os.makedirs(ARTIFACTS, exist_ok=True)
         rospy.init_node("test_rosbag", anonymous=True)
         self.publisher = rospy.Publisher("boxes", BoxArray, queue_size=100)
         rospy.Subscriber("pairs", PairArray, self.on_pairs, queue_size=100)
@@ -64,47 +50,26 @@ class RosbagTest(unittest.TestCase):
         with self.lock:
             self.pairs[msg.header.stamp] = list(msg.pairs)
 
-    def wait_until(self, ready, timeout=WAIT):
-        end = time.monotonic() + timeout
-        while time.monotonic() < end and not rospy.is_shutdown():
-            if ready():
-                return True
-            time.sleep(0.1)
-        return False
-
-    def subscribed(self, topic, prefix):
-        _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
-        return any(name == topic and any(n.startswith(prefix) for n in nodes)
-                   for name, nodes in subscribers)
-
-    def node_sends_to(self, node, topic, subscriber):
-        """True once node has an outbound connection on topic to subscriber."""
-        master = rosgraph.Master(rospy.get_name())
-        try:
-            info = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(
-                rospy.get_name())[2]
-        except (rosgraph.MasterError, OSError):
-            return False
-        return any(len(c) > 4 and c[2] == "o" and c[4] == topic and c[1] == subscriber
-                   for c in info)
+    def wait_until(self, ready):
+        return poll_until(ready, WAIT)
 
     def test_record_then_play_boxes(self):
-        bag = os.path.join(ARTIFACTS, "rosbag_test.bag")
+        bag = artifact("rosbag_test.bag")
         if os.path.exists(bag):
             os.remove(bag)
-        log = open(os.path.join(ARTIFACTS, "rosbag_record.log"), "w")
+        log = open(artifact("rosbag_record.log"), "w")
         record = subprocess.Popen(
             ["rosbag", "record", "--limit=%d" % FRAMES, "-O", bag, "boxes", "pairs",
              "__name:=bag_recorder"], stdout=log, stderr=log)
         self.processes.append(record)
-        self.assertTrue(self.wait_until(lambda: self.subscribed(rospy.resolve_name("boxes"),
-                                                                "/bag_recorder")
-                                        and self.subscribed(rospy.resolve_name("pairs"),
-                                                            "/bag_recorder")),
+        self.assertTrue(self.wait_until(lambda: subscribed(rospy.resolve_name("boxes"),
+                                                           "/bag_recorder")
+                                        and subscribed(rospy.resolve_name("pairs"),
+                                                       "/bag_recorder")),
                         "rosbag record never subscribed")
         self.assertTrue(self.wait_until(lambda: self.publisher.get_num_connections() >= 2),
                         "the node and the recorder did not connect to boxes")
-        self.assertTrue(self.wait_until(lambda: self.node_sends_to(
+        self.assertTrue(self.wait_until(lambda: sends_to(
             rospy.resolve_name("sap_broadphase"), rospy.resolve_name("pairs"), "/bag_recorder")),
             "the node never connected to the recorder's pairs subscriber")
 
@@ -139,7 +104,7 @@ class RosbagTest(unittest.TestCase):
         # stamp, and the last frame must be answered. (Stepping the player one message per 's'
         # on its standard input is not reliable under load: a step can let two messages out
         # and the next none.)
-        log = open(os.path.join(ARTIFACTS, "rosbag_play.log"), "w")
+        log = open(artifact("rosbag_play.log"), "w")
         play = subprocess.Popen(["rosbag", "play", "-q", "--wait-for-subscribers", bag,
                                  "--topics", "boxes"], stdout=log, stderr=log)
         self.processes.append(play)

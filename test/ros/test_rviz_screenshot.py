@@ -11,39 +11,27 @@ import subprocess
 import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
 from visualization_msgs.msg import MarkerArray
 
+from ros_test_support import REPO, artifact, poll_until, stop, subscribed
+
 PACKAGE = "sap_broadphase"
-REPO = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
-ARTIFACTS = os.path.join(REPO, "build", "artifacts")
 RVIZ_CONFIG = os.path.join(REPO, "rviz", "demo.rviz")
 CONVERT = "/usr/bin/convert"  # Debian's imagemagick, not whatever /usr/local/bin holds
 SCREEN = (1280, 800)
 # The 3D view of rviz/demo.rviz: right of the Displays panel, below the toolbar.
 VIEW_BOX = (0.30, 0.10, 0.98, 0.95)  # left, top, right, bottom as fractions of the screen
 MIN_FRACTION = 0.001  # of the 3D view's pixels in the colliding colour
-RVIZ_NAME = "rviz_screenshot"
-
-
-def stop(process, timeout=5.0):
-    """Stops one process we started: SIGTERM, then SIGKILL after timeout seconds."""
-    if process.poll() is not None:
-        return
-    process.terminate()
-    try:
-        process.wait(timeout)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        process.wait()
+# Not the test's own name (rostest names it after the test-name, rviz_screenshot): the master
+# shuts down a node when another registers under its name.
+RVIZ_NAME = "rviz_viewer"
 
 
 class RvizScreenshotTest(unittest.TestCase):
     def setUp(self):
         self.processes = []
-        os.makedirs(ARTIFACTS, exist_ok=True)
         rospy.init_node("test_rviz_screenshot", anonymous=True)
 
     def tearDown(self):
@@ -53,7 +41,7 @@ class RvizScreenshotTest(unittest.TestCase):
     def start_xvfb(self):
         """Starts Xvfb on a free display (Xvfb picks it) and returns the display number."""
         read_end, write_end = os.pipe()
-        log = open(os.path.join(ARTIFACTS, "xvfb.log"), "w")
+        log = open(artifact("xvfb.log"), "w")
         xvfb = subprocess.Popen(
             ["Xvfb", "-displayfd", str(write_end), "-screen", "0",
              "%dx%dx24" % SCREEN, "-nolisten", "tcp"],
@@ -77,23 +65,12 @@ class RvizScreenshotTest(unittest.TestCase):
 
     def start_rviz(self, display):
         env = dict(os.environ, DISPLAY=":%d" % display, LIBGL_ALWAYS_SOFTWARE="1")
-        log = open(os.path.join(ARTIFACTS, "rviz.log"), "w")
+        log = open(artifact("rviz.log"), "w")
         rviz = subprocess.Popen(
             ["rosrun", "rviz", "rviz", "-d", RVIZ_CONFIG, "__name:=" + RVIZ_NAME],
             env=env, stdout=log, stderr=log)
         self.processes.append(rviz)
         return rviz
-
-    def wait_subscribed(self, topic, node, timeout):
-        """Waits until node subscribes to topic (rviz needs several seconds here)."""
-        master = rosgraph.Master(rospy.get_name())
-        end = time.monotonic() + timeout
-        while time.monotonic() < end:
-            _, subscribers, _ = master.getSystemState()
-            if any(name == topic and node in nodes for name, nodes in subscribers):
-                return True
-            time.sleep(0.5)
-        return False
 
     def screenshot(self, display, path):
         xwd = subprocess.Popen(["xwd", "-root", "-silent", "-display", ":%d" % display],
@@ -125,17 +102,22 @@ class RvizScreenshotTest(unittest.TestCase):
 
         display = self.start_xvfb()
         rviz = self.start_rviz(display)
-        self.assertTrue(self.wait_subscribed(rospy.resolve_name("markers"), "/" + RVIZ_NAME, 60),
+        # rviz needs several seconds to subscribe here.
+        self.assertTrue(poll_until(lambda: subscribed(rospy.resolve_name("markers"),
+                                                      "/" + RVIZ_NAME), 60, interval=0.5),
                         "rviz never subscribed to markers (see build/artifacts/rviz.log)")
-        path = os.path.join(ARTIFACTS, "rviz_demo.png")
+        path = artifact("rviz_demo.png")
         fraction = 0.0
-        for _ in range(20):  # a bound on waiting for the first rendered frame, not a speed check
-            time.sleep(2.0)
+
+        def drawn():
+            nonlocal fraction
             self.assertIsNone(rviz.poll(), "rviz exited (see build/artifacts/rviz.log)")
             self.screenshot(display, path)
             fraction = self.colour_fraction(path, rgb)
-            if fraction >= MIN_FRACTION:
-                break
+            return fraction >= MIN_FRACTION
+
+        # Screenshots until rviz has rendered the markers; the bound only ends a broken run.
+        poll_until(drawn, 40.0, interval=2.0)
         rospy.loginfo("colliding colour %s covers %.2f %% of the 3D view; screenshot %s",
                       rgb, 100.0 * fraction, path)
         self.assertGreaterEqual(fraction, MIN_FRACTION,

@@ -265,84 +265,76 @@ TEST(SourceMailbox, RemembersTheLastConvertedHeader) {
 
 // ---- loadWorld: the refusal and fall-back loop ----
 
-/// Loads ioWorld into ioEngine as the worker does; the refusals told, in order.
-struct WorldLoad {
-  const PairList* run(Broadphase& ioEngine, WorldAssembly& ioWorld, SourceSet& ioSources) {
+/// Sources, an engine and the world the worker assembles from them; the refusals told by the
+/// last load, in order.
+class LoadWorld : public testing::Test {
+ protected:
+  /// Assembles the world from the sources and loads it into the engine as the worker does.
+  const PairList* assembleAndLoad() {
+    sources.assemble("", world);
     updates = 0;
     return loadWorld(
-        ioWorld, ioSources, spans,
+        world, sources, spans,
         [&](const BoxFrame& inFrame) -> const PairList& {
           ++updates;
-          return ioEngine.update(inFrame);
+          return engine.update(inFrame);
         },
         [&](const SourceFrame& inFrame, const std::string& inReason) {
           refused.push_back(inFrame.header.frame_id + " | " + inReason);
         });
   }
+
+  SourceSet sources;
+  Broadphase engine;
+  WorldAssembly world;
   std::vector<BoxSpan> spans;
   std::vector<std::string> refused;
   int updates = 0;
 };
 
-TEST(LoadWorld, ARefusedFrameFallsBackOnTheLastAcceptedOne) {
-  SourceSet sources;
+TEST_F(LoadWorld, ARefusedFrameFallsBackOnTheLastAcceptedOne) {
   const SourceKey a{"boxes", "/a", "world"}, b{"boxes", "/b", "world"};
   sources.store(a, frameOf(oneBoxMessage("world", 1, 0.0, 1.0)), ros::Time(1, 0));
   sources.store(b, frameOf(oneBoxMessage("world", 2, 0.5, 1.5)), ros::Time(1, 0));
-  Broadphase engine;
-  WorldAssembly world;
-  sources.assemble("", world);
-  WorldLoad load;
-  const PairList* pairs = load.run(engine, world, sources);
+  const PairList* pairs = assembleAndLoad();
   ASSERT_NE(pairs, nullptr);
   EXPECT_EQ(*pairs, PairList({{1, 2}}));
-  EXPECT_TRUE(load.refused.empty());
+  EXPECT_TRUE(refused.empty());
   for (const WorldMember& member : world.members) sources.accept(member.key);
   // /b's next frame has min > max: refused naming /b's own box, /b falls back on [0.5, 1.5].
   sources.store(b, frameOf(oneBoxMessage("world", 2, 3.0, 2.0)), ros::Time(2, 0));
-  sources.assemble("", world);
-  pairs = load.run(engine, world, sources);
+  pairs = assembleAndLoad();
   ASSERT_NE(pairs, nullptr);
   EXPECT_EQ(*pairs, PairList({{1, 2}})) << "answered on /b's last accepted frame";
-  ASSERT_EQ(load.refused.size(), 1u);
-  EXPECT_NE(load.refused[0].find("'boxes' from /b"), std::string::npos) << load.refused[0];
-  EXPECT_NE(load.refused[0].find("box 0"), std::string::npos) << load.refused[0];
-  EXPECT_EQ(load.updates, 2);
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_NE(refused[0].find("'boxes' from /b"), std::string::npos) << refused[0];
+  EXPECT_NE(refused[0].find("box 0"), std::string::npos) << refused[0];
+  EXPECT_EQ(updates, 2);
   EXPECT_EQ(world.members.size(), 2u);
 }
 
-TEST(LoadWorld, ASourceWithoutAnAcceptedFrameLeavesTheWorld) {
-  SourceSet sources;
+TEST_F(LoadWorld, ASourceWithoutAnAcceptedFrameLeavesTheWorld) {
   const SourceKey a{"boxes", "/a", "world"}, b{"boxes", "/b", "world"};
   sources.store(a, frameOf(oneBoxMessage("world", 1, 0.0, 1.0)), ros::Time(1, 0));
   // /b shares /a's id 1 on its first frame: the newer source is refused and leaves.
   sources.store(b, frameOf(oneBoxMessage("world", 1, 0.5, 1.5)), ros::Time(1, 0));
-  Broadphase engine;
-  WorldAssembly world;
-  sources.assemble("", world);
-  WorldLoad load;
-  const PairList* pairs = load.run(engine, world, sources);
+  const PairList* pairs = assembleAndLoad();
   ASSERT_NE(pairs, nullptr);
   EXPECT_TRUE(pairs->empty());
-  ASSERT_EQ(load.refused.size(), 1u);
-  EXPECT_NE(load.refused[0].find("id 1 of 'boxes' from /b in 'world' is also in 'boxes' from /a"),
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_NE(refused[0].find("id 1 of 'boxes' from /b in 'world' is also in 'boxes' from /a"),
             std::string::npos)
-      << load.refused[0];
+      << refused[0];
   ASSERT_EQ(world.members.size(), 1u);
   EXPECT_EQ(world.members[0].key.publisher, "/a");
   EXPECT_EQ(sources.size(), 1u);
 }
 
-TEST(LoadWorld, NoSourceLeftGivesNoPairs) {
-  SourceSet sources;
+TEST_F(LoadWorld, NoSourceLeftGivesNoPairs) {
   const SourceKey a{"boxes", "/a", "world"};
   sources.store(a, frameOf(oneBoxMessage("world", 1, 2.0, 1.0)), ros::Time(1, 0));
-  Broadphase engine;
-  WorldAssembly world;
-  sources.assemble("", world);
-  WorldLoad load;
-  EXPECT_EQ(load.run(engine, world, sources), nullptr);
-  EXPECT_EQ(load.refused.size(), 1u);
+  EXPECT_EQ(assembleAndLoad(), nullptr);
+  EXPECT_EQ(refused.size(), 1u);
   EXPECT_TRUE(world.members.empty());
   EXPECT_EQ(sources.size(), 0u);
 }

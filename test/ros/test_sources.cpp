@@ -19,6 +19,7 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "ros_test_support.h"
 #include "sap_broadphase/BoxArray.h"
 #include "sap_broadphase/FrameStats.h"
 #include "sap_broadphase/PairArray.h"
@@ -107,16 +108,13 @@ class Probe {
 
   /// Waits until the node listens on every topic in inTopics and publishes to us.
   bool waitConnected(const std::vector<std::string>& inTopics) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kWait);
-    while (ros::WallTime::now() < end) {
+    return pollUntil(kWait, [&] {
       bool ready = pairs_sub_.getNumPublishers() > 0 && stats_sub_.getNumPublishers() > 0 &&
                    events_sub_.getNumPublishers() > 0;
       for (const std::string& topic : inTopics)
         ready = ready && publisher(topic).getNumSubscribers() > 0;
-      if (ready) return true;
-      ros::WallDuration(0.05).sleep();
-    }
-    return false;
+      return ready;
+    });
   }
 
   /// Waits for a pairs message received from now on that satisfies inAccept, calling
@@ -131,17 +129,7 @@ class Probe {
       seen = pairs_.size();
     }
     if (inRepublish) inRepublish();
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kWait);
-    while (ros::WallTime::now() < end) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      changed_.wait_for(lock, std::chrono::milliseconds(500), [&] { return pairs_.size() > seen; });
-      for (; seen < pairs_.size(); ++seen) {
-        if (inAccept(pairs_[seen])) return pairs_[seen];
-      }
-      lock.unlock();
-      if (inRepublish) inRepublish();
-    }
-    return std::nullopt;
+    return waitReceived(pairs_, seen, inAccept, inRepublish);
   }
 
   /// Waits for the pairs of the frame stamped inStamp, received at any time (see waitPairs).
@@ -186,18 +174,7 @@ class Probe {
   /// Waits for a stats message satisfying inAccept (see waitPairs for inRepublish).
   std::optional<FrameStats> waitStats(const std::function<bool(const FrameStats&)>& inAccept,
                                       const std::function<void()>& inRepublish = {}) {
-    std::size_t seen = 0;
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kWait);
-    while (ros::WallTime::now() < end) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      changed_.wait_for(lock, std::chrono::milliseconds(500), [&] { return stats_.size() > seen; });
-      for (; seen < stats_.size(); ++seen) {
-        if (inAccept(stats_[seen])) return stats_[seen];
-      }
-      lock.unlock();
-      if (inRepublish) inRepublish();
-    }
-    return std::nullopt;
+    return waitReceived(stats_, 0, inAccept, inRepublish);
   }
 
   /// Waits for the pair events of the frame stamped inStamp.
@@ -210,6 +187,27 @@ class Probe {
   }
 
  private:
+  /// Waits for a message of inReceived (filled by a callback under mutex_), from index inSeen
+  /// on, that satisfies inAccept; calls inRepublish every half second meanwhile. Returns it, or
+  /// nothing after kWait.
+  template <typename Message>
+  std::optional<Message> waitReceived(const std::vector<Message>& inReceived, std::size_t inSeen,
+                                      const std::function<bool(const Message&)>& inAccept,
+                                      const std::function<void()>& inRepublish) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kWait);
+    while (ros::WallTime::now() < end) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait_for(lock, std::chrono::milliseconds(500),
+                        [&] { return inReceived.size() > inSeen; });
+      for (; inSeen < inReceived.size(); ++inSeen) {
+        if (inAccept(inReceived[inSeen])) return inReceived[inSeen];
+      }
+      lock.unlock();
+      if (inRepublish) inRepublish();
+    }
+    return std::nullopt;
+  }
+
   ros::NodeHandle node_;
   std::map<std::string, ros::Publisher> publishers_;
   ros::Subscriber pairs_sub_, stats_sub_, events_sub_;
@@ -609,10 +607,8 @@ TEST(MarkersWithScenery, SubscribedWhileMovingBoxesOverlapTheScenery) {
         markers.push_back(*inMsg);
         arrived.notify_all();
       });
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kWait);
-  while (markers_sub.getNumPublishers() == 0 && ros::WallTime::now() < end)
-    ros::WallDuration(0.05).sleep();
-  ASSERT_GT(markers_sub.getNumPublishers(), 0u);
+  ASSERT_TRUE(pollUntil(kWait, [&] { return markers_sub.getNumPublishers() > 0; }))
+      << "the static node publishes no markers to the test";
   const BoxSet scenery = randomBoxes(1500, 1.0, false, 311);  // as the tests above left it
   const BoxSet moving = withIdOffset(randomBoxes(100, 1.0, false, 332), kMovingIds);
   expectWithScenery(scenery, moving);
@@ -685,12 +681,5 @@ TEST(Diagnostics, EachNodeReportsItsCounters) {
 }  // namespace sap_broadphase
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_sources");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
+  return sap_broadphase::test::runRosTests(argc, argv, "test_sources", 2);
 }

@@ -14,16 +14,15 @@ Every wait is for a condition, bounded by WAIT so that a broken node fails inste
 """
 import random
 import threading
-import time
 import unittest
-import xmlrpc.client
 
-import rosgraph
 import rospy
 import rostest
 import tf2_ros
 from geometry_msgs.msg import TransformStamped
-from sap_broadphase.msg import BoxArray, FrameStats, PairArray
+from sap_broadphase.msg import BoxArray, FrameStats
+
+from ros_test_support import PairsByStamp, poll_until, sends_to, wait_until
 
 PACKAGE = "sap_broadphase"
 WAIT = 20.0  # seconds; a bound on waiting, never a speed check
@@ -58,16 +57,6 @@ def oracle(ids_a, bounds_a, ids_b=(), bounds_b=()):
     return sorted(pairs)
 
 
-def sends_to(node, topic, subscriber):
-    """True once node has an outbound connection on topic to subscriber."""
-    master = rosgraph.Master(rospy.get_name())
-    try:
-        info = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(rospy.get_name())[2]
-    except (rosgraph.MasterError, OSError):
-        return False
-    return any(len(c) > 4 and c[2] == "o" and c[4] == topic and c[1] == subscriber for c in info)
-
-
 def transform(parent, child, x, stamp):
     msg = TransformStamped()
     msg.header.frame_id = parent
@@ -83,19 +72,12 @@ class Node:
 
     def __init__(self, namespace):
         self.condition = threading.Condition()
-        self.pairs = {}
+        self.answers = PairsByStamp("/%s/pairs" % namespace, self.condition, queue_size=None)
         self.stats = []
         self.boxes = rospy.Publisher("/%s/boxes" % namespace, BoxArray, queue_size=10)
         self.static = rospy.Publisher("/%s/static_boxes" % namespace, BoxArray, queue_size=1,
                                       latch=True)
-        self.pairs_sub = rospy.Subscriber("/%s/pairs" % namespace, PairArray, self.on_pairs)
         self.stats_sub = rospy.Subscriber("/%s/stats" % namespace, FrameStats, self.on_stats)
-
-    def on_pairs(self, msg):
-        flat = list(msg.pairs)
-        with self.condition:
-            self.pairs[msg.header.stamp] = sorted(zip(flat[0::2], flat[1::2]))
-            self.condition.notify_all()
 
     def on_stats(self, msg):
         with self.condition:
@@ -104,15 +86,12 @@ class Node:
 
     def connected(self):
         return (self.boxes.get_num_connections() > 0 and self.static.get_num_connections() > 0
-                and self.pairs_sub.get_num_connections() > 0
+                and self.answers.subscriber.get_num_connections() > 0
                 and self.stats_sub.get_num_connections() > 0)
 
-    def wait_pairs(self, stamp, accept=lambda pairs: True, timeout=WAIT):
-        """The pairs of the frame stamped stamp once accept() takes them, or None."""
-        with self.condition:
-            found = self.condition.wait_for(
-                lambda: stamp in self.pairs and accept(self.pairs[stamp]), timeout)
-            return self.pairs[stamp] if found else None
+    def wait_pairs(self, stamp):
+        """The pairs of the frame stamped stamp, or None after WAIT."""
+        return self.answers.wait_for(stamp, WAIT)
 
 
 class TfTest(unittest.TestCase):
@@ -123,11 +102,7 @@ class TfTest(unittest.TestCase):
         cls.static_broadcaster = tf2_ros.StaticTransformBroadcaster()
 
     def wait_until(self, ready, what):
-        end = time.monotonic() + WAIT
-        while not ready():
-            if time.monotonic() > end or rospy.is_shutdown():
-                self.fail("no %s within %.0f s" % (what, WAIT))
-            time.sleep(0.05)
+        wait_until(ready, what, WAIT)
 
     def send_frame(self, node, ids, bounds, frame_id):
         msg = BoxArray()
@@ -169,13 +144,15 @@ class TfTest(unittest.TestCase):
         late_box = [1.5, 0.0, 0.0, 2.5, 1.0, 1.0]
         expected = oracle(ids + [5000], bounds + late_box)
         self.assertTrue(any(5000 in pair for pair in expected), "no pair with the late box")
-        end = time.monotonic() + WAIT
-        while time.monotonic() < end:
-            stamp = self.send_frame(node, ids, bounds, "robot_ok")
-            pairs = node.wait_pairs(stamp)
-            if pairs == expected:
-                break
-            time.sleep(0.2)  # the late robot's next frame (5 Hz): polled, not assumed
+        pairs = None
+
+        def joined():
+            nonlocal pairs
+            pairs = node.wait_pairs(self.send_frame(node, ids, bounds, "robot_ok"))
+            return pairs == expected
+
+        # The late robot's next frame (5 Hz) brings its box: polled, not assumed.
+        poll_until(joined, WAIT, interval=0.2)
         self.assertEqual(pairs, expected, "the late robot never joined once its transform came")
 
 
@@ -240,15 +217,17 @@ class TfTest(unittest.TestCase):
             expected = oracle(ids, bounds, scenery.ids, placed)
             self.assertTrue(any(pair[1] >= 100000 for pair in expected), "no scenery pair")
             stats = None
-            end = time.monotonic() + WAIT
-            while time.monotonic() < end:
+
+            def placed_in_world():
+                nonlocal stats
                 stamp = self.send_frame(node, ids, bounds, "map")
-                pairs = node.wait_pairs(stamp)
+                node.wait_pairs(stamp)
                 with node.condition:
                     stats = next((s for s in node.stats if s.header.stamp == stamp), None)
-                if stats is not None and stats.static_world_boxes == len(scenery.ids):
-                    break
-                time.sleep(0.2)  # the scenery lands between two frames: polled
+                return stats is not None and stats.static_world_boxes == len(scenery.ids)
+
+            # The scenery lands between two frames: polled, not assumed.
+            poll_until(placed_in_world, WAIT, interval=0.2)
             self.assertIsNotNone(stats, "no stats for the frames in map")
             self.assertEqual(stats.static_world_boxes, len(scenery.ids),
                              "the scenery stamped long ago was never placed (skipped: %d)"

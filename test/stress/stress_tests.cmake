@@ -44,6 +44,7 @@ if(TARGET ${PROJECT_NAME}_ros)
     test/stress/test_fuzz_replay_ros.cpp
     test/stress/fuzz_replay.cpp
     fuzz/box_array_checks.cpp
+    test/ros/message_read_back.cpp
     fuzz/wire_checks.cpp
     fuzz/sources_checks.cpp
     fuzz/reconfigure_checks.cpp
@@ -51,7 +52,7 @@ if(TARGET ${PROJECT_NAME}_ros)
     test/stress/stress_sequences.cpp
     test/core/test_main.cpp
   )
-  target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz)
+  target_include_directories(test_fuzz_replay_ros PRIVATE test/stress fuzz test/ros)
   target_link_libraries(test_fuzz_replay_ros ${PROJECT_NAME}_ros ${PROJECT_NAME}_core_internal
     ${catkin_LIBRARIES})
   add_dependencies(test_fuzz_replay_ros ${PROJECT_NAME}_generate_messages_cpp

@@ -27,20 +27,11 @@ BoxSpan boxArrayRecords(const BoxArray& inMsg);
 /// `ids` number the boxes 0..n-1.
 void copyBoxArray(const BoxArray& inMsg, BoxSet& outBoxes);
 
-/// Converts a BoxArray into outBoxes (replaced; capacity reused) and validates it fully: shape,
-/// NaN, min > max, duplicate ids. Empty `ids` number the boxes 0..n-1. Returns the reason of a
-/// refusal naming the box, e.g. "box 3 (id 17): min_y (3) > max_y (2)", or nothing.
-std::optional<std::string> boxArrayToBoxSet(const BoxArray& inMsg, BoxSet& outBoxes);
-
 /// Fills outMsg (replaced) with inPairs as consecutive id pairs, header copied from inHeader.
 void pairListToPairArray(const PairList& inPairs, const std_msgs::Header& inHeader,
                          PairArray& outMsg);
 
 /// Fills outMsg (replaced) with the boxes of inBoxes; ids are always written.
 void boxSetToBoxArray(const BoxSet& inBoxes, const std_msgs::Header& inHeader, BoxArray& outMsg);
-
-/// Reads the pairs of a PairArray back into outPairs (replaced), each with a < b (makeIdPair,
-/// the one rule for a pair's order). Returns false when the array has an odd length.
-bool pairArrayToPairList(const PairArray& inMsg, PairList& outPairs);
 
 }  // namespace sap_broadphase
