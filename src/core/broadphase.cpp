@@ -21,16 +21,16 @@
 #include "core/frame/contact_events.h"
 #include "core/frame/frame_history.h"
 #include "core/frame/frame_plan.h"
-#include "core/strategies/frame_query.h"
-#include "core/runner/memory_policy.h"
 #include "core/frame/pair_sort.h"
+#include "core/runner/memory_policy.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
+#include "core/strategies/frame_query.h"
 #include "core/strategies/skin_reuse.h"
 #include "core/strategies/small_frame.h"
 #include "core/strategies/static_index.h"
 #include "core/sweep/sweep_and_prune.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 
@@ -68,6 +68,8 @@ struct Broadphase::Impl {
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
   void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta, int inThreads);
+  void checkPairCount(std::size_t inPairs) const;
+  void dropRefusedFrame();
   void forgetFrames();
 };
 
@@ -146,6 +148,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
       skin.answerFromCandidates(inPlan.threads, report, pairs);
       break;
     case FramePath::kSmallFrame:
+      buffers.small_frame.max_pairs = config.max_pairs;  // Buffers() may have replaced it
       if (inPlan.sweep_skin > 0.0) {
         const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, inPlan.threads, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
@@ -189,6 +192,7 @@ void Broadphase::Impl::addSceneryPairs(const BoxColumns& inBoxes, int inThreads)
     scenery.queryAll(inBoxes, buffers.every_box, inThreads, scenery_pairs);
   }
   if (scenery_pairs.empty()) return;
+  checkPairCount(pairs.size() + scenery_pairs.size());
   PhaseTimer timer(report.ms_output);
   sortPairsCanonical(scenery_pairs, buffers.pair_sort);
   buffers.merged.resize(pairs.size() + scenery_pairs.size());
@@ -246,7 +250,8 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
   const bool reused = frame_plan.path == FramePath::kReused;
   if (!reused) events.keepLastList(pairs);  // the strategy writes the buffer of the list before
   execute(frame_plan, spread);
-  if (!config.skin) {  // the costs only feed the automatic skin's choice
+  checkPairCount(pairs.size());  // the paths the bound does not stop as they go
+  if (!config.skin) {            // the costs only feed the automatic skin's choice
     PhaseTimer timer(report.ms_plan);
     skin.learn(frame_plan, spread, pairs.size(), report);
   }
@@ -263,6 +268,24 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
   PhaseTimer timer(report.ms_plan);
   giveBackMemoryAfterBursts(inBoxes.size());
   describeFrame(frame_plan, inDelta);
+}
+
+// A frame past max_pairs is refused: the sweeps and the small-frame kernel throw as they go
+// (PairBudget), the other paths here, once their pairs are found.
+void Broadphase::Impl::checkPairCount(std::size_t inPairs) const {
+  if (inPairs > config.max_pairs) throw TooManyPairs(config.max_pairs);
+}
+
+// After a frame refused for its pairs: a sweep stopped halfway leaves boxes in its active
+// lists, so every strategy's buffers go, with the pairs held (the next frame sizes them again),
+// and the engine starts afresh, as after reset() (the events' last list stays: events()).
+void Broadphase::Impl::dropRefusedFrame() {
+  forgetFrames();
+  sweep.releaseBuffers();
+  skin.releaseMemory();
+  world.releaseMemory();
+  PairList().swap(pairs);
+  buffers = Buffers();
 }
 
 const PairList& Broadphase::update(const BoxFrame& inFrame) {
@@ -292,7 +315,12 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
     }
     report.boxes = boxes.size();
     impl.countBoxesThatPairWithNothing(boxes);
-    impl.runFrame(boxes, delta, threads);
+    try {
+      impl.runFrame(boxes, delta, threads);
+    } catch (const TooManyPairs&) {
+      impl.dropRefusedFrame();
+      throw;
+    }
   }
   SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
   return impl.pairs;

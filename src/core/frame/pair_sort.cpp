@@ -2,8 +2,8 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
-#include "core/tuning.h"
 #include "core/runner/work_units.h"
+#include "core/tuning.h"
 
 #include <algorithm>
 
@@ -229,7 +229,15 @@ void sortPairsCanonical(PairList& ioPairs) {
   sortPairsCanonical(ioPairs, scratch);
 }
 
+void PairBudget::count(std::size_t inPairs) {
+  if (found_.fetch_add(inPairs, std::memory_order_relaxed) + inPairs > limit_)
+    throw TooManyPairs(limit_);
+}
+
 void PairChunks::startChunk() {
+  // The chunk before is full: its pairs count against the frame's budget before another one
+  // is taken.
+  if (budget_ && used_chunks_ > 0) budget_->count(kChunkPairs);
   if (used_chunks_ == chunks_.size()) chunks_.emplace_back(new IdPair[kChunkPairs]);
   ++used_chunks_;
   fill_ = 0;

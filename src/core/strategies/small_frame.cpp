@@ -13,11 +13,11 @@
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/key_origin.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define SAP_SMALL_FRAME_AVX2 1
@@ -417,7 +417,12 @@ void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inA
   const std::size_t units = first_cell.size() - 1;
   const int team = teamForUnits(units, inThreads);
   ioWork.pairs_per_worker.resize(std::max<std::size_t>(1, team));
-  for (PairChunks& pairs : ioWork.pairs_per_worker) pairs.clear();
+  PairBudget budget(ioWork.max_pairs);
+  for (PairChunks& pairs : ioWork.pairs_per_worker) {
+    pairs.clear();
+    pairs.setBudget(&budget);
+  }
+  const BudgetScope budget_scope(ioWork.pairs_per_worker);
   runUnitsOnWorkers(units, team, [&](std::size_t inUnit, int inWorker) {
     SAP_ASSERT(inWorker < team, "a worker beyond the sweep's lists");
     for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell)

@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/frame/pair_sort.h"
 #include "core/runner/buffers.h"
 #include "core/sweep/key_origin.h"
-#include "core/frame/pair_sort.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/slab_grid.h"
 #include "core/sweep/succ_tree.h"
@@ -50,6 +50,7 @@ class SweepAndPrune {
   void decideAxes(bool inWarm, FrameReport& ioReport);
 
   const bool exact_final_test_;
+  const std::size_t max_pairs_;
   const bool axis_swapping_;
   const double axis_swap_threshold_;
   const int third_axis_slabs_;

@@ -7,9 +7,9 @@
 #include "core/assert.h"
 #include "core/runner/buffers.h"
 #include "core/runner/phase_timer.h"
+#include "core/runner/work_units.h"
 #include "core/sweep/sweep.h"
 #include "core/tuning.h"
-#include "core/runner/work_units.h"
 
 namespace sap_broadphase {
 namespace {
@@ -611,6 +611,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   const uint32_t n = inInput.objects;
   if (n <= tuning::kPairingPartitionRanks ||
       uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= tuning::kSequentialTreeBits) {
+    outPairs.setBudget(inInput.pair_budget);
     buildSecondaryStream(inInput, 1);
     prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
     PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
@@ -622,6 +623,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
   // order; on the big trees every insert, erase and range walk would miss the cache.
+  outPairs.setBudget(inInput.pair_budget);
   const RankPartitions split = partitionRanks(n, 1);
   scatterToPartitions(inInput, 1, 1, split, ioWork);
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
@@ -641,7 +643,10 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, split.size());
   outPairsPerThread.resize(threads);
-  for (PairChunks& pairs : outPairsPerThread) pairs.clear();  // a smaller team leaves some
+  for (PairChunks& pairs : outPairsPerThread) {
+    pairs.clear();  // a smaller team leaves some
+    pairs.setBudget(inInput.pair_budget);
+  }
   // Each worker sweeps its partitions with its own trees into its own pair list.
   runUnitsOnWorkers(split.count, threads, [&](std::size_t inK, int inWorker) {
     SuccTree* trees = &ioWork.pairing[std::size_t(inWorker) * slab_count];
