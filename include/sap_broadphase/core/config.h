@@ -109,6 +109,9 @@ struct BroadphaseConfig {
   /// instead of holding pairs until memory runs out. The sweeps and the small-frame kernel
   /// stop once past it (holding the bound and a chunk of 8192 pairs a thread at most); brute
   /// force, the kept candidates' answer and the pairs with the scenery are checked once found.
+  /// A sweep of boxes grown by a skin counts its candidates, a superset of the pairs: with a
+  /// bound near the frame's pair count, a skin can have a frame refused that would pass
+  /// without one.
   std::size_t max_pairs = kDefaultMaxPairs;
 };
 
