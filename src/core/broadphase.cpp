@@ -278,13 +278,14 @@ void Broadphase::Impl::checkPairCount(std::size_t inPairs) const {
 
 // After a frame refused for its pairs: a sweep stopped halfway leaves boxes in its active
 // lists, so every strategy's buffers go, with the pairs held (the next frame sizes them again),
-// and the engine starts afresh, as after reset() (the events' last list stays: events()).
+// and the engine starts afresh, as after reset(), but for the events: the last list returned
+// goes back to them, so the next frame's events are those since it (events()).
 void Broadphase::Impl::dropRefusedFrame() {
   forgetFrames();
   sweep.releaseBuffers();
   skin.releaseMemory();
   world.releaseMemory();
-  PairList().swap(pairs);
+  events.restoreLastList(pairs);
   buffers = Buffers();
 }
 
