@@ -27,6 +27,9 @@ class PairBudget {
   PairBudget& operator=(const PairBudget&) = delete;
   /// Counts inPairs more pairs found; throws TooManyPairs once the count passes the limit.
   void count(std::size_t inPairs);
+  /// True once a count passed the limit: the pass's units not yet started do nothing (a unit
+  /// that threw left its worker's state half-swept, and the frame is refused anyway).
+  bool exhausted() const { return found_.load(std::memory_order_relaxed) > limit_; }
 
  private:
   const std::size_t limit_;

@@ -425,6 +425,7 @@ void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inA
   const BudgetScope budget_scope(ioWork.pairs_per_worker);
   runUnitsOnWorkers(units, team, [&](std::size_t inUnit, int inWorker) {
     SAP_ASSERT(inWorker < team, "a worker beyond the sweep's lists");
+    if (budget.exhausted()) return;  // the frame is refused: the units left need not run
     for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell)
       sweepCell(inBoxes, inGrid, inAvx2, ioWork, cell, ioWork.pairs_per_worker[inWorker]);
   });

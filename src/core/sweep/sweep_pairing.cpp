@@ -649,6 +649,8 @@ void pairParallel(const PairingInput& inInput, int inThreads, SweepWorkspace& io
   }
   // Each worker sweeps its partitions with its own trees into its own pair list.
   runUnitsOnWorkers(split.count, threads, [&](std::size_t inK, int inWorker) {
+    // Past max_pairs a worker's trees may hold the boxes of the partition it stopped in.
+    if (inInput.pair_budget && inInput.pair_budget->exhausted()) return;
     SuccTree* trees = &ioWork.pairing[std::size_t(inWorker) * slab_count];
     PairChunks& pairs = outPairsPerThread[inWorker];
     sweepPartition(inInput, ioWork, split, slices, ioWork.partition_order[inK], trees, pairs);
