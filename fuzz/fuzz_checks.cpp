@@ -157,6 +157,23 @@ BoxSet smallGridBoxes(ByteReader& ioReader, uint32_t inCount) {
   return boxes;
 }
 
+std::optional<std::string> updateWithinMaxPairs(Broadphase& ioEngine, const BoxSet& inBoxes,
+                                                const BroadphaseConfig& inConfig,
+                                                const PairList& inExpected, PairList& outPairs) {
+  try {
+    outPairs = ioEngine.update(inBoxes);
+  } catch (const TooManyPairs& refusal) {
+    // Keys-only mode may report more pairs than the oracle's: any refusal may be due.
+    if (inExpected.size() > inConfig.max_pairs || !inConfig.exact_final_test)
+      return std::string("refused");
+    return "refused " + std::to_string(inExpected.size()) + " pairs: " + refusal.what();
+  }
+  if (outPairs.size() > inConfig.max_pairs)
+    return std::to_string(outPairs.size()) + " pairs answered past max_pairs " +
+           std::to_string(inConfig.max_pairs);
+  return std::nullopt;
+}
+
 std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual) {
   std::ostringstream text;
   text << inWhat << ": expected " << inExpected.size() << " pairs, got " << inActual.size();

@@ -5,9 +5,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "sap_broadphase/core/box_set.h"
+#include "sap_broadphase/core/broadphase.h"
+#include "sap_broadphase/core/config.h"
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase::fuzz {
@@ -61,6 +64,14 @@ double decodeCoordinate(ByteReader& ioReader);
 /// each corner in [0, 16), each edge in [0, 4), read from ioReader (six bytes a box, zeros past
 /// its end). The small random frame the settings and reconfigure targets run the engine on.
 BoxSet smallGridBoxes(ByteReader& ioReader, uint32_t inCount);
+
+/// inEngine's update() of inBoxes into outPairs, against the bound of inConfig.max_pairs:
+/// nothing when the frame was answered within it; "refused" when it threw TooManyPairs and had
+/// to (inExpected, the oracle's pairs, or in keys-only mode the superset, pass the bound);
+/// else what went wrong.
+std::optional<std::string> updateWithinMaxPairs(Broadphase& ioEngine, const BoxSet& inBoxes,
+                                                const BroadphaseConfig& inConfig,
+                                                const PairList& inExpected, PairList& outPairs);
 
 /// "what: expected 3 pairs, got 4 [0] 1,2 vs 1,2 ..." for a failed comparison.
 std::string pairsDiffer(const char* inWhat, const PairList& inExpected, const PairList& inActual);

@@ -83,7 +83,9 @@ std::string checkRequest(ByteReader& ioReader) {
     Broadphase engine(config);
     const PairList expected = bruteForcePairs(boxes);
     for (int frame = 0; frame < 2; ++frame) {
-      const PairList pairs = engine.update(boxes);
+      PairList pairs;
+      if (auto refusal = updateWithinMaxPairs(engine, boxes, config, expected, pairs))
+        return *refusal == "refused" ? "" : *refusal;
       if (config.exact_final_test) {
         if (pairs != expected) return pairsDiffer(describeConfig(config).c_str(), expected, pairs);
       } else if (!std::includes(pairs.begin(), pairs.end(), expected.begin(), expected.end())) {

@@ -40,6 +40,7 @@ sap_add_gtest(test_engine
   test/core/test_axis_swap.cpp
   test/core/test_engine_skips.cpp
   test/core/test_engine_records.cpp
+  test/core/test_engine_pair_bound.cpp
   test/core/test_support.cpp
   test/core/test_main.cpp
 )

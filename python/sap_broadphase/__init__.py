@@ -11,10 +11,11 @@ exactly; integers beyond 2^53 in magnitude are refused); ids, groups and masks a
   masks=None)``, ``query(boxes, groups=None, masks=None)`` (rows (query row, world id)),
   ``set_static_boxes(boxes, ids=None, groups=None, masks=None)``, ``stats``, ``config``.
 - ``InvalidBoxes`` (a ValueError): a box with a NaN bound, min > max or a repeated id.
+- ``TooManyPairs`` (a ValueError): a frame with more pairs than ``max_pairs``, refused.
 
 In a ROS workspace this package also holds the generated ``sap_broadphase.msg`` and
 ``sap_broadphase.srv``.
 """
-from sap_broadphase._sap_broadphase import Broadphase, InvalidBoxes, find_pairs
+from sap_broadphase._sap_broadphase import Broadphase, InvalidBoxes, TooManyPairs, find_pairs
 
-__all__ = ["Broadphase", "InvalidBoxes", "find_pairs"]
+__all__ = ["Broadphase", "InvalidBoxes", "TooManyPairs", "find_pairs"]

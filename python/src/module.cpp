@@ -378,6 +378,7 @@ const char* broadphaseDoc() {
 PYBIND11_MODULE(_sap_broadphase, m) {
   m.doc() = "Exact parallel Sweep and Prune broad phase: overlapping pairs and box queries.";
   py::register_exception<sb::InvalidBoxes>(m, "InvalidBoxes", PyExc_ValueError);
+  py::register_exception<sb::TooManyPairs>(m, "TooManyPairs", PyExc_ValueError);
 
   m.def("find_pairs", &findPairs, "boxes"_a, "ids"_a = py::none(), "threads"_a = 0,
         R"doc(Every overlapping pair of boxes (closed intervals: touching boxes overlap).

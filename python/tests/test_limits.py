@@ -50,7 +50,7 @@ def test_threads_300_in_a_small_address_space_is_an_exception():
     ("third_axis_slabs", -1), ("axis_swap_threshold", -math.inf),
     ("axis_swap_threshold", math.nan), ("skin", 1e300), ("skin", "1e300"), ("skin", math.inf),
     ("skin", -1.0), ("skin", math.nan), ("threads", 2**63 - 1), ("threads", -2**63),
-    ("parallel_min_boxes", 2**63 - 1), ("threads", 1.5),
+    ("parallel_min_boxes", 2**63 - 1), ("threads", 1.5), ("max_pairs", 0), ("max_pairs", -1),
 ])
 def test_out_of_range_is_refused_not_clamped(name, value):
     with pytest.raises(ValueError, match=r"^%s: %s must be" % (name, name)):
@@ -64,7 +64,7 @@ EXTREMES = [0, -0.0, -1, 1, 2**31 - 1, -2**31, 2**63 - 1, -2**63, 2**64, math.in
 
 
 @pytest.mark.parametrize("name", ["threads", "axis_swap_threshold", "parallel_min_boxes",
-                                  "third_axis_slabs", "skin"])
+                                  "third_axis_slabs", "skin", "max_pairs"])
 def test_every_numeric_keyword_over_its_extremes(name):
     for value in EXTREMES:
         try:
@@ -75,3 +75,20 @@ def test_every_numeric_keyword_over_its_extremes(name):
         if name == "threads":
             assert 0 <= engine.config["threads"] <= MAX_THREADS
         assert engine.update(BOXES).tolist() == [[0, 1]], (name, value)
+
+
+def test_a_frame_past_max_pairs_is_refused_and_the_engine_goes_on():
+    crowd = np.tile([0.0, 0.0, 0.0, 1.0, 1.0, 1.0], (100, 1))  # 4950 pairs
+    engine = sap_broadphase.Broadphase(max_pairs=4949)
+    with pytest.raises(sap_broadphase.TooManyPairs, match=r"more than 4949 pairs \(max_pairs\)"):
+        engine.update(crowd)
+    assert len(engine.update(crowd[:99])) == 99 * 98 // 2
+    assert len(sap_broadphase.Broadphase(max_pairs=4950).update(crowd)) == 4950
+    # 1500 boxes at one place (1 124 250 pairs): the pairing threads stop past the bound, on
+    # every method, and the engine answers the next frame.
+    pile = np.tile([0.0, 0.0, 0.0, 1.0, 1.0, 1.0], (1500, 1))
+    for method in ("auto", "parallel", "sequential", "brute"):
+        engine = sap_broadphase.Broadphase(method=method, max_pairs=50000)
+        with pytest.raises(ValueError, match=r"more than 50000 pairs"):
+            engine.update(pile)
+        assert engine.update(BOXES).tolist() == [[0, 1]], method

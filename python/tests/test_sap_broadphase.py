@@ -145,11 +145,11 @@ def test_every_config_field_by_name():
     assert list(defaults) == ["threads", "method", "primary_axis", "secondary_axis",
                               "axis_swapping", "axis_swap_threshold", "parallel_min_boxes",
                               "third_axis_slabs", "reuse_unchanged_frames",
-                              "skin", "exact_final_test"]
+                              "skin", "exact_final_test", "max_pairs"]
     chosen = dict(threads=1, method="parallel", primary_axis="z", secondary_axis=0,
                   axis_swapping=False, axis_swap_threshold=0.5, parallel_min_boxes=100,
                   third_axis_slabs=4, reuse_unchanged_frames=False,
-                  skin=0.25, exact_final_test=False)
+                  skin=0.25, exact_final_test=False, max_pairs=1000)
     config = sap_broadphase.Broadphase(**chosen).config
     assert config["primary_axis"] == "z" and config["secondary_axis"] == "x"
     assert config["skin"] == "0.25" and config["third_axis_slabs"] == 4

@@ -60,6 +60,15 @@ std::string parsePairsOptions(int inArgc, char** inArgv, PairsOptions& outOption
         return "bad --threads value '" + value + "' (" + limit.allowed + ": at most " +
                std::to_string(maxThreads()) + " on this machine)";
       outOptions.threads = static_cast<int>(threads);
+    } else if (arg == "--max-pairs") {
+      if (!cursor.takeValue(arg, value, error)) return error;
+      const Limit& limit = *findLimit("sap_pairs, sap_pairs_mpi", "--max-pairs");
+      uint64_t max_pairs = 0;
+      // Compared as integers: 2^53 + 1 would round to 2^53 as a double.
+      if (!parseUnsigned64(value, max_pairs) || max_pairs < static_cast<uint64_t>(limit.min) ||
+          max_pairs > static_cast<uint64_t>(limit.max))
+        return "bad --max-pairs value '" + value + "' (" + limit.allowed + ")";
+      outOptions.max_pairs = static_cast<std::size_t>(max_pairs);
     } else if (arg == "--method") {
       if (!cursor.takeValue(arg, value, error)) return error;
       if (!parseCliMethod(value, outOptions.method))

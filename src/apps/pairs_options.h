@@ -2,6 +2,7 @@
 // the box file, so that both tools keep one contract (docs/CLI.md).
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "sap_broadphase/core/box_set.h"
@@ -13,6 +14,7 @@ namespace sap_broadphase::cli {
 struct PairsOptions {
   int threads = 0;  // 0 = all cores
   Method method = Method::kAuto;
+  std::size_t max_pairs = kDefaultMaxPairs;  // the engine's max_pairs
   bool count_only = false;
   bool stats = false;
   bool help = false;

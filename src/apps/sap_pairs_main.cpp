@@ -18,8 +18,8 @@ using cli::PairsOptions;
 
 const char* const kProgram = "sap_pairs";
 const char* const kUsage =
-    "usage: sap_pairs [--threads N] [--method sap|sequential|brute] [--count] [--stats]\n"
-    "                 [FILE|-]\n"
+    "usage: sap_pairs [--threads N] [--method sap|sequential|brute] [--max-pairs N]\n"
+    "                 [--count] [--stats] [FILE|-]\n"
     "\n"
     "Reads axis-aligned boxes from FILE (or standard input when FILE is '-' or absent), one\n"
     "box a line:  id min_x min_y min_z max_x max_y max_z\n"
@@ -34,6 +34,8 @@ const char* const kUsage =
     "  --method M    sap (default): below 32768 boxes or on one thread the small-frame\n"
     "                kernel on one thread, else the parallel sweep-and-prune\n"
     "                sequential: the sequential sweep;  brute: test every pair (oracle)\n"
+    "  --max-pairs N input with more than N pairs is refused (exit 2), 1 to 2^53\n"
+    "                (default 268435456 = 2^28, 2 GiB of pairs)\n"
     "  --count       print only the number of pairs\n"
     "  --stats       print the frame's report to stderr, one 'name value' line a field\n"
     "                (ms_read, then path, counts, sweep axes, dispersion D, ms per phase)\n"
@@ -41,7 +43,8 @@ const char* const kUsage =
     "\n"
     "Exit status: 0 success; 2 bad input (then nothing on stdout and 'FILE:LINE: reason' on\n"
     "stderr; FILE is '<stdin>' for standard input, LINE 0 when the file cannot be read) or bad\n"
-    "usage; 1 unexpected failure (e.g. output not writable).\n";
+    "usage, or more pairs than --max-pairs ('FILE: frame refused: more than N pairs ...');\n"
+    "1 unexpected failure (e.g. output not writable).\n";
 
 // The engine's report, one "name value" line a field of its table, after the reading's time.
 void printStats(const FrameReport& inStats, double inReadMs) {
@@ -69,8 +72,17 @@ int run(int inArgc, char** inArgv) {
   BroadphaseConfig config;
   config.threads = options.threads;
   config.method = options.method;
+  config.max_pairs = options.max_pairs;
   Broadphase broadphase(config);
-  const PairList& pairs = broadphase.update(boxes);
+  const PairList* found = nullptr;
+  try {
+    found = &broadphase.update(boxes);
+  } catch (const TooManyPairs& refusal) {  // nothing written yet
+    const std::string name = options.path == "-" ? "<stdin>" : options.path;
+    std::fprintf(stderr, "%s: %s (--max-pairs)\n", name.c_str(), refusal.what());
+    return cli::kExitBadInput;
+  }
+  const PairList& pairs = *found;
   if (options.count_only) {
     std::cout << pairs.size() << '\n';
   } else {

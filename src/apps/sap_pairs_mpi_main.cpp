@@ -28,7 +28,7 @@ using distributed::PairDelivery;
 const char* const kProgram = "sap_pairs_mpi";
 const char* const kUsage =
     "usage: mpirun -np R sap_pairs_mpi [--threads N] [--method sap|sequential|brute]\n"
-    "                                  [--count] [--stats] [FILE|-]\n"
+    "                                  [--max-pairs N] [--count] [--stats] [FILE|-]\n"
     "\n"
     "sap_pairs over R MPI ranks: the same input, output and exit status as sap_pairs (see\n"
     "sap_pairs --help for the text format). Rank 0 reads the boxes and deals them out in\n"
@@ -37,6 +37,7 @@ const char* const kUsage =
     "\n"
     "  --threads N   worker threads of each rank, 1 to 4 a processor (default: all cores)\n"
     "  --method M    each rank's engine: sap (default), sequential or brute\n"
+    "  --max-pairs N each rank's engine refuses more pairs than N (the job fails, exit 1)\n"
     "  --count       print only the number of pairs\n"
     "  --stats       print one line a rank to stderr: its boxes, its slab's boxes, its border\n"
     "                set, pairs among its own boxes and across owners, bytes sent, the own\n"
@@ -108,6 +109,7 @@ int computeAndPrint(const PairsOptions& inOptions, const BoxSet& inAll, double i
   DistributedConfig config;
   config.engine.threads = inOptions.threads;
   config.engine.method = inOptions.method;
+  config.engine.max_pairs = inOptions.max_pairs;
   DistributedBroadphase broadphase(MPI_COMM_WORLD, config);
   const PairList& pairs = broadphase.update(mine, PairDelivery::kGatherAtRoot, 0);
   if (inRank == 0) {

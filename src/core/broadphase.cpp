@@ -69,6 +69,8 @@ struct Broadphase::Impl {
   void describeFrame(const FramePlan& inPlan, const FrameDelta& inDelta);
   void giveBackMemoryAfterBursts(std::size_t inBoxes);
   void runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta);
+  void checkPairCount(std::size_t inPairs) const;
+  void dropRefusedFrame();
   void forgetFrames();
 };
 
@@ -149,6 +151,7 @@ void Broadphase::Impl::execute(const FramePlan& inPlan, FrameSpread& ioSpread) {
       skin.advanceSuccessor(boxes, report);  // the next candidates, a step
       break;
     case FramePath::kSmallFrame:
+      buffers.small_frame.max_pairs = config.max_pairs;  // Buffers() may have replaced it
       if (inPlan.sweep_skin > 0.0) {
         const BoxColumns& grown = skin.grow(boxes, inPlan.sweep_skin, report);
         FrameSpread grown_spread(grown);  // other boxes than the frame's: their own spread
@@ -200,6 +203,7 @@ void Broadphase::Impl::addSceneryPairs(const BoxColumns& inBoxes) {
     scenery.queryAll(inBoxes, buffers.every_box, scenery_pairs);
   }
   if (scenery_pairs.empty()) return;
+  checkPairCount(pairs.size() + scenery_pairs.size());
   PhaseTimer timer(report.ms_output);
   sortPairsCanonical(scenery_pairs, buffers.pair_sort);
   buffers.merged.resize(pairs.size() + scenery_pairs.size());
@@ -261,7 +265,8 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
     SAP_ASSERT(passThreads() == frame_plan.threads,
                "the plan's work on other threads than its own");
     execute(frame_plan, spread);
-    if (!config.skin) {  // the costs only feed the automatic skin's choice
+    checkPairCount(pairs.size());  // the paths the bound does not stop as they go
+    if (!config.skin) {            // the costs only feed the automatic skin's choice
       PhaseTimer timer(report.ms_plan);
       skin.learn(frame_plan, spread, pairs.size(), report);
     }
@@ -279,6 +284,25 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
   PhaseTimer timer(report.ms_plan);
   giveBackMemoryAfterBursts(inBoxes.size());
   describeFrame(frame_plan, inDelta);
+}
+
+// A frame past max_pairs is refused: the sweeps and the small-frame kernel throw as they go
+// (PairBudget), the other paths here, once their pairs are found.
+void Broadphase::Impl::checkPairCount(std::size_t inPairs) const {
+  if (inPairs > config.max_pairs) throw TooManyPairs(config.max_pairs);
+}
+
+// After a frame refused for its pairs: a sweep stopped halfway leaves boxes in its active
+// lists, so every strategy's buffers go, with the pairs held (the next frame sizes them again),
+// and the engine starts afresh, as after reset(), but for the events: the last list returned
+// goes back to them, so the next frame's events are those since it (events()).
+void Broadphase::Impl::dropRefusedFrame() {
+  forgetFrames();
+  sweep.releaseBuffers();
+  skin.releaseMemory();
+  world.releaseMemory();
+  events.restoreLastList(pairs);
+  buffers = Buffers();
 }
 
 const PairList& Broadphase::update(const BoxFrame& inFrame) {
@@ -309,7 +333,12 @@ const PairList& Broadphase::update(const BoxFrame& inFrame) {
     }
     report.boxes = boxes.size();
     impl.countBoxesThatPairWithNothing(boxes);
-    impl.runFrame(boxes, delta);
+    try {
+      impl.runFrame(boxes, delta);
+    } catch (const TooManyPairs&) {
+      impl.dropRefusedFrame();
+      throw;
+    }
   }
   SAP_ASSERT(isCanonical(impl.pairs), "update() returns sorted, unique pairs with a < b");
   return impl.pairs;

@@ -83,8 +83,18 @@ void FrameWorker::publishWorld(const std_msgs::Header& inHeader,
   snapshot_frames_ = std::move(inFrames);
   auto world = std::make_shared<const WorldSnapshot>(snapshot_header_, snapshot_frames_,
                                                      scenery_index_, params_.engine);
+  // While queries keep coming (the snapshot it replaces was read), the worker indexes the
+  // frame before publishing it, so that queries only read: otherwise the frame's first query
+  // builds the index on its thread, competing with the worker for the cores, and the frame's
+  // other queries wait for it.
+  if (queriesComing()) world->index();
   std::lock_guard<std::mutex> lock(snapshot_mutex_);
   snapshot_ = std::move(world);  // the one it replaces goes with its last query
+}
+
+bool FrameWorker::queriesComing() const {
+  std::lock_guard<std::mutex> lock(snapshot_mutex_);
+  return snapshot_ && snapshot_->asked();
 }
 
 void FrameWorker::publishScenery() {
@@ -317,11 +327,20 @@ const PairList* FrameWorker::loadWorld() {
   const auto refused = [this](const SourceFrame& inFrame, const std::string& inReason) {
     status_.refuse(inFrame.header, inFrame.size(), inReason);
   };
-  const PairList* pairs = sap_broadphase::loadWorld(world_, sources_, spans_, update, refused);
+  const PairList* pairs = nullptr;
+  try {
+    pairs = sap_broadphase::loadWorld(world_, sources_, spans_, update, refused);
+  } catch (const TooManyPairs& refusal) {
+    // No source is to blame: the world's frame as a whole has more pairs than ~max_pairs. The
+    // sources keep their frames (the next delivery tries again), nothing is published for it,
+    // and the engine, reset, answers the next frame.
+    status_.refuse(world_.header(), BoxFrame(spans_).size(), refusal.what());
+  }
   std::vector<SourceFramePtr> frames;
   if (pairs)
     for (const WorldMember& member : world_.members) frames.push_back(member.frame);
-  // An update that threw leaves the scenery alone in the engine.
+  // An update that threw leaves the scenery alone in the engine. Published before the pairs:
+  // a query sent on receiving them is answered on their frame or a later one.
   publishWorld(pairs ? world_.header() : sceneryHeader(), std::move(frames));
   return pairs;
 }

@@ -78,14 +78,17 @@ class FrameWorker {
   void computeFrame();
   /// The engine on the spans of world_ (sources.h's loadWorld): a refused source falls back on
   /// its last accepted frame or leaves, and the world is loaded again. The pairs, or null when
-  /// no source is left.
+  /// no source is left. Queries see the world before the pairs leave.
   const PairList* loadWorld();
   /// Moves ioFrame (of the source or scenery named inName) into ~fixed_frame at inStamp. False,
   /// with the frame skipped (no transform) or refused (one not finite) counted and named, when
   /// it cannot be placed.
   bool place(const std::string& inName, const ros::Time& inStamp, SourceFrame& ioFrame);
-  /// Queries now see the frames inFrames (none: the scenery alone) with inHeader.
+  /// Queries now see the frames inFrames (none: the scenery alone) with inHeader; while
+  /// queries are coming, indexed first (on this thread), so that they only read.
   void publishWorld(const std_msgs::Header& inHeader, std::vector<SourceFramePtr> inFrames);
+  /// True when the snapshot in force was read by a query.
+  bool queriesComing() const;
   /// The scenery (scenery_) indexed for queries, with the engine settings in force; queries
   /// see it with the last frame published.
   void publishScenery();

@@ -56,6 +56,8 @@ bool PairsService::onComputePairs(ComputePairs::Request& inRequest,
       return true;
     } catch (const InvalidBoxes& invalid) {
       refusal = invalid.error().message();
+    } catch (const TooManyPairs& too_many) {  // the engine is reset and answers the next call
+      refusal = too_many.what();
     }
   }
   refuse(*refusal, outResponse);

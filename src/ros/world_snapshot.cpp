@@ -27,12 +27,17 @@ WorldSnapshot::WorldSnapshot(const std_msgs::Header& inHeader, std::vector<Sourc
   for (const SourceFramePtr& frame : frames_) spans_.push_back(frame->span());
 }
 
+void WorldSnapshot::index() const {
+  // The frame's boxes were accepted by the worker's engine: indexing them again cannot throw
+  // for them; a bad query box throws from the query, after this.
+  std::call_once(indexed_, [this] { frame_index_.setStaticBoxes(BoxFrame(spans_)); });
+}
+
 QueryHitList WorldSnapshot::query(const BoxFrame& inQueries) const {
   // Checked here, as the engine checks them, whether or not the world has boxes.
   if (auto problem = validate(inQueries)) throw InvalidBoxes(*problem);
-  // The frame's boxes were accepted by the worker's engine: indexing them again cannot throw
-  // for them; a bad query box throws from the query below.
-  std::call_once(indexed_, [this] { frame_index_.setStaticBoxes(BoxFrame(spans_)); });
+  asked_.store(true, std::memory_order_relaxed);
+  index();  // already built by the worker while queries keep coming
   QueryHitList hits = frame_index_.query(inQueries);
   const std::size_t frame_hits = hits.size();
   scenery_->query(inQueries, hits);

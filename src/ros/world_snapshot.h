@@ -1,10 +1,12 @@
 // WorldSnapshot: the world as query_boxes sees it, the last frame the worker computed and the
 // scenery, published by the worker once a frame and read by the query threads through a
 // shared_ptr: a query never waits for the frame in progress. Immutable once built, but for
-// the index of its frame, built on the first query that needs it (std::call_once; the others
-// wait for that build, never for a frame).
+// the index of its frame: built by the worker before it publishes the snapshot while queries
+// are coming (the last snapshot was asked), so that queries only read; otherwise by the first
+// query that needs it (std::call_once; the others wait for that build, never for a frame).
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -43,6 +45,10 @@ class WorldSnapshot {
   /// Broadphase::query() on this world: what overlaps inQueries in the frame and the scenery,
   /// sorted by (query id, world id). Throws InvalidBoxes naming a bad query box. Any thread.
   QueryHitList query(const BoxFrame& inQueries) const;
+  /// Indexes the frame's boxes now, unless done (the worker, before publishing the snapshot).
+  void index() const;
+  /// True once a query has read this snapshot: the next one is likely to be asked too.
+  bool asked() const { return asked_.load(std::memory_order_relaxed); }
   /// The header of the frame (its newest source stamp, its frame id).
   const std_msgs::Header& header() const { return header_; }
 
@@ -52,6 +58,7 @@ class WorldSnapshot {
   std::vector<BoxSpan> spans_;
   std::shared_ptr<const SceneryIndex> scenery_;
   mutable std::once_flag indexed_;
+  mutable std::atomic<bool> asked_{false};
   mutable Broadphase frame_index_;  // the frame's boxes declared as its scenery, once
 };
 

@@ -196,6 +196,31 @@ void expectBadInput(const std::string& inText, std::size_t inLine, const std::st
       << "stderr: " << fromStdin.err;
 }
 
+// Input with more pairs than --max-pairs: exit 2, nothing on stdout, the file and the bound
+// on stderr; at the bound the pairs are printed.
+TEST(Cli, MorePairsThanMaxPairsExitsTwo) {
+  TempDir dir;
+  const std::string path = dir.file("pile.txt");
+  std::string text;
+  for (int id = 0; id < 200; ++id) text += std::to_string(id) + " 0 0 0 1 1 1\n";  // 19900 pairs
+  writeFile(path, text);
+  for (const std::string method : {"sap", "sequential", "brute"}) {
+    const RunResult refused = runPairs(dir, {"--method", method, "--max-pairs", "19899", path});
+    EXPECT_EQ(refused.status, 2) << method;
+    EXPECT_EQ(refused.out, "") << method;
+    EXPECT_EQ(refused.err.rfind(path + ": frame refused: more than 19899 pairs", 0), 0u)
+        << refused.err;
+    const RunResult fromStdin = runPairs(dir, {"--max-pairs=100", "--count", "-"}, path);
+    EXPECT_EQ(fromStdin.status, 2);
+    EXPECT_EQ(fromStdin.err.rfind("<stdin>: frame refused: more than 100 pairs", 0), 0u)
+        << fromStdin.err;
+    const RunResult at_bound =
+        runPairs(dir, {"--method", method, "--max-pairs", "19900", "--count", path});
+    EXPECT_EQ(at_bound.status, 0) << at_bound.err;
+    EXPECT_EQ(at_bound.out, "19900\n");
+  }
+}
+
 TEST(Cli, EveryBadInputExitsTwoWithTheLine) {
   const std::string good = "1 0 0 0 1 1 1\n# comment\n\n";
   expectBadInput(good + "2 nan 0 0 1 1 1\n", 4, "NaN in min_x");
@@ -270,6 +295,10 @@ TEST(Cli, BadUsageOfSapPairsExitsTwo) {
   expectBadUsage(exe, {"--threads", "two"}, "bad --threads");
   expectBadUsage(exe, {"--threads", "1.5"}, "bad --threads");
   expectBadUsage(exe, {"--threads=99999"}, "bad --threads");
+  expectBadUsage(exe, {"--max-pairs", "0"},
+                 "bad --max-pairs value '0' (an integer from 1 to 2^53)");
+  expectBadUsage(exe, {"--max-pairs", "-1"}, "bad --max-pairs");
+  expectBadUsage(exe, {"--max-pairs=9007199254740993"}, "bad --max-pairs");
   // Issue 29: 999 threads took 110 s instead of 0.25 s on 2 cores. At most 4 a processor.
   expectBadUsage(exe, {"--threads", std::to_string(maxThreads() + 1)}, "bad --threads");
   expectBadUsage(exe, {"--threads", "999999"}, "at most " + std::to_string(maxThreads()));

@@ -53,10 +53,10 @@ TEST(ConfigTable, OneRowPerFieldWithUniqueNames) {
   }
   // Every member of BroadphaseConfig: a field added to the struct and not to the table fails
   // here (sameConfig and the node's parameters would silently ignore it).
-  EXPECT_EQ(names, (std::set<std::string>{"threads", "method", "primary_axis", "secondary_axis",
-                                          "axis_swapping", "axis_swap_threshold",
-                                          "parallel_min_boxes", "third_axis_slabs",
-                                          "reuse_unchanged_frames", "skin", "exact_final_test"}));
+  EXPECT_EQ(names, (std::set<std::string>{
+                       "threads", "method", "primary_axis", "secondary_axis", "axis_swapping",
+                       "axis_swap_threshold", "parallel_min_boxes", "third_axis_slabs",
+                       "reuse_unchanged_frames", "skin", "exact_final_test", "max_pairs"}));
   EXPECT_EQ(findConfigField("no_such_field"), nullptr);
 }
 
@@ -160,7 +160,7 @@ TEST(ConfigTable, DescribeListsEveryFieldOnce) {
   EXPECT_EQ(describeConfig(config),
             "threads 0, method parallel, primary_axis x, secondary_axis y, axis_swapping true, "
             "axis_swap_threshold 0.25, parallel_min_boxes 32768, third_axis_slabs 0, "
-            "reuse_unchanged_frames true, skin 0.125, exact_final_test true");
+            "reuse_unchanged_frames true, skin 0.125, exact_final_test true, max_pairs 268435456");
 }
 
 TEST(MethodNames, OneVocabularyReadBack) {

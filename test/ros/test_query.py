@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """query_boxes against the node's world: the scenery and the latest frame of a source, query
 boxes moved from their frame into ~fixed_frame, ids and filters, refusals that name the box,
-answers while frames flow; the nodelet answers too. Beside: a frame without a frame_id
-refused with a reason under ~fixed_frame, and ~sources given as a YAML string on the command
-line."""
+answers while frames flow; the nodelet answers too, refuses a query with more hits than the
+bound and a frame with more pairs than ~max_pairs, and goes on. Beside: a frame without a
+frame_id refused with a reason under ~fixed_frame, and ~sources given as a YAML string on the
+command line."""
 import threading
 import unittest
 
@@ -12,7 +13,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 from sap_broadphase.msg import BoxArray, FrameStats
-from sap_broadphase.srv import QueryBoxes
+from sap_broadphase.srv import ComputePairs, QueryBoxes
 
 from ros_test_support import poll_until
 
@@ -263,6 +264,72 @@ class QueryBoxesTest(unittest.TestCase):
             self.assertIn("silent for more than ~source_timeout", logs[1].msg)
         finally:
             once.unregister()
+
+    def test_9_more_hits_than_the_bound_refused_and_the_node_goes_on(self):
+        # kMaxQueryHits (2^24 = 16 777 216) from outside the node: the nodelet's world is 4100
+        # boxes at one place (group 1, mask 2: they pair with nothing among themselves), and
+        # 4100 query boxes there (group 2, mask 1) would have 16 810 000 hits.
+        service = "nodelet/query_boxes"
+        rospy.wait_for_service(service, WAIT)
+        query = rospy.ServiceProxy(service, QueryBoxes)
+        publisher = rospy.Publisher("nodelet/boxes", BoxArray, queue_size=1)
+        while publisher.get_num_connections() == 0:
+            rospy.sleep(0.05)
+        count = 4100
+        cube = [0, 0, 0, 1, 1, 1]
+        world = box_array("world", cube * count, range(count), [1] * count, [2] * count)
+        one = box_array("world", cube, [0], [2], [1])
+        self.wait_for_hits(one, [(0, i) for i in range(count)], query,
+                           feed=lambda: publisher.publish(world))
+        many = box_array("world", cube * count, range(count), [2] * count, [1] * count)
+        answer = query(many)
+        self.assertFalse(answer.success)
+        self.assertIn("more than 16777216 hits", answer.message)
+        self.assertEqual(list(answer.hits), [])
+        # The node still answers, from the same world.
+        answer = query(one)
+        self.assertTrue(answer.success, answer.message)
+        self.assertEqual(len(answer.hits), 2 * count)
+
+    def test_9b_frame_past_max_pairs_refused_and_the_node_goes_on(self):
+        # The nodelet runs with ~max_pairs 10: six boxes at one place (15 pairs) are refused,
+        # by compute_pairs and as a frame of its source; five (10 pairs) pass, after.
+        rospy.wait_for_service("nodelet/compute_pairs", WAIT)
+        compute = rospy.ServiceProxy("nodelet/compute_pairs", ComputePairs)
+        cube = [0, 0, 0, 1, 1, 1]
+        six = box_array("world", cube * 6, range(6))
+        five = box_array("world", cube * 5, range(5))
+        answer = compute(six)
+        self.assertFalse(answer.success)
+        self.assertIn("more than 10 pairs (max_pairs)", answer.message)
+        answer = compute(five)
+        self.assertTrue(answer.success, answer.message)
+        self.assertEqual(len(answer.pairs.pairs), 2 * 10)
+        stats = []
+        condition = threading.Condition()
+
+        def on_stats(msg):
+            with condition:
+                stats.append(msg)
+                condition.notify_all()
+
+        publisher = rospy.Publisher("nodelet/boxes", BoxArray, queue_size=1)
+        subscriber = rospy.Subscriber("nodelet/stats", FrameStats, on_stats)
+        try:
+            while publisher.get_num_connections() == 0:
+                rospy.sleep(0.05)
+            for frame, seen in ((six, lambda m: m.path == "refused" and
+                                 "more than 10 pairs (max_pairs)" in m.last_refusal),
+                                (five, lambda m: m.path != "refused" and m.pairs == 10)):
+                deadline = rospy.get_time() + WAIT
+                with condition:
+                    while not any(seen(m) for m in stats) and rospy.get_time() < deadline:
+                        publisher.publish(frame)
+                        condition.wait(0.2)
+                    self.assertTrue(any(seen(m) for m in stats),
+                                    [(m.path, m.pairs, m.last_refusal) for m in stats[-3:]])
+        finally:
+            subscriber.unregister()
 
 
 if __name__ == "__main__":

@@ -37,7 +37,10 @@ class Broadphase {
   /// every frame anyway, to know what moved), and checked on the way: a NaN bound, min > max,
   /// a repeated id (across spans too), an id that does not fit 32 bits or too many boxes throw
   /// InvalidBoxes naming the lowest bad box as validate() does; the engine is then as after
-  /// reset(), except for events() (see there). The frame's memory is read only during the call.
+  /// reset(), except for events() (see there). A frame with more than config().max_pairs pairs
+  /// throws TooManyPairs (pair_set.h) once they are found past the bound, and leaves the engine
+  /// the same way, its pair buffers given back. The frame's memory is read only during the
+  /// call.
   const PairList& update(const BoxFrame& inFrame);
   /// What changed between the pair lists of the last two update()s: `began` holds the pairs of
   /// the last list absent from the one before, `ended` those of the one before absent from the

@@ -71,6 +71,11 @@ constexpr double kMaxSkin = 3.0e38;
 /// bits, and more slabs cost inserts for large boxes.
 constexpr int kMaxThirdAxisSlabs = 64;
 
+/// Default bound on a frame's pairs (BroadphaseConfig::max_pairs): 2^28 pairs are 2 GiB in
+/// each list of them, and a frame holds a few such lists (the pairing threads', the sorted
+/// list, the last frame's for the events; in the node the PairArray message too).
+constexpr std::size_t kDefaultMaxPairs = std::size_t{1} << 28;
+
 /// What a caller may tune. Defaults are the exact, adaptive engine.
 struct BroadphaseConfig {
   int threads = 0;                    ///< worker threads; 0 = all cores (omp_get_max_threads)
@@ -100,6 +105,14 @@ struct BroadphaseConfig {
   /// small-frame path (below parallel_min_boxes, or up to two threads), kept candidates (a skin),
   /// brute force. So a frame may bring extra pairs or none, depending on its path.
   bool exact_final_test = true;
+  /// Most pairs a frame may have: a frame with more is refused (update() throws TooManyPairs)
+  /// instead of holding pairs until memory runs out. The sweeps and the small-frame kernel
+  /// stop once past it (holding the bound and a chunk of 8192 pairs a thread at most); brute
+  /// force, the kept candidates' answer and the pairs with the scenery are checked once found.
+  /// A sweep of boxes grown by a skin counts its candidates, a superset of the pairs: with a
+  /// bound near the frame's pair count, a skin can have a frame refused that would pass
+  /// without one.
+  std::size_t max_pairs = kDefaultMaxPairs;
 };
 
 /// The kinds of value a configuration field holds.

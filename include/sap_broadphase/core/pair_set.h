@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace sap_broadphase {
@@ -44,6 +46,24 @@ struct QueryHit {
 
 /// The answers of one Broadphase::query(), sorted by (query, world), none twice.
 using QueryHitList = std::vector<QueryHit>;
+
+/// A frame with more pairs than BroadphaseConfig::max_pairs, refused by Broadphase::update()
+/// (a std::length_error, as a query with too many hits; Python's ValueError). Thrown once the
+/// pairs found pass the bound: the frame's pairs are not all found, and the engine is as after
+/// reset(), its pair buffers given back.
+class TooManyPairs : public std::length_error {
+ public:
+  explicit TooManyPairs(std::size_t inLimit)
+      : std::length_error("frame refused: more than " + std::to_string(inLimit) +
+                          " pairs (max_pairs); the pairs found so far were dropped: raise "
+                          "max_pairs if the memory allows (8 bytes a pair in each copy)"),
+        limit_(inLimit) {}
+  /// The bound passed (max_pairs).
+  std::size_t limit() const { return limit_; }
+
+ private:
+  std::size_t limit_;
+};
 
 /// The pairs that began and the pairs that ended at the last update(), each sorted as a PairList.
 struct ContactEvents {

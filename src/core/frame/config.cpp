@@ -320,6 +320,13 @@ std::vector<ConfigField> makeConfigFields() {
       {"exact_final_test", ConfigFieldType::kBool, "true", 0.0, 1.0, "true or false",
        "false: report pairs whose float32 keys overlap (faster, may report extra pairs)",
        "a switch", getBool<&C::exact_final_test>, setBool<&C::exact_final_test>},
+      {"max_pairs", ConfigFieldType::kInteger, "268435456", 1.0, kLargestCount, "an integer >= 1",
+       "most pairs a frame may have: a frame with more is refused (TooManyPairs), its pairs "
+       "dropped",
+       "8 bytes a pair in each list a frame holds (the threads', the sorted one, the last "
+       "frame's, a PairArray): 2^28 (the default) is 2 GiB a list; the sweeps stop once past it "
+       "instead of growing until memory runs out",
+       getInteger<&C::max_pairs>, setInteger<&C::max_pairs>},
   };
 }
 
@@ -464,6 +471,8 @@ std::vector<Limit> makeLimits() {
        kScenePublisherViolation},
       {"sap_pairs, sap_pairs_mpi", "--threads", 1.0, static_cast<double>(maxThreads()), false,
        "an integer from 1 to 4 a processor", "as the engine's threads", kCliViolation},
+      {"sap_pairs, sap_pairs_mpi", "--max-pairs", 1.0, kLargestCount, false,
+       "an integer from 1 to 2^53", "as the engine's max_pairs", kCliViolation},
       {"sap_scene", "--n", 0.0, 2147483647.0, false, "an integer from 0 to 2147483647",
        "the engine's most boxes a frame (kMaxBoxes)", kCliViolation},
       {"sap_scene", "--density", std::numeric_limits<double>::denorm_min(),

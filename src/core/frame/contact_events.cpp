@@ -91,6 +91,13 @@ const ContactEvents& ContactEventTracker::events() const {
   return events_;
 }
 
+void ContactEventTracker::restoreLastList(PairList& ioPairs) {
+  if (!frame_open_) return;
+  last_.swap(ioPairs);
+  PairList().swap(last_);
+  frame_open_ = false;
+}
+
 void ContactEventTracker::sameListAsLast() {
   SAP_ASSERT(has_last_, "a reused frame without a last list");
 }

@@ -30,6 +30,10 @@ class ContactEventTracker {
   /// from it only when events() asks for them, so that a first frame neither copies its pairs
   /// nor keeps a second list of their size for good.
   void compare(const PairList& inPairs);
+  /// The frame was refused before it compared (TooManyPairs): the last list goes back into
+  /// ioPairs, where the next keepLastList() takes it again, and the refused frame's list is
+  /// freed. The next frame's events are then those since the last frame returned.
+  void restoreLastList(PairList& ioPairs);
   /// The frame's list is the last one, untouched (a reused frame): no events.
   void sameListAsLast();
   /// The next frame is a first frame: every pair begins. The events of the last frame go too.

@@ -225,7 +225,15 @@ void sortPairsCanonical(PairList& ioPairs) {
   sortPairsCanonical(ioPairs, scratch);
 }
 
+void PairBudget::count(std::size_t inPairs) {
+  if (found_.fetch_add(inPairs, std::memory_order_relaxed) + inPairs > limit_)
+    throw TooManyPairs(limit_);
+}
+
 void PairChunks::startChunk() {
+  // The chunk before is full: its pairs count against the frame's budget before another one
+  // is taken.
+  if (budget_ && used_chunks_ > 0) budget_->count(kChunkPairs);
   if (used_chunks_ == chunks_.size()) {
     chunks_.reserve(chunks_.size() + 1);  // so that a throw below leaks no chunk
     chunks_.push_back(BufferAllocator<IdPair>().allocate(kChunkPairs));

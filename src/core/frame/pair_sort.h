@@ -2,6 +2,7 @@
 // that put pairs in canonical order (pair_set.h), once a frame.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -13,6 +14,28 @@
 #include "sap_broadphase/core/pair_set.h"
 
 namespace sap_broadphase {
+
+/// The most pairs the pairing threads of one frame may find together
+/// (BroadphaseConfig::max_pairs). Each thread's PairChunks counts a chunk here once it is full,
+/// and the count past the bound throws TooManyPairs: the threads stop within a chunk each of
+/// it, instead of holding pairs until memory runs out. A full chunk is a chunk of pairs found,
+/// so a frame with at most the bound's pairs never throws.
+class PairBudget {
+ public:
+  /// A budget of inLimit pairs, none counted yet.
+  explicit PairBudget(std::size_t inLimit) : limit_(inLimit) {}
+  PairBudget(const PairBudget&) = delete;
+  PairBudget& operator=(const PairBudget&) = delete;
+  /// Counts inPairs more pairs found; throws TooManyPairs once the count passes the limit.
+  void count(std::size_t inPairs);
+  /// True once a count passed the limit: the pass's units not yet started do nothing (a unit
+  /// that threw left its worker's state half-swept, and the frame is refused anyway).
+  bool exhausted() const { return found_.load(std::memory_order_relaxed) > limit_; }
+
+ private:
+  const std::size_t limit_;
+  std::atomic<std::size_t> found_{0};
+};
 
 /// Pairs appended in fixed-size chunks, the pairing threads' output: growing never copies
 /// (a vector's doubling would keep old and new storage resident together) and clear() keeps
@@ -46,6 +69,9 @@ class PairChunks {
     used_chunks_ = 0;
     fill_ = kChunkPairs;
   }
+  /// The budget each full chunk is counted against (null: none); set by the pass that fills
+  /// the list, for that pass.
+  void setBudget(PairBudget* inBudget) { budget_ = inBudget; }
   /// Appends one pair.
   void push_back(const IdPair& inPair) {
     if (fill_ == kChunkPairs) startChunk();
@@ -72,6 +98,22 @@ class PairChunks {
   std::vector<IdPair*> chunks_;  // each kChunkPairs pairs from BufferAllocator<IdPair>
   std::size_t used_chunks_ = 0;
   std::size_t fill_ = kChunkPairs;
+  PairBudget* budget_ = nullptr;
+};
+
+/// Takes the budget out of every list of ioLists when it leaves scope, thrown out of or not: a
+/// pass's budget lives on its stack.
+class BudgetScope {
+ public:
+  explicit BudgetScope(std::vector<PairChunks>& ioLists) : lists_(ioLists) {}
+  ~BudgetScope() {
+    for (PairChunks& pairs : lists_) pairs.setBudget(nullptr);
+  }
+  BudgetScope(const BudgetScope&) = delete;
+  BudgetScope& operator=(const BudgetScope&) = delete;
+
+ private:
+  std::vector<PairChunks>& lists_;
 };
 
 /// Buffers reused by sortPairsCanonical between calls.

@@ -440,9 +440,15 @@ void sweepCells(const BoxColumns& inBoxes, const GridAxis (&inGrid)[2], bool inA
   const std::size_t units = first_cell.size() - 1;
   const int team = teamForUnits(units, threads);
   ioWork.pairs_per_worker.resize(std::max<std::size_t>(1, team));
-  for (PairChunks& pairs : ioWork.pairs_per_worker) pairs.clear();
+  PairBudget budget(ioWork.max_pairs);
+  for (PairChunks& pairs : ioWork.pairs_per_worker) {
+    pairs.clear();
+    pairs.setBudget(&budget);
+  }
+  const BudgetScope budget_scope(ioWork.pairs_per_worker);
   runUnitsOnWorkers(units, [&](std::size_t inUnit, int inWorker) {
     SAP_ASSERT(inWorker < team, "a worker beyond the sweep's lists");
+    if (budget.exhausted()) return;  // the frame is refused: the units left need not run
     for (uint32_t cell = first_cell[inUnit]; cell < first_cell[inUnit + 1]; ++cell) {
       gatherCell(cell, ioWork);
       sweepCell(inBoxes, inGrid, inAvx2, ioWork, cell, ioWork.pairs_per_worker[inWorker]);

@@ -44,6 +44,9 @@ struct SmallFrameWorkspace {
   std::vector<uint32_t> unit_first_cell;     ///< the sweep's units: first cell of each, then all
   std::vector<PairChunks> pairs_per_worker;  ///< the sweep's pairs, one list per worker
   PairSortScratch pair_scratch;
+  /// Most pairs the sweep of the cells may find (BroadphaseConfig::max_pairs): past it the
+  /// workers throw TooManyPairs.
+  std::size_t max_pairs = SIZE_MAX;
   uint32_t grid_cells = 1;  ///< cells of the last frame's grid (1: one sweep of all boxes)
 };
 

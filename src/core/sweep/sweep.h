@@ -72,6 +72,7 @@ struct PairingInput {
   const uint32_t* ids = nullptr;          ///< box ids, by object index
   const RankedSlabs* slabs = nullptr;     ///< null when slab_count is 1
   int slab_count = 1;
+  PairBudget* pair_budget = nullptr;  ///< the frame's bound on pairs (max_pairs); null: none
 };
 
 /// How the last frame's pairing scatter laid out its entries: the split and thread count it

@@ -17,6 +17,7 @@ namespace sap_broadphase {
 
 SweepAndPrune::SweepAndPrune(const BroadphaseConfig& inConfig)
     : exact_final_test_(inConfig.exact_final_test),
+      max_pairs_(inConfig.max_pairs),
       axis_swapping_(inConfig.axis_swapping),
       axis_swap_threshold_(inConfig.axis_swap_threshold),
       third_axis_slabs_(inConfig.third_axis_slabs),
@@ -137,6 +138,11 @@ void SweepAndPrune::pair(const BoxColumns& inBoxes, FramePath inPath, FrameRepor
   input.slabs = ranked_slabs_.empty() ? nullptr : ranked_slabs_.data();
   input.slab_count = slab_grid_.count;
   ioReport.slabs = slab_grid_.count;
+  // Past max_pairs the pairing threads throw TooManyPairs (the engine then gives back these
+  // buffers: the trees are left holding boxes).
+  PairBudget budget(max_pairs_);
+  const BudgetScope budget_scope(pairs_per_thread_);
+  input.pair_budget = &budget;
   if (inPath == FramePath::kSequential) {
     pairs_per_thread_.resize(1);
     pairs_per_thread_[0].clear();

@@ -51,6 +51,7 @@ class SweepAndPrune {
   void decideAxes(bool inWarm, FrameReport& ioReport);
 
   const bool exact_final_test_;
+  const std::size_t max_pairs_;
   const bool axis_swapping_;
   const double axis_swap_threshold_;
   const int third_axis_slabs_;

@@ -613,6 +613,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   const uint32_t n = inInput.objects;
   if (n <= tuning::kPairingPartitionRanks ||
       uint64_t{n} * static_cast<uint64_t>(inInput.slab_count) <= tuning::kSequentialTreeBits) {
+    outPairs.setBudget(inInput.pair_budget);
     buildSecondaryStream(inInput);
     prepareTrees(ioWork.pairing, 0, inInput.slab_count, n);
     PartitionSweep sweep(inInput, 0, n, ioWork.pairing.data(), outPairs);
@@ -624,6 +625,7 @@ void pairSequential(const PairingInput& inInput, SweepWorkspace& ioWork, PairChu
   // Trees over all n ranks (times the slabs) too big for the cache: one thread sweeps
   // partition by partition, as Algorithm 4 does. The scatter pass costs one read of the
   // order; on the big trees every insert, erase and range walk would miss the cache.
+  outPairs.setBudget(inInput.pair_budget);
   const RankPartitions split = partitionRanks(n);
   scatterToPartitions(inInput, 1, split, ioWork);
   prepareTrees(ioWork.pairing, 0, inInput.slab_count, split.size());
@@ -643,9 +645,14 @@ void pairParallel(const PairingInput& inInput, SweepWorkspace& ioWork,
   const int slab_count = inInput.slab_count;
   prepareTrees(ioWork.pairing, 0, threads * slab_count, split.size());
   outPairsPerThread.resize(threads);
-  for (PairChunks& pairs : outPairsPerThread) pairs.clear();  // a smaller team leaves some
+  for (PairChunks& pairs : outPairsPerThread) {
+    pairs.clear();  // a smaller team leaves some
+    pairs.setBudget(inInput.pair_budget);
+  }
   // Each worker sweeps its partitions with its own trees into its own pair list.
   runUnitsOnWorkers(split.count, [&](std::size_t inK, int inWorker) {
+    // Past max_pairs a worker's trees may hold the boxes of the partition it stopped in.
+    if (inInput.pair_budget && inInput.pair_budget->exhausted()) return;
     SuccTree* trees = &ioWork.pairing[std::size_t(inWorker) * slab_count];
     PairChunks& pairs = outPairsPerThread[inWorker];
     sweepPartition(inInput, ioWork, split, slices, ioWork.partition_order[inK], trees, pairs);
