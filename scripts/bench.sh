@@ -7,8 +7,9 @@
 #                              their own folders (busy_2p20/, peers_2p17/, physx_sizes*/ when
 #                              PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
-#                              used; into bench/results/<machine>/ with machine.txt (minutes on
-#                              2 cores, not hours). The default.
+#                              used; into bench/results/<machine>/ with machine.txt (about 80
+#                              minutes on 2 cores, more than half of it pareto, peers and coherence;
+#                              --experiments runs some). The default.
 #   scripts/bench.sh --quick   the same, smallest sizes, a few frames and runs, no ROS and no
 #                              microbenchmarks (under a minute); into build/bench_quick/<machine>/.
 #                              The test command runs it as a smoke test (scripts/test_no_ros.sh).
@@ -136,7 +137,7 @@ run_in_folder() {  # folder experiment sap_bench-arguments...
 }
 run_in_folder busy_2p20 busy "${big_busy[@]}"
 run_in_folder peers_2p17 peers "${big_peers[@]}"
-[ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed "${bench_args[@]}"
+[ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed --max-n 2^20 "${bench_args[@]}"
 if [ -n "$physx" ]; then
   run_in_folder physx_sizes sizes "${physx_small[@]}" --threads 2
   run_in_folder physx_sizes_2p20 sizes "${physx_big[@]}" --threads 2
