@@ -233,8 +233,9 @@ std::string checkSourcesInput(const uint8_t* inData, std::size_t inSize) {
                              inSize ? inSize - 1 : 0);
       const std::string problem = parseYamlParameter(text, value);
       if (!problem.empty()) {
-        if (problem.find("is not YAML") == std::string::npos)
-          return "YAML refusal does not say so: " + problem;
+        if (problem.find("is not YAML") == std::string::npos &&
+            problem.find("nests deeper than") == std::string::npos)
+          return "YAML refusal does not say why: " + problem;
         return "";
       }
     } else {

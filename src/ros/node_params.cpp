@@ -143,18 +143,26 @@ XmlRpc::XmlRpcValue yamlScalarToXmlRpc(const YAML::Node& inScalar) {
   return XmlRpc::XmlRpcValue(text);
 }
 
-XmlRpc::XmlRpcValue yamlToXmlRpc(const YAML::Node& inNode) {
+/// How deep a YAML parameter may nest: ~sources needs two levels (a list of maps); an alias
+/// inside the node it names (`&x [*x]`) nests without end, and would exhaust the stack.
+constexpr int kMaxYamlDepth = 16;
+
+/// A YAML parameter nested past kMaxYamlDepth (parseYamlParameter refuses it).
+struct YamlTooDeep {};
+
+XmlRpc::XmlRpcValue yamlToXmlRpc(const YAML::Node& inNode, int inDepth = 0) {
+  if (inDepth > kMaxYamlDepth) throw YamlTooDeep{};
   XmlRpc::XmlRpcValue value;
   switch (inNode.Type()) {
     case YAML::NodeType::Sequence:
       value.setSize(static_cast<int>(inNode.size()));
       for (std::size_t i = 0; i < inNode.size(); ++i)
-        value[static_cast<int>(i)] = yamlToXmlRpc(inNode[i]);
+        value[static_cast<int>(i)] = yamlToXmlRpc(inNode[i], inDepth + 1);
       return value;
     case YAML::NodeType::Map:
       value.begin();  // an empty struct stays a struct
       for (const auto& entry : inNode)
-        value[entry.first.as<std::string>()] = yamlToXmlRpc(entry.second);
+        value[entry.first.as<std::string>()] = yamlToXmlRpc(entry.second, inDepth + 1);
       return value;
     case YAML::NodeType::Scalar:
       return yamlScalarToXmlRpc(inNode);
@@ -209,6 +217,9 @@ std::string parseYamlParameter(const std::string& inText, XmlRpc::XmlRpcValue& o
     return "";
   } catch (const YAML::Exception& exception) {
     return "'" + inText + "' is not YAML (" + exception.what() + ")";
+  } catch (const YamlTooDeep&) {
+    return "'" + inText + "' nests deeper than " + std::to_string(kMaxYamlDepth) +
+           " levels (an alias inside the node it names?)";
   }
 }
 

@@ -718,6 +718,12 @@ TEST(SourceSpecs, TheCommandLinesYamlStringIsRead) {
   EXPECT_EQ(
       parseYamlParameter("[boxes, {topic: a", value).rfind("'[boxes, {topic: a' is not YAML (", 0),
       0u);
+  // An alias inside the node it names nests without end: refused, not a stack overflow (the
+  // sources fuzzer's find, kept in fuzz/regressions/sources/).
+  EXPECT_NE(parseYamlParameter("&x [boxes, *x]", value).find("nests deeper than 16 levels"),
+            std::string::npos);
+  EXPECT_NE(parseYamlParameter("a: &x [1, 2, b: *x]", value).find("nests deeper than"),
+            std::string::npos);
 }
 
 TEST(SourceSpecs, ProblemsNameTheEntryAndKey) {
