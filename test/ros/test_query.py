@@ -15,7 +15,7 @@ from rosgraph_msgs.msg import Log
 from sap_broadphase.msg import BoxArray, FrameStats
 from sap_broadphase.srv import ComputePairs, QueryBoxes
 
-from ros_test_support import poll_until
+from ros_test_support import poll_until, wait_until
 
 WAIT = 60.0
 SCENERY = {100: [0, 0, 0, 1, 1, 1], 101: [5, 5, 5, 6, 6, 6]}
@@ -30,6 +30,15 @@ def box_array(frame_id, bounds, ids=(), groups=(), masks=()):
     msg.bounds = [float(v) for v in bounds]
     msg.ids, msg.groups, msg.masks = list(ids), list(groups), list(masks)
     return msg
+
+
+def nodelet_query_and_publisher():
+    """The nodelet's query_boxes service and a publisher of its boxes, connected to it."""
+    rospy.wait_for_service("nodelet/query_boxes", WAIT)
+    query = rospy.ServiceProxy("nodelet/query_boxes", QueryBoxes)
+    publisher = rospy.Publisher("nodelet/boxes", BoxArray, queue_size=1)
+    wait_until(lambda: publisher.get_num_connections() > 0, "nodelet subscriber", WAIT)
+    return query, publisher
 
 
 def pairs_of(hits):
@@ -182,12 +191,7 @@ class QueryBoxesTest(unittest.TestCase):
             flowing.join()
 
     def test_5_nodelet_answers(self):
-        service = "nodelet/query_boxes"
-        rospy.wait_for_service(service, WAIT)
-        query = rospy.ServiceProxy(service, QueryBoxes)
-        publisher = rospy.Publisher("nodelet/boxes", BoxArray, queue_size=1)
-        while publisher.get_num_connections() == 0:
-            rospy.sleep(0.05)
+        query, publisher = nodelet_query_and_publisher()
         msg = box_array("world", [0, 0, 0, 1, 1, 1], [42])
         self.wait_for_hits(box_array("world", [1, 1, 1, 2, 2, 2], [3]), [(3, 42)], query,
                            feed=lambda: publisher.publish(msg))
@@ -269,12 +273,7 @@ class QueryBoxesTest(unittest.TestCase):
         # kMaxQueryHits (2^24 = 16 777 216) from outside the node: the nodelet's world is 4100
         # boxes at one place (group 1, mask 2: they pair with nothing among themselves), and
         # 4100 query boxes there (group 2, mask 1) would have 16 810 000 hits.
-        service = "nodelet/query_boxes"
-        rospy.wait_for_service(service, WAIT)
-        query = rospy.ServiceProxy(service, QueryBoxes)
-        publisher = rospy.Publisher("nodelet/boxes", BoxArray, queue_size=1)
-        while publisher.get_num_connections() == 0:
-            rospy.sleep(0.05)
+        query, publisher = nodelet_query_and_publisher()
         count = 4100
         cube = [0, 0, 0, 1, 1, 1]
         world = box_array("world", cube * count, range(count), [1] * count, [2] * count)
