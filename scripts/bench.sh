@@ -4,7 +4,7 @@
 #   scripts/bench.sh --all     every sap_bench experiment the page reads (a CSV and the PNGs
 #                              each), memory in a process of its own, the Python module's
 #                              script when the module is built, sap_microbench, the runs of
-#                              their own folders (busy_2p20/, peers_2p17/, physx_sizes*/ when
+#                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/, physx_sizes*/ when
 #                              PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
 #                              used; into bench/results/<machine>/ with machine.txt (about 80
@@ -119,15 +119,16 @@ echo "bench.sh: results in $out"
 # Memory in a process of its own, so earlier experiments' heap does not hide the peak.
 "$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e memory "${bench_args[@]}"
 
-# Runs of their own, each in a folder the page names: the busy machine at 2^20 (fewer frames),
+# Runs of their own, each in a folder the page names: the busy machine at 2^17 and at 2^20
+# (fewer frames),
 # CGAL alone at 2^17, MPI ranks of this machine (not in --quick), and, when PhysX is named
 # (--physx; with --bin, the PhysX that sap_bench was built with), the size sweep beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17;
 # 20 at 2^20).
 if [ "$quick" -eq 1 ]; then
-  big_busy=(--sizes 2^12 --frames 3); big_peers=(--max-n 2^12)
+  mid_busy=(--sizes 2^10 --frames 3); big_busy=(--sizes 2^12 --frames 3); big_peers=(--max-n 2^12)
   physx_small=(--sizes 2^10 --frames 3); physx_big=(--sizes 2^12 --frames 3)
 else
-  big_busy=(--sizes 2^20 --frames 20); big_peers=(--max-n 2^17)
+  mid_busy=(--sizes 2^17); big_busy=(--sizes 2^20 --frames 20); big_peers=(--max-n 2^17)
   physx_small=(--sizes 2^12,2^14,2^17 --frames 201); physx_big=(--sizes 2^20 --frames 21)
 fi
 run_in_folder() {  # folder experiment sap_bench-arguments...
@@ -135,6 +136,7 @@ run_in_folder() {  # folder experiment sap_bench-arguments...
   mkdir -p "$folder"; rm -f "$folder/machine.txt"
   "$bin/sap_bench" "${quick_flag[@]}" --out "$folder" -e "$experiment" "$@" "${bench_args[@]}"
 }
+run_in_folder busy_2p17 busy "${mid_busy[@]}"
 run_in_folder busy_2p20 busy "${big_busy[@]}"
 run_in_folder peers_2p17 peers "${big_peers[@]}"
 [ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed --max-n 2^20 "${bench_args[@]}"
