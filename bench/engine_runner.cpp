@@ -21,6 +21,7 @@ BroadphaseConfig sequentialConfig() {
   BroadphaseConfig config;
   config.method = Method::kSequential;
   config.threads = 1;
+  config.skin = 0.0;  // the paper's sweep on every frame, not answers from kept candidates
   return config;
 }
 
@@ -28,6 +29,7 @@ BroadphaseConfig parallelConfig(int inThreads) {
   BroadphaseConfig config;
   config.method = Method::kParallel;
   config.threads = inThreads;
+  config.skin = 0.0;  // the paper's sweep on every frame, not answers from kept candidates
   return config;
 }
 
