@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/tools/random.h"
 #include "core/sweep/sweep_and_prune.h"
+#include "core/tools/random.h"
 #include "sap_broadphase/core/box_set.h"
 #include "sap_broadphase/core/pair_set.h"
 
