@@ -41,6 +41,8 @@ constexpr const char* kRowTag = "busy_row";
 constexpr double kSpeed = 0.01;
 constexpr double kDensity = 0.35;
 constexpr int kMaxBusyLoops = 2;
+/// Child runs of each configuration (--runs; 2 with --quick).
+constexpr int kRunsPerConfiguration = 3;
 
 std::string contenderName(int inThreads) {
   return "sap_broadphase_t" + std::to_string(inThreads);
@@ -99,7 +101,23 @@ struct BusyRow {
   std::string contender;
   double median_ms = 0.0, p90_ms = 0.0;
   int frames = 0;
+  int runs = 1;  ///< child runs whose medians this row's are the median of
 };
+
+/// One row from several runs of a configuration: the median of their medians and of their 90th
+/// percentiles.
+BusyRow medianRow(const std::vector<BusyRow>& inRuns) {
+  BusyRow row = inRuns.front();
+  std::vector<double> runMedians, runP90s;
+  for (const BusyRow& run : inRuns) {
+    runMedians.push_back(run.median_ms);
+    runP90s.push_back(run.p90_ms);
+  }
+  row.median_ms = median(runMedians);
+  row.p90_ms = median(runP90s);
+  row.runs = static_cast<int>(inRuns.size());
+  return row;
+}
 
 std::string selfPath() {
   char path[4096];
@@ -148,31 +166,43 @@ void runBusy(const Options& inOptions) {
   const int threads = sap_broadphase::resolveThreadCount(inOptions.threads);
   Table table(
       "Busy machine: ms per frame, steady at 1 % motion (uniform, d = 0.35), with busy loops "
-      "beside the engine, each configuration alone in a process; ratio = median / one thread's "
-      "median under the same load",
+      "beside the engine, each configuration alone in a process, the median of its runs' medians; "
+      "ratio = median / one thread's median under the same load",
       {"n", "busy_loops", "omp_wait_policy", "contender", "median_ms", "p90_ms", "ratio_median",
-       "frames"});
+       "frames", "runs"});
   std::map<std::size_t, std::map<std::string, Series>> medians, p90s;
+  // Each configuration's child is run kRunsPerConfiguration times, the contenders alternating
+  // (t2 t1, t1 t2, t2 t1): on 2 cores a child sometimes shares a core with a busy loop for its
+  // whole run (its median doubles, its 90th percentile does not), and which child that happens
+  // to is the scheduler's luck, not the code's; the median of the runs' medians is reported.
+  const int runs = inOptions.runsOr(kRunsPerConfiguration);
   for (int busy = 0; busy <= kMaxBusyLoops; ++busy) {
     std::vector<pid_t> loops;
     for (int k = 0; k < busy; ++k) loops.push_back(startBusyLoop());
     for (const std::string policy : {"", "passive"}) {
       const std::string policyName = policy.empty() ? "unset" : policy;
-      // The chosen threads, then one thread, each in a child process of its own.
-      std::vector<BusyRow> rows = runChild(inOptions, policy, threads);
-      if (threads != 1) {
-        const std::vector<BusyRow> one = runChild(inOptions, policy, 1);
-        rows.insert(rows.end(), one.begin(), one.end());
+      std::vector<int> contenders{threads};
+      if (threads != 1) contenders.push_back(1);
+      std::map<std::pair<std::size_t, std::string>, std::vector<BusyRow>> runsOf;
+      for (int run = 0; run < runs; ++run) {
+        for (std::size_t k = 0; k < contenders.size(); ++k) {
+          const int contender = contenders[run % 2 == 0 ? k : contenders.size() - 1 - k];
+          for (const BusyRow& row : runChild(inOptions, policy, contender))
+            runsOf[{row.n, row.contender}].push_back(row);
+        }
       }
-      std::stable_sort(rows.begin(), rows.end(),
-                       [](const BusyRow& inA, const BusyRow& inB) { return inA.n < inB.n; });
+      std::vector<BusyRow> rows;
+      for (const auto& [key, measured] : runsOf) rows.push_back(medianRow(measured));
+      std::stable_sort(rows.begin(), rows.end(), [](const BusyRow& inA, const BusyRow& inB) {
+        return inA.n != inB.n ? inA.n < inB.n : inA.contender > inB.contender;
+      });
       for (const BusyRow& row : rows) {
         double oneThread = 0.0;
         for (const BusyRow& other : rows)
           if (other.n == row.n && other.contender == contenderName(1)) oneThread = other.median_ms;
         table.addRow({fmtSize(row.n), std::to_string(busy), policyName, row.contender,
                       fmt(row.median_ms), fmt(row.p90_ms), fmtRatio(row.median_ms, oneThread),
-                      std::to_string(row.frames)});
+                      std::to_string(row.frames), std::to_string(row.runs)});
         const std::string series = row.contender + " " + policyName;
         medians[row.n][series].add(busy, row.median_ms);
         p90s[row.n][series].add(busy, row.p90_ms);
