@@ -77,6 +77,8 @@ class SkinList {
   /// candidates, then each continueAdopt() (with the same inBoxes) does one part of the work
   /// and returns true when the candidates are kept (valid() from then on, not before).
   void startAdopt(PairList&& ioCandidates);
+  /// The parts of adopt() that continueAdopt() does one a call.
+  static constexpr int kAdoptParts = 4;
   bool continueAdopt(const BoxColumns& inBoxes);
   /// True when every box of inBoxes lies inside its inflated box (same ids, groups and masks in
   /// the same order), and then the frame's bounds are gathered for collectGathered(). One read
