@@ -4,8 +4,8 @@
 #   scripts/bench.sh --all     every sap_bench experiment the page reads (a CSV and the PNGs
 #                              each), memory in a process of its own, the Python module's
 #                              script when the module is built, sap_microbench, the runs of
-#                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/, physx_sizes*/ when
-#                              PhysX is named), MPI ranks of this machine, and the runs
+#                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/, physx_sizes/
+#                              when PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
 #                              used; into bench/results/<machine>/ with machine.txt (about 80
 #                              minutes on 2 cores, more than half of it pareto, peers and coherence;
@@ -120,16 +120,16 @@ echo "bench.sh: results in $out"
 "$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e memory "${bench_args[@]}"
 
 # Runs of their own, each in a folder the page names: the busy machine at 2^17 and at 2^20
-# (fewer frames),
-# CGAL alone at 2^17, MPI ranks of this machine (not in --quick), and, when PhysX is named
-# (--physx; with --bin, the PhysX that sap_bench was built with), the size sweep beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17;
-# 20 at 2^20).
+# (fewer frames), the peers at 2^17, MPI ranks of this machine (not in --quick), and, when
+# PhysX is named (--physx; with --bin, the PhysX that sap_bench was built with), the size sweep
+# beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17). No 2^20 sweep of 20 frames beside
+# PhysX: the page reads none of it (its 2^20 rows are sizes.csv's).
 if [ "$quick" -eq 1 ]; then
   mid_busy=(--sizes 2^10 --frames 3); big_busy=(--sizes 2^12 --frames 3); big_peers=(--max-n 2^12)
-  physx_small=(--sizes 2^10 --frames 3); physx_big=(--sizes 2^12 --frames 3)
+  physx_small=(--sizes 2^10 --frames 3)
 else
   mid_busy=(--sizes 2^17); big_busy=(--sizes 2^20 --frames 20); big_peers=(--max-n 2^17)
-  physx_small=(--sizes 2^12,2^14,2^17 --frames 201); physx_big=(--sizes 2^20 --frames 21)
+  physx_small=(--sizes 2^12,2^14,2^17 --frames 201)
 fi
 run_in_folder() {  # folder experiment sap_bench-arguments...
   local folder="$out/$1" experiment=$2; shift 2
@@ -142,7 +142,6 @@ run_in_folder peers_2p17 peers "${big_peers[@]}"
 [ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed --max-n 2^20 "${bench_args[@]}"
 if [ -n "$physx" ]; then
   run_in_folder physx_sizes sizes "${physx_small[@]}" --threads 2
-  run_in_folder physx_sizes_2p20 sizes "${physx_big[@]}" --threads 2
 else
   echo "bench.sh: no PhysX named (--physx DIR): no physx_sizes/"
 fi
@@ -161,12 +160,13 @@ if [ "$micro" -eq 1 ] && [ -x "$bin/sap_microbench" ]; then
   "$bin/sap_microbench" --benchmark_out="$out/microbench.csv" --benchmark_out_format=csv
 fi
 
-# Through ROS: the node against a nodelet at 2^20, the nodelet alone, small frames.
+# Through ROS: the node against a nodelet at 2^20, the nodelet alone, small frames; the
+# workspace was built above, so no set-up again.
 if [ "$ros" -eq 1 ]; then
-  "$ROOT/scripts/bench_ros.sh" --out "$out" -- --n 2^17,2^20 --density 0.05,0.35 --frames 10 \
-    --no-throughput
-  "$ROOT/scripts/bench_ros.sh" --out "$out/nodelet" -- --transport nodelet --n 2^17,2^20 \
-    --density 0.05,0.35 --frames 20 --no-throughput
-  "$ROOT/scripts/bench_ros.sh" --quick --out "$out/small_frames"
+  "$ROOT/scripts/bench_ros.sh" --no-setup --out "$out" -- --n 2^17,2^20 --density 0.05,0.35 \
+    --frames 10 --no-throughput
+  "$ROOT/scripts/bench_ros.sh" --no-setup --out "$out/nodelet" -- --transport nodelet \
+    --n 2^17,2^20 --density 0.05,0.35 --frames 20 --no-throughput
+  "$ROOT/scripts/bench_ros.sh" --no-setup --quick --out "$out/small_frames"
 fi
 echo "bench.sh: done; results in $out"
