@@ -31,23 +31,28 @@ using sap_broadphase::PairList;
 
 namespace {
 
-/// A CGAL cutoff (a knob of one algorithm, unlike FCL's managers or PhysX's broad phases) that
-/// cost over this many times the family's best cutoff a box on a smaller case of the same
-/// scene is not run on the larger one (skipped (slow)): at 2^17 and at 2^20 cutoffs 10, 100
-/// and 300 were 1.7-3.8x cutoff 3000 on the uniform scenes (peers.csv), and at 2^20 they took
-/// 1.7-3.8 s a frame each. The best cutoff stays within this of itself, so it is still run.
+/// A CGAL cutoff (a knob of one algorithm, unlike FCL's managers or PhysX's broad phases)
+/// whose median frame cost over this many times the family's best cutoff's a box on a smaller
+/// case of the same scene is not run on the larger one (skipped (slow)): at 2^17 and at 2^20
+/// cutoffs 10, 100 and 300 were 1.7-3.8x cutoff 3000 on the uniform scenes (peers.csv), and at
+/// 2^20 they took 1.7-3.8 s a frame each. The best cutoff stays within this of itself, so it is
+/// still run.
 constexpr double kKnobSlowerThanBest = 1.5;
 
-/// True when peer inPeer of inPeers is such a cutoff, by the costs a box of a smaller case of
-/// the same scene (inCosts; none yet on a scene's first case).
+/// Per scene (kind and density) and peer, the median ms a box of a frame (one-shot and steady
+/// together) on the scene's last case; 0 for a peer that did not run there.
+using MedianCosts = std::map<std::string, std::vector<double>>;
+
+/// True when peer inPeer of inPeers is such a cutoff, by inCosts (empty on a scene's first
+/// case).
 bool slowKnob(const Peers& inPeers, const std::vector<double>& inCosts, std::size_t inPeer) {
-  if (inPeers[inPeer]->family().rfind("cgal", 0) != 0) return false;
+  if (inCosts.empty() || inPeers[inPeer]->family().rfind("cgal", 0) != 0) return false;
   double familyBest = 0.0;
   for (std::size_t q = 0; q < inPeers.size(); ++q) {
     if (inPeers[q]->family() != inPeers[inPeer]->family() || !(inCosts[q] > 0.0)) continue;
     familyBest = familyBest > 0.0 ? std::min(familyBest, inCosts[q]) : inCosts[q];
   }
-  // A setting without a cost where its library has one was not run on the smaller case.
+  // A cutoff without a cost where its family has one was not run on the smaller case.
   return familyBest > 0.0 && !(inCosts[inPeer] <= kKnobSlowerThanBest * familyBest);
 }
 
@@ -119,7 +124,8 @@ std::size_t oursMemory(const BoxSet& inBoxes, int inThreads) {
 /// frame (pairs included): a separate pass over frame 0 for the memory alone cost every peer
 /// one more build, seconds each at 2^20.
 std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns, int inThreads,
-                               Peers& ioPeers, PeerCosts& ioCosts, Progress& ioProgress) {
+                               Peers& ioPeers, PeerCosts& ioCosts, MedianCosts& ioMedianCosts,
+                               Progress& ioProgress) {
   std::vector<double>& costs = ioCosts[sceneKey(inCase)];
   costs.resize(ioPeers.size(), 0.0);
   const std::vector<OursVariant> variants = oursVariants(inThreads);
@@ -133,7 +139,7 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
     contenders[first_peer + p].family = ioPeers[p]->family();
     contenders[first_peer + p].skipped_slow = costs[p] * inCase.n > kSlowFrameMs ||
                                               quadraticOnClusters(ioPeers[p]->name(), inCase) ||
-                                              slowKnob(ioPeers, costs, p);
+                                              slowKnob(ioPeers, ioMedianCosts[sceneKey(inCase)], p);
   }
   for (int run = 0; run < inRuns; ++run) {
     FrameFeed feed = inCase.makeFeed();
@@ -171,6 +177,13 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
         runPeerPass(*ioPeers[p], inCase, inFrames, truths, contenders[first_peer + p], costs[p],
                     ioProgress);
     }
+  }
+  std::vector<double>& medians = ioMedianCosts[sceneKey(inCase)];
+  medians.assign(ioPeers.size(), 0.0);
+  for (std::size_t p = 0; p < ioPeers.size(); ++p) {
+    const Contender& entry = contenders[first_peer + p];
+    if (!entry.one_shot_ms.empty())
+      medians[p] = (median(entry.one_shot_ms) + median(entry.steady_ms)) / inCase.n;
   }
   return contenders;
 }
@@ -243,8 +256,10 @@ void runPeers(const Options& inOptions) {
   std::map<std::string, Series> oneShotSeries, steadySeries;
   Progress progress("peers", cases.size() * frames * runs * (1 + ownProcessPeers(peers)));
   PeerCosts costs;
+  MedianCosts medianCosts;
   for (std::size_t c = 0; c < cases.size(); ++c) {
-    const auto contenders = runCase(cases[c], frames, runs, threads, peers, costs, progress);
+    const auto contenders =
+        runCase(cases[c], frames, runs, threads, peers, costs, medianCosts, progress);
     const double oursOnce = median(contenders[0].one_shot_ms);
     const double oursKept = median(contenders[0].steady_ms);
     double bestOnce = std::numeric_limits<double>::infinity(), bestKept = bestOnce;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 
@@ -215,8 +216,16 @@ void runPeerFrame(Peer& ioPeer, const BoxSet& inBoxes, const PairList& inTruth, 
   // A peer stopped on the build frame keeps that frame's times: the only ones it has.
   if (inTimed || (ioEntry.stopped_slow && ioEntry.one_shot_ms.empty()))
     ioEntry.one_shot_ms.push_back(once.ms), ioEntry.steady_ms.push_back(steadyMs);
-  if (frameMs > kSlowPeerFrameMs && ioEntry.one_shot_ms.size() >= kSlowPeerTimedFrames)
-    ioEntry.stopped_slow = true;
+  // Decided once a peer has one timed frame and once it has kSlowPeerTimedFrames, on their
+  // mean, so that one slow frame later does not stop a peer that is fast on the others.
+  const std::size_t timed = ioEntry.one_shot_ms.size();
+  if (inTimed && (timed == 1 || timed == kSlowPeerTimedFrames)) {
+    double total = 0.0;
+    for (std::size_t k = 0; k < timed; ++k) total += ioEntry.one_shot_ms[k] + ioEntry.steady_ms[k];
+    const double meanMs = total / static_cast<double>(timed);
+    if (meanMs > (timed == 1 ? kVerySlowPeerFrameMs : kSlowPeerFrameMs))
+      ioEntry.stopped_slow = true;
+  }
 }
 
 void runPeerPass(Peer& ioPeer, const BenchCase& inCase, int inFrames,

@@ -19,15 +19,16 @@ namespace sap_bench {
 /// frame, when it was stopped there). A peer whose cost per box on an earlier case predicts
 /// more than this for a frame is not run on the case at all.
 constexpr double kSlowFrameMs = 20000.0;
-/// A peer whose frame (one-shot and steady together) took longer than this stops, marked
-/// "(slow)", once it has kSlowPeerTimedFrames timed frames. Such peers (CGAL's cutoffs, the
-/// grid and FCL's trees at 2^20, Bullet on the ball, FCL's sweep-and-prune and interval tree)
-/// are 3-100x slower than the default there, and their further frames took most of the peer
-/// experiment's 15 minutes on the 2-core VM (peers.csv's times, --frames 4) while moving no
-/// ratio the page reads.
+/// A peer whose first kSlowPeerTimedFrames timed frames (one-shot and steady together) took
+/// longer than this on average stops there, marked "(slow)" (its median is of those). Such peers
+/// (CGAL's cutoffs, the grid and FCL's trees at 2^20) are 3-20x slower than the default there,
+/// and their further frames took most of the peer experiment's 15 minutes on the 2-core VM
+/// (peers.csv's times, --frames 4) while moving no ratio the page reads.
 constexpr double kSlowPeerFrameMs = 1000.0;
-/// Their median is then of two frames (after the build frame).
 constexpr std::size_t kSlowPeerTimedFrames = 2;
+/// A peer whose first timed frame took longer than this (FCL's sweep-and-prune and interval
+/// tree at 2^17, Bullet on the 2^19-box ball: 10-600x the default) stops after it.
+constexpr double kVerySlowPeerFrameMs = 4000.0;
 
 /// FCL's sweep-and-prune and interval-tree managers keep, per box, every box overlapping it
 /// along one axis: on a clustered scene that is most of the scene. registerObjects() of the
