@@ -7,9 +7,10 @@
 #                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/, physx_sizes/
 #                              when PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
-#                              used; into bench/results/<machine>/ with machine.txt (about 80
-#                              minutes on 2 cores, more than half of it pareto, peers and coherence;
-#                              --experiments runs some). The default.
+#                              used; into bench/results/<machine>/ with machine.txt (about 40
+#                              minutes on an idle 2-core machine with PhysX, estimated from each
+#                              part's time: a third of it peers, peers_2p17/ and coherence, a
+#                              tenth the busy runs; --experiments runs some). The default.
 #   scripts/bench.sh --quick   the same, smallest sizes, a few frames and runs, no ROS and no
 #                              microbenchmarks (under a minute); into build/bench_quick/<machine>/.
 #                              The test command runs it as a smoke test (scripts/test_no_ros.sh).
@@ -58,7 +59,7 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift ;;
     --physx) physx="$2"; shift ;;
     --) shift; bench_args=("$@"); break ;;
-    -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
     *) echo "bench.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
