@@ -12,6 +12,7 @@ add_executable(sap_bench
   ${SAP_BENCH_DIR}/bench_output.cpp
   ${SAP_BENCH_DIR}/bench_scenes.cpp
   ${SAP_BENCH_DIR}/engine_runner.cpp
+  ${SAP_BENCH_DIR}/bench_paper_runs.cpp
   ${SAP_BENCH_DIR}/pair_diff.cpp
   ${SAP_BENCH_DIR}/exp_fig1_sort.cpp
   ${SAP_BENCH_DIR}/exp_fig23_phases.cpp

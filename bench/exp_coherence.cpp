@@ -35,6 +35,20 @@ constexpr double kSkinMultiples[] = {0.5, 1, 2, 4, 8, 16, 32};
 /// Fixed skins above this many mean box edges are left out: candidates grow with the cube of
 /// the grown edge, and a skin wider than a box edge never paid in the skip experiment.
 constexpr double kMaxSkinEdges = 1.0;
+/// The fixed skins are tried from the widest down, and the sweep stops at the first one this
+/// much slower than the best so far: a fixed skin's mean time falls as the skin narrows (fewer
+/// candidates) until rebuilds come too often, then rises, so the skins past that turn cannot
+/// win. Trying all seven took about a third of the experiment (coherence.csv's times); at low
+/// speeds the widest skin is the best and two runs find it. The margin keeps the sweep going
+/// over a frame's noise.
+constexpr double kSkinSweepStopRatio = 1.10;
+/// The peer (FCL's tree) stops after kSlowTimedFrames frames past the warm-up when those took
+/// longer than this on average: at 2^20 it took 0.5-9.6 s a frame, 3-30x the default, and its
+/// 17 timed frames took about half of the experiment's 14 minutes on the 2-core VM
+/// (coherence.csv's times), for a ratio that three frames give as well. Our contenders run
+/// every frame: a fixed skin's mean must cover its rebuilds.
+constexpr double kSlowPeerFrameMs = 400.0;
+constexpr int kSlowTimedFrames = 3;
 
 /// One workload: a scene's frames from a first frame on, and the speed it moves at.
 struct CoherenceCase {
@@ -47,7 +61,8 @@ struct CoherenceCase {
 /// What one contender did over a case's frames.
 struct ContenderRun {
   double first_ms = 0.0;
-  double steady_ms = 0.0;  ///< mean over the frames after the warm-up (rebuilds included)
+  double steady_ms = 0.0;        ///< mean over the frames after the warm-up (rebuilds included)
+  std::size_t timed_frames = 0;  ///< frames the mean covers
   std::vector<uint64_t> frame_hashes;
   std::string note;  ///< the engine's skin choice on the last frame
 };
@@ -61,8 +76,9 @@ uint64_t hashPairs(const PairList& inPairs) {
   return hash;
 }
 
-/// Runs inFrames frames through inUpdate (returning canonical pairs and the work's ms).
-ContenderRun runFrames(const CoherenceCase& inCase, int inFrames, int inWarmup,
+/// Runs inFrames frames through inUpdate (returning canonical pairs and the work's ms); with
+/// inMayStop, fewer when the first timed frames are slow.
+ContenderRun runFrames(const CoherenceCase& inCase, int inFrames, int inWarmup, bool inMayStop,
                        const std::function<double(const BoxSet&, PairList&)>& inUpdate) {
   ContenderRun run;
   FrameFeed feed = inCase.makeFeed();
@@ -74,8 +90,14 @@ ContenderRun runFrames(const CoherenceCase& inCase, int inFrames, int inWarmup,
     if (f == 0) run.first_ms = ms;
     if (f >= inWarmup) steady.push_back(ms);
     run.frame_hashes.push_back(hashPairs(pairs));
+    // Decided once, on the first timed frames, so that one slow frame later does not stop a
+    // contender that is fast on the others.
+    if (inMayStop && static_cast<int>(steady.size()) == kSlowTimedFrames &&
+        mean(steady) > kSlowPeerFrameMs)
+      break;
   }
   run.steady_ms = mean(steady);
+  run.timed_frames = steady.size();
   return run;
 }
 
@@ -83,7 +105,7 @@ ContenderRun runEngine(const CoherenceCase& inCase, int inFrames, int inWarmup,
                        const BroadphaseConfig& inConfig) {
   Broadphase engine(inConfig);
   ContenderRun run =
-      runFrames(inCase, inFrames, inWarmup, [&](const BoxSet& inBoxes, PairList& outPairs) {
+      runFrames(inCase, inFrames, inWarmup, false, [&](const BoxSet& inBoxes, PairList& outPairs) {
         Stopwatch clock;
         const PairList& pairs = engine.update(inBoxes);
         const double ms = clock.ms();
@@ -99,7 +121,7 @@ ContenderRun runEngine(const CoherenceCase& inCase, int inFrames, int inWarmup,
 ContenderRun runPeer(const CoherenceCase& inCase, int inFrames, int inWarmup, Peer& ioPeer) {
   ioPeer.begin();
   ContenderRun run =
-      runFrames(inCase, inFrames, inWarmup, [&](const BoxSet& inBoxes, PairList& outPairs) {
+      runFrames(inCase, inFrames, inWarmup, true, [&](const BoxSet& inBoxes, PairList& outPairs) {
         PeerResult result = ioPeer.step(inBoxes);
         sap_broadphase::sortPairsCanonical(result.pairs);
         outPairs = std::move(result.pairs);
@@ -168,12 +190,13 @@ void runCoherence(const Options& inOptions) {
   const std::vector<CoherenceCase> cases = coherenceCases(inOptions);
   std::unique_ptr<Peer> fcl = makeFclDynamicTreePeer();
   Table table("Coherence: mean ms per frame after " + std::to_string(warmup) +
-                  " warm-up frames (first frame apart); pairs of every frame checked against "
-                  "the default's",
+                  " warm-up frames (first frame apart; FCL over " + fmt(kSlowPeerFrameMs) +
+                  " ms a frame: " + std::to_string(kSlowTimedFrames) +
+                  " frames, fcl_timed_frames); pairs of every frame checked against the default's",
               {"case", "speed_edges", "default_ms", "default_skin", "no_skin_ms", "best_fixed_ms",
                "best_fixed_skin", "fcl_dynamic_aabb_ms", "default_over_best", "within_10pct",
                "fcl_over_default", "default_first_ms", "no_skin_first_ms", "best_fixed_first_ms",
-               "fcl_first_ms", "pairs_check"});
+               "fcl_first_ms", "pairs_check", "fcl_timed_frames"});
   std::map<std::string, Panel> panels;
   std::vector<std::string> panelOrder;
   const std::size_t contenders = 2 + std::size(kSkinMultiples) + (fcl ? 1 : 0);
@@ -193,15 +216,18 @@ void runCoherence(const Options& inOptions) {
     ContenderRun best;
     best.steady_ms = std::numeric_limits<double>::infinity();
     double bestSkin = 0.0;
-    for (double multiple : kSkinMultiples) {
-      const double skin = multiple * motion;
+    bool pastBest = false;
+    for (auto multiple = std::rbegin(kSkinMultiples); multiple != std::rend(kSkinMultiples);
+         ++multiple) {
+      const double skin = *multiple * motion;
       progress.step(benchCase.name + " skin " + fmt(skin, 3));
-      if (!(skin > 0.0) || skin > kMaxSkinEdges * meanEdge) continue;
+      if (pastBest || !(skin > 0.0) || skin > kMaxSkinEdges * meanEdge) continue;
       BroadphaseConfig fixed = defaults;
       fixed.skin = skin;
       const ContenderRun run = runEngine(benchCase, frames, warmup, fixed);
       differing += differingFrames(run, automatic);
       if (run.steady_ms < best.steady_ms) best = run, bestSkin = skin;
+      pastBest = run.steady_ms > kSkinSweepStopRatio * best.steady_ms;
     }
     ContenderRun peer;
     if (fcl) {
@@ -219,7 +245,8 @@ void runCoherence(const Options& inOptions) {
                   fmt(automatic.first_ms), fmt(noSkin.first_ms),
                   std::isfinite(best.steady_ms) ? fmt(best.first_ms) : "-",
                   fcl ? fmt(peer.first_ms) : "-",
-                  differing == 0 ? "ok" : "MISMATCH(" + std::to_string(differing) + ")"});
+                  differing == 0 ? "ok" : "MISMATCH(" + std::to_string(differing) + ")",
+                  fcl ? std::to_string(peer.timed_frames) : "-"});
     if (benchCase.group.empty()) continue;
     if (!panels.count(benchCase.group)) {
       panels[benchCase.group] = Panel{benchCase.group, "motion (mean box edges a frame)",

@@ -1,6 +1,7 @@
 // Fig. 1: time of the sorting phase, sequential (LSD radix) against parallel (Algorithm 2),
 // for n = 2^15 .. 2^21 at d = 0.35.
 #include "bench_output.h"
+#include "bench_paper_runs.h"
 #include "bench_scenes.h"
 #include "engine_runner.h"
 #include "experiments.h"
@@ -12,18 +13,15 @@ using sap_broadphase::FrameReport;
 void runFig1Sort(const Options& inOptions) {
   const double density = 0.35;
   const auto sizes = inOptions.sizes(powersOfTwo(15, 21), powersOfTwo(11, 14));
-  const int runs = inOptions.runsOr(3);
-  const int frames = inOptions.framesOr(10, 4);
-  const std::vector<EngineSpec> engines = {{"sequential", sequentialConfig()},
-                                           {"parallel", parallelConfig(inOptions.threads)}};
+  const int runs = inOptions.runsOr(kPaperRuns);
+  const int frames = paperFrames(inOptions);
   Table table("Fig. 1: sort time (ms, median), d = 0.35",
               {"n", "seq_sort_ms", "par_sort_ms", "sort_speedup", "seq_keys_ms", "par_keys_ms",
                "par_threads", "runs", "frames", "check"});
   Series seqTime{"sequential", {}, {}}, parTime{"parallel", {}, {}}, speedup{"speedup", {}, {}};
   Progress progress("fig1_sort", sizes.size() * runs * frames);
   for (std::size_t n : sizes) {
-    const SceneRun run =
-        runScene(uniformScene(n, density, inOptions.seed), engines, runs, frames, 0, &progress);
+    const SceneRun& run = paperUniformRun(inOptions, n, density, progress);
     const double seqSort = steadyMedian(run, 0, statField(&FrameReport::ms_sort));
     const double parSort = steadyMedian(run, 1, statField(&FrameReport::ms_sort));
     const int threads = run.samples[1].front().front().stats.threads;

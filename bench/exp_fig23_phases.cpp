@@ -1,6 +1,7 @@
 // Figs. 2 and 3: candidate generation (Algorithm 3) and pairing (Algorithm 4), time and
 // speedup over the sequential Algorithm 1, vs n for d in {0.05, 0.15, 0.25, 0.35}.
 #include "bench_output.h"
+#include "bench_paper_runs.h"
 #include "bench_scenes.h"
 #include "engine_runner.h"
 #include "experiments.h"
@@ -29,10 +30,8 @@ PhaseFigure makePhaseFigure(const std::string& inPhase) {
 void runFig23Phases(const Options& inOptions) {
   const std::vector<double> densities = {0.05, 0.15, 0.25, 0.35};
   const auto sizes = inOptions.sizes(powersOfTwo(15, 21), powersOfTwo(11, 14));
-  const int runs = inOptions.runsOr(3);
-  const int frames = inOptions.framesOr(10, 4);
-  const std::vector<EngineSpec> engines = {{"sequential", sequentialConfig()},
-                                           {"parallel", parallelConfig(inOptions.threads)}};
+  const int runs = inOptions.runsOr(kPaperRuns);
+  const int frames = paperFrames(inOptions);
   Table table("Figs. 2-3: candidates and pairing (ms, median)",
               {"d", "n", "seq_cand_ms", "par_cand_ms", "cand_speedup", "seq_pair_ms", "par_pair_ms",
                "pair_speedup", "pairs", "par_threads", "check"});
@@ -44,8 +43,7 @@ void runFig23Phases(const Options& inOptions) {
     Series seqCand{"seq d=" + d, {}, {}}, parCand{"par d=" + d, {}, {}}, gainCand{"d=" + d, {}, {}};
     Series seqPair{"seq d=" + d, {}, {}}, parPair{"par d=" + d, {}, {}}, gainPair{"d=" + d, {}, {}};
     for (std::size_t n : sizes) {
-      const SceneRun run =
-          runScene(uniformScene(n, density, inOptions.seed), engines, runs, frames, 0, &progress);
+      const SceneRun& run = paperUniformRun(inOptions, n, density, progress);
       const double sc = steadyMedian(run, 0, statField(&FrameReport::ms_candidates));
       const double pc = steadyMedian(run, 1, statField(&FrameReport::ms_candidates));
       const double sp = steadyMedian(run, 0, statField(&FrameReport::ms_pairing));

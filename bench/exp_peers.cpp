@@ -6,6 +6,7 @@
 // compared with ours. PhysX's broad phases (ABP, PABP, MBP), when built, each run in a process
 // of their own. The engine also runs without skin (every frame swept) on the chosen
 // threads and on one thread, the per-core comparison with the single-threaded peers.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -30,15 +31,29 @@ using sap_broadphase::PairList;
 
 namespace {
 
-/// FCL's sweep-and-prune and interval-tree managers keep, per box, every box overlapping it
-/// along one axis: on a clustered scene that is most of the scene. registerObjects() of the
-/// 2^19-box ball frame did not finish in ten minutes on the 2-core VM (perf: all of it in
-/// SaPCollisionManager::registerObjects), and a call cannot be interrupted, so they are not
-/// run on clustered scenes above this size (uniform and lattice cases predict their cost).
-constexpr std::size_t kMostClusteredBoxesForQuadratic = std::size_t{1} << 14;
+/// A CGAL cutoff (a knob of one algorithm, unlike FCL's managers or PhysX's broad phases)
+/// whose median frame cost over this many times the family's best cutoff's a box on a smaller
+/// case of the same scene is not run on the larger one (skipped (slow)): at 2^17 and at 2^20
+/// cutoffs 10, 100 and 300 were 1.7-3.8x cutoff 3000 on the uniform scenes (peers.csv), and at
+/// 2^20 they took 1.7-3.8 s a frame each. The best cutoff stays within this of itself, so it is
+/// still run.
+constexpr double kKnobSlowerThanBest = 1.5;
 
-bool quadraticOnClusters(const std::string& inPeerName) {
-  return inPeerName.rfind("fcl_sap", 0) == 0 || inPeerName.rfind("fcl_interval_tree", 0) == 0;
+/// Per scene (kind and density) and peer, the median ms a box of a frame (one-shot and steady
+/// together) on the scene's last case; 0 for a peer that did not run there.
+using MedianCosts = std::map<std::string, std::vector<double>>;
+
+/// True when peer inPeer of inPeers is such a cutoff, by inCosts (empty on a scene's first
+/// case).
+bool slowKnob(const Peers& inPeers, const std::vector<double>& inCosts, std::size_t inPeer) {
+  if (inCosts.empty() || inPeers[inPeer]->family().rfind("cgal", 0) != 0) return false;
+  double familyBest = 0.0;
+  for (std::size_t q = 0; q < inPeers.size(); ++q) {
+    if (inPeers[q]->family() != inPeers[inPeer]->family() || !(inCosts[q] > 0.0)) continue;
+    familyBest = familyBest > 0.0 ? std::min(familyBest, inCosts[q]) : inCosts[q];
+  }
+  // A cutoff without a cost where its family has one was not run on the smaller case.
+  return familyBest > 0.0 && !(inCosts[inPeer] <= kKnobSlowerThanBest * familyBest);
 }
 
 /// How many peers run in processes of their own (each a pass of its own over a case's frames).
@@ -93,35 +108,24 @@ std::vector<OursVariant> oursVariants(int inThreads) {
   return variants;
 }
 
-/// Peak memory per contender while it builds its structure for the case's first frame and
-/// answers it (pairs included), each in turn.
-void measureMemory(const BenchCase& inCase, int inThreads, Peers& ioPeers,
-                   std::vector<Contender>& ioContenders, std::size_t inFirstPeer) {
-  FrameFeed feed = inCase.makeFeed();
-  const BoxSet& boxes = feed.boxes();
+/// Peak memory of our default engine while a fresh one answers inBoxes (its pairs included).
+std::size_t oursMemory(const BoxSet& inBoxes, int inThreads) {
   PeakMeter meter;
   meter.start();
-  {
-    Broadphase engine(oursConfig(inThreads));
-    engine.update(boxes);
-    ioContenders[0].memory_bytes = meter.grownBytes();
-  }
-  for (std::size_t p = 0; p < ioPeers.size(); ++p) {
-    // A peer in a process of its own measures its memory there (runPeerPass).
-    if (ioContenders[inFirstPeer + p].skipped_slow || ioPeers[p]->ownProcess()) continue;
-    meter.start();
-    ioPeers[p]->begin();
-    { const PeerResult result = ioPeers[p]->step(boxes); }
-    ioContenders[inFirstPeer + p].memory_bytes = meter.grownBytes();
-    ioPeers[p]->begin();  // frees the steady state
-  }
+  Broadphase engine(oursConfig(inThreads));
+  engine.update(inBoxes);
+  return meter.grownBytes();
 }
 
 /// Runs every contender over the case's frames; frame 0 only builds the steady state. Peers
 /// that ask for a process of their own run each run's frames after the others, in a child,
-/// checked against the frames' pairs kept from the reference.
+/// checked against the frames' pairs kept from the reference. The first run's frame 0 also
+/// measures each contender's peak memory while it builds its structures and answers that
+/// frame (pairs included): a separate pass over frame 0 for the memory alone cost every peer
+/// one more build, seconds each at 2^20.
 std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns, int inThreads,
-                               Peers& ioPeers, PeerCosts& ioCosts, Progress& ioProgress) {
+                               Peers& ioPeers, PeerCosts& ioCosts, MedianCosts& ioMedianCosts,
+                               Progress& ioProgress) {
   std::vector<double>& costs = ioCosts[sceneKey(inCase)];
   costs.resize(ioPeers.size(), 0.0);
   const std::vector<OursVariant> variants = oursVariants(inThreads);
@@ -133,12 +137,10 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
   for (std::size_t p = 0; p < ioPeers.size(); ++p) {
     contenders[first_peer + p].name = ioPeers[p]->name();
     contenders[first_peer + p].family = ioPeers[p]->family();
-    contenders[first_peer + p].skipped_slow =
-        costs[p] * inCase.n > kSlowFrameMs ||
-        (quadraticOnClusters(ioPeers[p]->name()) && inCase.n > kMostClusteredBoxesForQuadratic &&
-         (inCase.scene == "ball" || inCase.scene == "plane"));
+    contenders[first_peer + p].skipped_slow = costs[p] * inCase.n > kSlowFrameMs ||
+                                              quadraticOnClusters(ioPeers[p]->name(), inCase) ||
+                                              slowKnob(ioPeers, ioMedianCosts[sceneKey(inCase)], p);
   }
-  measureMemory(inCase, inThreads, ioPeers, contenders, first_peer);
   for (int run = 0; run < inRuns; ++run) {
     FrameFeed feed = inCase.makeFeed();
     Broadphase steady(oursConfig(inThreads));
@@ -151,14 +153,21 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
       if (f > 0) feed.step();
       const BoxSet& boxes = feed.boxes();
       const bool timed = f > 0 || inFrames == 1;
+      const bool measureMemory = run == 0 && f == 0;
+      if (measureMemory) contenders[0].memory_bytes = oursMemory(boxes, inThreads);
       const PairList truth =
           runReferenceFrame(steady, oursConfig(inThreads), boxes, timed, contenders[0]);
       for (std::size_t v = 0; v < variants.size(); ++v)
         runOursFrame(variant_engines[v], variants[v].config, boxes, truth, timed,
                      contenders[1 + v]);
       for (std::size_t p = 0; p < ioPeers.size(); ++p) {
-        if (!ioPeers[p]->ownProcess())
-          runPeerFrame(*ioPeers[p], boxes, truth, timed, contenders[first_peer + p], costs[p]);
+        // A peer in a process of its own measures its memory there (runPeerPass).
+        if (ioPeers[p]->ownProcess()) continue;
+        Contender& entry = contenders[first_peer + p];
+        PeakMeter meter;
+        if (measureMemory) meter.start();
+        runPeerFrame(*ioPeers[p], boxes, truth, timed, entry, costs[p]);
+        if (measureMemory && !entry.skipped_slow) entry.memory_bytes = meter.grownBytes();
       }
       if (ownProcessPeers(ioPeers) > 0) truths.push_back(truth);
       ioProgress.step(inCase.name);
@@ -168,6 +177,13 @@ std::vector<Contender> runCase(const BenchCase& inCase, int inFrames, int inRuns
         runPeerPass(*ioPeers[p], inCase, inFrames, truths, contenders[first_peer + p], costs[p],
                     ioProgress);
     }
+  }
+  std::vector<double>& medians = ioMedianCosts[sceneKey(inCase)];
+  medians.assign(ioPeers.size(), 0.0);
+  for (std::size_t p = 0; p < ioPeers.size(); ++p) {
+    const Contender& entry = contenders[first_peer + p];
+    if (!entry.one_shot_ms.empty())
+      medians[p] = (median(entry.one_shot_ms) + median(entry.steady_ms)) / inCase.n;
   }
   return contenders;
 }
@@ -240,8 +256,10 @@ void runPeers(const Options& inOptions) {
   std::map<std::string, Series> oneShotSeries, steadySeries;
   Progress progress("peers", cases.size() * frames * runs * (1 + ownProcessPeers(peers)));
   PeerCosts costs;
+  MedianCosts medianCosts;
   for (std::size_t c = 0; c < cases.size(); ++c) {
-    const auto contenders = runCase(cases[c], frames, runs, threads, peers, costs, progress);
+    const auto contenders =
+        runCase(cases[c], frames, runs, threads, peers, costs, medianCosts, progress);
     const double oursOnce = median(contenders[0].one_shot_ms);
     const double oursKept = median(contenders[0].steady_ms);
     double bestOnce = std::numeric_limits<double>::infinity(), bestKept = bestOnce;

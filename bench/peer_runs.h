@@ -19,6 +19,27 @@ namespace sap_bench {
 /// frame, when it was stopped there). A peer whose cost per box on an earlier case predicts
 /// more than this for a frame is not run on the case at all.
 constexpr double kSlowFrameMs = 20000.0;
+/// A peer whose first kSlowPeerTimedFrames timed frames (one-shot and steady together) took
+/// longer than this on average stops there, marked "(slow)" (its median is of those). Such peers
+/// (CGAL's cutoffs, the grid and FCL's trees at 2^20) are 3-20x slower than the default there,
+/// and their further frames took most of the peer experiment's 15 minutes on the 2-core VM
+/// (peers.csv's times, --frames 4) while moving no ratio the page reads.
+constexpr double kSlowPeerFrameMs = 1000.0;
+constexpr std::size_t kSlowPeerTimedFrames = 2;
+/// A peer whose first timed frame took longer than this (FCL's sweep-and-prune and interval
+/// tree at 2^17, Bullet on the 2^19-box ball: 10-600x the default) stops after it.
+constexpr double kVerySlowPeerFrameMs = 4000.0;
+
+/// FCL's sweep-and-prune and interval-tree managers keep, per box, every box overlapping it
+/// along one axis: on a clustered scene that is most of the scene. registerObjects() of the
+/// 2^19-box ball frame did not finish in ten minutes on the 2-core VM (perf: all of it in
+/// SaPCollisionManager::registerObjects), and one frame of the 2^17-box ball and plane frames
+/// took 120-180 s, so they are not run on clustered scenes (ball, plane) above this size
+/// (uniform and lattice cases predict their cost).
+constexpr std::size_t kMostClusteredBoxesForQuadratic = std::size_t{1} << 14;
+
+/// True when inPeerName is one of those managers and inCase a clustered scene above that size.
+bool quadraticOnClusters(const std::string& inPeerName, const BenchCase& inCase);
 
 /// Times, checks and memory of one contender over the frames of a case.
 struct Contender {

@@ -4,12 +4,13 @@
 #   scripts/bench.sh --all     every sap_bench experiment the page reads (a CSV and the PNGs
 #                              each), memory in a process of its own, the Python module's
 #                              script when the module is built, sap_microbench, the runs of
-#                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/, physx_sizes*/ when
-#                              PhysX is named), MPI ranks of this machine, and the runs
+#                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/, physx_sizes/
+#                              when PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
-#                              used; into bench/results/<machine>/ with machine.txt (about 80
-#                              minutes on 2 cores, more than half of it pareto, peers and coherence;
-#                              --experiments runs some). The default.
+#                              used; into bench/results/<machine>/ with machine.txt (about 45
+#                              minutes on an idle 2-core machine with PhysX, estimated from each
+#                              part's time: two fifths of it peers, peers_2p17/ and coherence, a
+#                              tenth the busy runs; --experiments runs some). The default.
 #   scripts/bench.sh --quick   the same, smallest sizes, a few frames and runs, no ROS and no
 #                              microbenchmarks (under a minute); into build/bench_quick/<machine>/.
 #                              The test command runs it as a smoke test (scripts/test_no_ros.sh).
@@ -33,8 +34,9 @@ set -eo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 WS="${SAP_WS:-$ROOT/build/ws}"
 OPTIONAL_PACKAGES=(libcgal-dev libtbb-dev libbullet-dev libfcl-dev gnuplot-nox)
-# Every experiment whose CSV docs/BENCHMARKS.md reads; memory runs on its own (below).
-EXPERIMENTS=fig1_sort,fig23_phases,fig4_stacked,dispersion,fig5_ball,fig6_plane,sizes,busy,threads,pareto,peers,coherence,skips,query,events
+# Every experiment whose CSV docs/BENCHMARKS.md reads; memory and peers run on their own
+# (below).
+EXPERIMENTS=fig1_sort,fig23_phases,fig4_stacked,dispersion,fig5_ball,fig6_plane,sizes,busy,threads,pareto,coherence,skips,query,events
 
 quick=0
 install=1
@@ -57,7 +59,7 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift ;;
     --physx) physx="$2"; shift ;;
     --) shift; bench_args=("$@"); break ;;
-    -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
     *) echo "bench.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -118,18 +120,23 @@ echo "bench.sh: results in $out"
 [ -n "$only" ] && { echo "bench.sh: done; results in $out"; exit 0; }
 # Memory in a process of its own, so earlier experiments' heap does not hide the peak.
 "$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e memory "${bench_args[@]}"
+# The peers with the frames the page's table states (frame 0 builds, medians of frames 1-3);
+# peers_2p17/ below keeps the default 6.
+peers_frames=(--frames 4)
+[ "$quick" -eq 1 ] && peers_frames=()
+"$bin/sap_bench" "${quick_flag[@]}" --out "$out" -e peers "${peers_frames[@]}" "${bench_args[@]}"
 
 # Runs of their own, each in a folder the page names: the busy machine at 2^17 and at 2^20
-# (fewer frames),
-# CGAL alone at 2^17, MPI ranks of this machine (not in --quick), and, when PhysX is named
-# (--physx; with --bin, the PhysX that sap_bench was built with), the size sweep beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17;
-# 20 at 2^20).
+# (fewer frames), the peers at 2^17, MPI ranks of this machine (not in --quick), and, when
+# PhysX is named (--physx; with --bin, the PhysX that sap_bench was built with), the size sweep
+# beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17). No 2^20 sweep of 20 frames beside
+# PhysX: the page reads none of it (its 2^20 rows are sizes.csv's).
 if [ "$quick" -eq 1 ]; then
   mid_busy=(--sizes 2^10 --frames 3); big_busy=(--sizes 2^12 --frames 3); big_peers=(--max-n 2^12)
-  physx_small=(--sizes 2^10 --frames 3); physx_big=(--sizes 2^12 --frames 3)
+  physx_small=(--sizes 2^10 --frames 3)
 else
   mid_busy=(--sizes 2^17); big_busy=(--sizes 2^20 --frames 20); big_peers=(--max-n 2^17)
-  physx_small=(--sizes 2^12,2^14,2^17 --frames 201); physx_big=(--sizes 2^20 --frames 21)
+  physx_small=(--sizes 2^12,2^14,2^17 --frames 201)
 fi
 run_in_folder() {  # folder experiment sap_bench-arguments...
   local folder="$out/$1" experiment=$2; shift 2
@@ -142,7 +149,6 @@ run_in_folder peers_2p17 peers "${big_peers[@]}"
 [ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed --max-n 2^20 "${bench_args[@]}"
 if [ -n "$physx" ]; then
   run_in_folder physx_sizes sizes "${physx_small[@]}" --threads 2
-  run_in_folder physx_sizes_2p20 sizes "${physx_big[@]}" --threads 2
 else
   echo "bench.sh: no PhysX named (--physx DIR): no physx_sizes/"
 fi
@@ -157,16 +163,20 @@ else
   echo "bench.sh: the Python module or rtree is missing: no python_*.csv"
 fi
 
+# The microbenchmarks the page cites (BM_SkinPass: the kept-candidate pass's target); the
+# whole suite (242 cases; the page reads no other) by hand.
 if [ "$micro" -eq 1 ] && [ -x "$bin/sap_microbench" ]; then
-  "$bin/sap_microbench" --benchmark_out="$out/microbench.csv" --benchmark_out_format=csv
+  "$bin/sap_microbench" --benchmark_filter=BM_SkinPass --benchmark_out="$out/microbench.csv" \
+    --benchmark_out_format=csv
 fi
 
-# Through ROS: the node against a nodelet at 2^20, the nodelet alone, small frames.
+# Through ROS: the node against a nodelet at 2^20, the nodelet alone, small frames; the
+# workspace was built above, so no set-up again.
 if [ "$ros" -eq 1 ]; then
-  "$ROOT/scripts/bench_ros.sh" --out "$out" -- --n 2^17,2^20 --density 0.05,0.35 --frames 10 \
-    --no-throughput
-  "$ROOT/scripts/bench_ros.sh" --out "$out/nodelet" -- --transport nodelet --n 2^17,2^20 \
-    --density 0.05,0.35 --frames 20 --no-throughput
-  "$ROOT/scripts/bench_ros.sh" --quick --out "$out/small_frames"
+  "$ROOT/scripts/bench_ros.sh" --no-setup --out "$out" -- --n 2^17,2^20 --density 0.05,0.35 \
+    --frames 10 --no-throughput
+  "$ROOT/scripts/bench_ros.sh" --no-setup --out "$out/nodelet" -- --transport nodelet \
+    --n 2^17,2^20 --density 0.05,0.35 --frames 20 --no-throughput
+  "$ROOT/scripts/bench_ros.sh" --no-setup --quick --out "$out/small_frames"
 fi
 echo "bench.sh: done; results in $out"

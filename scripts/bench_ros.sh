@@ -10,10 +10,14 @@
 # build/bench_ros_logs/ros_latency.log beside the build and ROS logs. Stops every process it
 # started, by PID, on exit or interrupt; every step is time-bound.
 #
-# Usage: scripts/bench_ros.sh [--quick] [--out DIR] [--limit S] [-- SAP_ROS_LATENCY_ARGS...]
+# Usage: scripts/bench_ros.sh [--quick] [--out DIR] [--limit S] [--no-setup]
+#                             [-- SAP_ROS_LATENCY_ARGS...]
 #   --quick     n = 2^12, 2^14, d = 0.05, few frames; results go to build/bench_quick/<machine>/
 #   --out DIR   write results to DIR instead
 #   --limit S   seconds sap_ros_latency may run (default 3000, quick 240)
+#   --no-setup  use the workspace as it is, without scripts/setup.sh (scripts/bench.sh has just
+#               built it; a set-up mirrors the sources again, and the results written since
+#               make it run catkin_make again)
 #   after --, arguments go to sap_ros_latency (e.g. -- --n 2^17 --density 0.05 --frames 30,
 #               or -- --transport nodelet)
 # Environment: SAP_WS (catkin workspace, default build/ws), SAP_BENCH_MACHINE (folder name,
@@ -23,6 +27,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 WS="${SAP_WS:-$ROOT/build/ws}"
 
 quick=0
+setup=1
 out=""
 limit=""
 extra=()
@@ -32,7 +37,8 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift ;;
     --limit) limit="$2"; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    --no-setup) setup=0 ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
     *) echo "bench_ros.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -50,12 +56,14 @@ out=$(cd "$out" && pwd)
 logs="$ROOT/build/bench_ros_logs"
 mkdir -p "$logs"
 
-echo "bench_ros.sh: set-up and build of $WS (log in $logs/setup.log)"
-if ! SAP_WS="$WS" timeout 3600 "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON \
-    >"$logs/setup.log" 2>&1; then
-  tail -n 20 "$logs/setup.log" >&2
-  echo "bench_ros.sh: set-up failed" >&2
-  exit 1
+if [ "$setup" -eq 1 ]; then
+  echo "bench_ros.sh: set-up and build of $WS (log in $logs/setup.log)"
+  if ! SAP_WS="$WS" timeout 3600 "$ROOT/scripts/setup.sh" -DSAP_BUILD_BENCHMARKS=ON \
+      >"$logs/setup.log" 2>&1; then
+    tail -n 20 "$logs/setup.log" >&2
+    echo "bench_ros.sh: set-up failed" >&2
+    exit 1
+  fi
 fi
 export SAP_WS="$WS"
 source "$ROOT/scripts/env.sh"
