@@ -4,8 +4,8 @@
 #   scripts/bench.sh --all     every sap_bench experiment the page reads (a CSV and the PNGs
 #                              each), memory in a process of its own, the Python module's
 #                              script when the module is built, sap_microbench, the runs of
-#                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/, physx_sizes/
-#                              when PhysX is named), MPI ranks of this machine, and the runs
+#                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/,
+#                              memory_2p23/, physx_sizes/ when PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
 #                              used; into bench/results/<machine>/ with machine.txt (about 45
 #                              minutes on an idle 2-core machine with PhysX, estimated from each
@@ -147,6 +147,9 @@ run_in_folder busy_2p17 busy "${mid_busy[@]}"
 run_in_folder busy_2p20 busy "${big_busy[@]}"
 run_in_folder peers_2p17 peers "${big_peers[@]}"
 [ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed --max-n 2^20 "${bench_args[@]}"
+# Memory at 2^23 (8.4 million boxes; a few GB a contender, one after the other, about 5
+# minutes): the size where users are bound by memory rather than time.
+[ "$quick" -eq 1 ] || run_in_folder memory_2p23 memory --sizes 2^23
 if [ -n "$physx" ]; then
   run_in_folder physx_sizes sizes "${physx_small[@]}" --threads 2
 else
