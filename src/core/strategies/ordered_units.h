@@ -10,6 +10,7 @@
 
 #include "core/runner/buffers.h"
 #include "core/runner/work_units.h"
+#include "core/sweep/radix_sort.h"
 
 namespace sap_broadphase {
 
@@ -33,6 +34,27 @@ void appendItemsWhere(const WorkUnits& inUnits, Keep&& inKeep, Buffer<uint32_t>&
     uint32_t* out = ioOut.data() + start[inUnit];
     for (std::size_t i = inUnits.begin(inUnit); i < inUnits.end(inUnit); ++i)
       if (inKeep(i)) *out++ = static_cast<uint32_t>(i);
+  });
+}
+
+/// radixIndexSort's result (outIndex[k]: the index of the k-th smallest of inKeys, equal keys
+/// in index order), with the keys packed and the indexes unpacked on the workers and the packed
+/// lists in buffers that nothing zeroes; the sort itself goes to the workers from
+/// radixSortPacked's threshold on.
+inline void indexesByKey(const uint32_t* inKeys, std::size_t inCount, uint32_t* outIndex) {
+  if (inCount == 0) return;
+  Buffer<uint64_t> items;
+  Buffer<uint64_t> scratch;
+  resizeDiscarding(items, inCount);
+  resizeDiscarding(scratch, inCount);
+  const WorkUnits units{inCount};
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t i = inBegin; i < inEnd; ++i)
+      items[i] = packKeyIndex(inKeys[i], static_cast<uint32_t>(i));
+  });
+  const uint64_t* sorted = radixSortPacked(items.data(), scratch.data(), inCount);
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) outIndex[k] = static_cast<uint32_t>(sorted[k]);
   });
 }
 

@@ -377,7 +377,7 @@ void SkinList::keepSpatialOrder() {
   runOverItems(WorkUnits{spatial_count}, [&](std::size_t inBegin, std::size_t inEnd) {
     for (std::size_t j = inBegin; j < inEnd; ++j) keys[j] = lowKey(low[members[j]]);
   });
-  radixIndexSort(keys.data(), spatial_count, order.data());
+  indexesByKey(keys.data(), spatial_count, order.data());
   resizeDiscarding(position_of_, n);
   runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
     std::fill(position_of_.begin() + static_cast<std::ptrdiff_t>(inBegin),

@@ -228,7 +228,7 @@ void SkinReuse::snapshotSuccessor(const BoxColumns& inSwept, double inSkin, int 
   });
   Buffer<uint32_t> order;
   resizeDiscarding(order, n);
-  radixIndexSort(keys.data(), static_cast<uint32_t>(n), order.data());
+  indexesByKey(keys.data(), n, order.data());
   next_.order.swap(order);
   resizeDiscarding(next_.high_in_order, n);
   runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
@@ -297,7 +297,7 @@ void SkinReuse::sweepSuccessorSlab() {
   // (read above for the last time) holds the real id of each rank.
   Buffer<uint32_t>& by_id = next_.slab_by_id;
   resizeDiscarding(by_id, count);
-  radixIndexSort(boxes.ids.data(), static_cast<uint32_t>(count), by_id.data());
+  indexesByKey(boxes.ids.data(), count, by_id.data());
   Buffer<uint32_t>& id_of_rank = members;
   runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
     for (std::size_t rank = inBegin; rank < inEnd; ++rank)
