@@ -37,6 +37,33 @@ void appendItemsWhere(const WorkUnits& inUnits, Keep&& inKeep, Buffer<uint32_t>&
   });
 }
 
+/// ioValues[i] becomes the sum of ioValues[0..i]: each unit sums its own values, the units'
+/// sums are added up in unit order, then each unit adds its offset to its running sums (whole
+/// numbers: the same for any thread count).
+template <class T>
+void prefixSumInUnits(T* ioValues, std::size_t inCount) {
+  const WorkUnits units{inCount};
+  std::vector<T> offset(units.count(), T{0});
+  runUnits(units.count(), [&](std::size_t inUnit) {
+    T sum{0};
+    for (std::size_t i = units.begin(inUnit); i < units.end(inUnit); ++i) sum += ioValues[i];
+    offset[inUnit] = sum;
+  });
+  T running{0};
+  for (T& unit_offset : offset) {
+    const T sum = unit_offset;
+    unit_offset = running;
+    running += sum;
+  }
+  runUnits(units.count(), [&](std::size_t inUnit) {
+    T sum = offset[inUnit];
+    for (std::size_t i = units.begin(inUnit); i < units.end(inUnit); ++i) {
+      sum += ioValues[i];
+      ioValues[i] = sum;
+    }
+  });
+}
+
 /// radixIndexSort's result (outIndex[k]: the index of the k-th smallest of inKeys, equal keys
 /// in index order), with the keys packed and the indexes unpacked on the workers and the packed
 /// lists in buffers that nothing zeroes; the sort itself goes to the workers from

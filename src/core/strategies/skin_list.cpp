@@ -77,11 +77,21 @@ class IndexOfId {
  public:
   explicit IndexOfId(const std::vector<uint32_t>& inIds) {
     const std::size_t n = inIds.size();
-    const uint32_t largest = n == 0 ? 0 : *std::max_element(inIds.begin(), inIds.end());
+    const WorkUnits units{n};
+    const uint32_t largest = reduceOverItems(
+        units, uint32_t{0},
+        [&](std::size_t inBegin, std::size_t inEnd) {
+          return *std::max_element(inIds.begin() + static_cast<std::ptrdiff_t>(inBegin),
+                                   inIds.begin() + static_cast<std::ptrdiff_t>(inEnd));
+        },
+        [](uint32_t& ioAll, const uint32_t& inPart) { ioAll = std::max(ioAll, inPart); });
     dense_ = largest < 4 * n + 1024;
     if (dense_) {
-      slots_.assign(std::size_t{largest} + 1, 0);
-      for (std::size_t i = 0; i < n; ++i) slots_[inIds[i]] = static_cast<uint32_t>(i);
+      // Ids are distinct: each unit writes its own slots, and only ids' slots are ever read.
+      resizeDiscarding(slots_, std::size_t{largest} + 1);
+      runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+        for (std::size_t i = inBegin; i < inEnd; ++i) slots_[inIds[i]] = static_cast<uint32_t>(i);
+      });
       return;
     }
     while ((std::size_t{1} << shift_bits_) < 2 * n) ++shift_bits_;
@@ -109,7 +119,7 @@ class IndexOfId {
   std::size_t next(std::size_t inSlot) const {
     return (inSlot + 1) & ((std::size_t{1} << shift_bits_) - 1);
   }
-  std::vector<uint32_t> slots_;
+  Buffer<uint32_t> slots_;
   int shift_bits_ = 1;
   bool dense_ = true;
 };
@@ -421,10 +431,14 @@ void SkinList::keepSpatialCandidates() {
         ++run_count[first_of[k]];
     }
   });
-  for (std::size_t first = 0; first < spatial_count; ++first)
-    run_begin_[first + 1] += run_begin_[first];
+  prefixSumInUnits(run_count, spatial_count);
   Buffer<uint32_t>& fill = scratch_.fill;  // by first position: its next candidate's place
-  fill.assign(run_begin_.begin(), run_begin_.end() - 1);
+  resizeDiscarding(fill, spatial_count);
+  runOverItems(WorkUnits{spatial_count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    std::copy(run_begin_.begin() + static_cast<std::ptrdiff_t>(inBegin),
+              run_begin_.begin() + static_cast<std::ptrdiff_t>(inEnd),
+              fill.begin() + static_cast<std::ptrdiff_t>(inBegin));
+  });
   Buffer<uint32_t>& placed = scratch_.members;  // reused: the members are sorted already
   resizeDiscarding(placed, count);
   runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {

@@ -197,7 +197,8 @@ void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, FrameReport& ioRepor
 
 // Step 1: the frame's boxes grown by inSkin, ordered by grown low end on the axis where they
 // spread widest (a slab of that order holds boxes near each other). The passes over the boxes
-// run on the frame's threads; the sort of the keys is serial.
+// run on the frame's threads, and so does the sort of the keys from radixSortPacked's
+// threshold on.
 void SkinReuse::snapshotSuccessor(const BoxColumns& inSwept, double inSkin, int inSlabs) {
   next_.skin = inSkin;
   next_.age = 0;
