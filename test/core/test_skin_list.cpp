@@ -10,6 +10,7 @@
 
 #include "core/runner/work_units.h"
 #include "core/strategies/skin_list.h"
+#include "core/strategies/small_frame.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
 
@@ -204,6 +205,41 @@ TEST(SkinList, HubBoxesAndTakenListsMatchOracle) {
       expectExactForAllThreadCounts(list, movedWithin(boxes, skin / 2, random),
                                     "a frame with hub boxes inside the skins");
   }
+}
+
+// The adoption's parts run on the runner's workers: kept at 1, 2 and 4 threads (with more
+// candidates and boxes than one unit of work, hub boxes among them, sparse shuffled ids and
+// filters), the lists are the same in every array, and exact.
+TEST(SkinList, AdoptionIsTheSameForAnyThreadCount) {
+  BoxColumns boxes = test_support::shuffledSubset(
+      columnsOf(test_support::randomBoxes(24000, 36.0, 2.0, 51)), 0.95, true, 51);
+  for (std::size_t hub = 0; hub < boxes.size(); hub += 2000) {
+    for (int axis = 0; axis < 3; ++axis) {
+      boxes.lo[axis][hub] -= 6.0;
+      boxes.hi[axis][hub] += 6.0;
+    }
+  }
+  test_support::addRandomFilters(boxes, 51);
+  const double skin = 0.5;
+  SkinList one_thread;
+  SmallFrameWorkspace kernel;
+  PairList candidates;
+  pairSmallFrame(one_thread.inflate(boxes, skin), kernel, candidates);
+  ASSERT_GT(candidates.size(), 2 * kUnitBoxes);  // several units in every pass over them
+  {
+    const ThreadsScope scope(1);
+    one_thread.adopt(boxes, candidates);
+  }
+  for (const int threads : {2, 4}) {
+    const ThreadsScope scope(threads);
+    SkinList list;
+    list.inflate(boxes, skin);
+    list.adopt(boxes, candidates);
+    EXPECT_TRUE(list.sameCandidates(one_thread)) << threads << " threads";
+  }
+  TestRandom random(51);
+  expectExactForAllThreadCounts(one_thread, movedWithin(boxes, skin / 2, random),
+                                "a list adopted on one thread");
 }
 
 // Kept again and again (as every rebuild does), of other sizes: each list is exact.

@@ -7,6 +7,7 @@
 #include "core/frame/frame_plan.h"
 #include "core/runner/work_units.h"
 #include "core/strategies/skin_reuse.h"
+#include "core/strategies/small_frame.h"
 #include "sap_broadphase/core/broadphase.h"
 #include "sap_broadphase/core/brute_force.h"
 #include "test_support.h"
@@ -154,6 +155,59 @@ TEST(SkinReuse, SuccessorsBuiltAStepAFrameTakeOverAndAnswerExactly) {
       EXPECT_FALSE(skin.buildingSuccessor());
     }
   }
+}
+
+// The successor's snapshot, slabs and adoption run on the runner's workers: three skins, at
+// 1, 2 and 4 threads, fed the same drifting frames (more boxes than one unit of work in each
+// slab, sparse shuffled ids and filters), keep the same candidates, laid out the same, at
+// every frame, and answer the same pairs (a frame they do not cover is swept grown, by the
+// small-frame kernel, as the engine would).
+TEST(SkinReuse, SuccessorsAreTheSameForAnyThreadCount) {
+  // A list lives 8 frames: a successor of 4 slabs, each of more boxes than a unit of work.
+  constexpr double kMotion = 0.03;
+  BoxColumns boxes = test_support::shuffledSubset(
+      columnsOf(test_support::randomBoxes(80000, 54.0, 1.5, 61)), 0.9, true, 61);
+  test_support::addRandomFilters(boxes, 61);
+  test_support::TestRandom random(61);
+  std::vector<double> velocity(3 * boxes.size());
+  for (double& v : velocity) v = random.between(-kMotion, kMotion);
+  const int thread_counts[] = {1, 2, 4};
+  SkinReuse skins[3];
+  FrameDelta delta;
+  delta.relation = FrameRelation::kSameIds;
+  delta.max_displacement = kMotion;
+  int swept_frames = 0;
+  for (int frame = 0; frame <= 30; ++frame) {
+    for (std::size_t i = 0; frame > 0 && i < boxes.size(); ++i) {
+      for (int axis = 0; axis < 3; ++axis) {
+        boxes.lo[axis][i] += velocity[3 * i + axis];
+        boxes.hi[axis][i] += velocity[3 * i + axis];
+      }
+    }
+    PairList one_thread_pairs;
+    for (int run = 0; run < 3; ++run) {
+      SCOPED_TRACE(testing::Message() << thread_counts[run] << " threads, frame " << frame);
+      const ThreadsScope scope(thread_counts[run]);
+      FrameReport report;
+      PairList pairs;
+      if (frame > 0) skins[run].startFrame(delta);
+      if (frame > 0 && skins[run].coversFrame(boxes, report)) {
+        skins[run].answerFromCandidates(report, pairs);
+        skins[run].advanceSuccessor(boxes, report);
+      } else {
+        SmallFrameWorkspace kernel;
+        pairSmallFrame(skins[run].grow(boxes, kSkin, report), kernel, pairs);
+        skins[run].keepAndAnswer(boxes, report, pairs);
+        swept_frames += run == 0 ? 1 : 0;
+      }
+      if (run == 0) one_thread_pairs = pairs;
+      EXPECT_EQ(pairs, one_thread_pairs);
+      EXPECT_EQ(skins[run].successorsTaken(), skins[0].successorsTaken());
+      EXPECT_TRUE(skins[run].keptCandidates().sameCandidates(skins[0].keptCandidates()));
+    }
+  }
+  EXPECT_GE(skins[0].successorsTaken(), 2u);
+  EXPECT_LT(swept_frames, 8);
 }
 
 TEST(SkinReuse, MotionIsTheLargestDisplacementOfTheRecentWindow) {

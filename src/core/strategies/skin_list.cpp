@@ -13,6 +13,7 @@
 #include "core/assert.h"
 #include "core/runner/buffers.h"
 #include "core/runner/work_units.h"
+#include "core/strategies/ordered_units.h"
 #include "core/sweep/radix_sort.h"
 #include "core/sweep/sort_keys.h"
 #include "core/tuning.h"
@@ -76,11 +77,21 @@ class IndexOfId {
  public:
   explicit IndexOfId(const std::vector<uint32_t>& inIds) {
     const std::size_t n = inIds.size();
-    const uint32_t largest = n == 0 ? 0 : *std::max_element(inIds.begin(), inIds.end());
+    const WorkUnits units{n};
+    const uint32_t largest = reduceOverItems(
+        units, uint32_t{0},
+        [&](std::size_t inBegin, std::size_t inEnd) {
+          return *std::max_element(inIds.begin() + static_cast<std::ptrdiff_t>(inBegin),
+                                   inIds.begin() + static_cast<std::ptrdiff_t>(inEnd));
+        },
+        [](uint32_t& ioAll, const uint32_t& inPart) { ioAll = std::max(ioAll, inPart); });
     dense_ = largest < 4 * n + 1024;
     if (dense_) {
-      slots_.assign(std::size_t{largest} + 1, 0);
-      for (std::size_t i = 0; i < n; ++i) slots_[inIds[i]] = static_cast<uint32_t>(i);
+      // Ids are distinct: each unit writes its own slots, and only ids' slots are ever read.
+      resizeDiscarding(slots_, std::size_t{largest} + 1);
+      runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+        for (std::size_t i = inBegin; i < inEnd; ++i) slots_[inIds[i]] = static_cast<uint32_t>(i);
+      });
       return;
     }
     while ((std::size_t{1} << shift_bits_) < 2 * n) ++shift_bits_;
@@ -108,28 +119,52 @@ class IndexOfId {
   std::size_t next(std::size_t inSlot) const {
     return (inSlot + 1) & ((std::size_t{1} << shift_bits_) - 1);
   }
-  std::vector<uint32_t> slots_;
+  Buffer<uint32_t> slots_;
   int shift_bits_ = 1;
   bool dense_ = true;
+};
+
+/// The lowest and highest finite lower bound on each axis of some boxes, combined over units in
+/// any grouping with the same result.
+struct FiniteLowSpread {
+  double low[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                   std::numeric_limits<double>::infinity()};
+  double high[3] = {-std::numeric_limits<double>::infinity(),
+                    -std::numeric_limits<double>::infinity(),
+                    -std::numeric_limits<double>::infinity()};
+  void add(const FiniteLowSpread& inOther) {
+    for (int axis = 0; axis < 3; ++axis) {
+      low[axis] = std::min(low[axis], inOther.low[axis]);
+      high[axis] = std::max(high[axis], inOther.high[axis]);
+    }
+  }
 };
 
 /// The axis along which the finite lower bounds of inMembers spread widest: sorting along it
 /// puts the fewest boxes between a box and its partners.
 int widestAxis(const BoxColumns& inBoxes, const Buffer<uint32_t>& inMembers) {
+  const FiniteLowSpread spread = reduceOverItems(
+      WorkUnits{inMembers.size()}, FiniteLowSpread(),
+      [&](std::size_t inBegin, std::size_t inEnd) {
+        FiniteLowSpread part;
+        for (int axis = 0; axis < 3; ++axis) {
+          const double* low = inBoxes.lo[axis].data();
+          for (std::size_t j = inBegin; j < inEnd; ++j) {
+            const double value = low[inMembers[j]];
+            if (!std::isfinite(value)) continue;
+            part.low[axis] = std::min(part.low[axis], value);
+            part.high[axis] = std::max(part.high[axis], value);
+          }
+        }
+        return part;
+      },
+      [](FiniteLowSpread& ioAll, const FiniteLowSpread& inPart) { ioAll.add(inPart); });
   int widest = 0;
   double widest_spread = -1.0;
   for (int axis = 0; axis < 3; ++axis) {
-    double low = std::numeric_limits<double>::infinity();
-    double high = -low;
-    for (uint32_t i : inMembers) {
-      const double value = inBoxes.lo[axis][i];
-      if (!std::isfinite(value)) continue;
-      low = std::min(low, value);
-      high = std::max(high, value);
-    }
-    if (high - low > widest_spread) {
+    if (spread.high[axis] - spread.low[axis] > widest_spread) {
       widest = axis;
-      widest_spread = high - low;
+      widest_spread = spread.high[axis] - spread.low[axis];
     }
   }
   return widest;
@@ -282,6 +317,13 @@ bool SkinList::continueAdopt(const BoxColumns& inBoxes) {
   return true;
 }
 
+bool SkinList::sameCandidates(const SkinList& inOther) const {
+  return valid_ == inOther.valid_ && spatial_count_ == inOther.spatial_count_ &&
+         canonical_pairs_ == inOther.canonical_pairs_ && position_of_ == inOther.position_of_ &&
+         run_begin_ == inOther.run_begin_ && partner_positions_ == inOther.partner_positions_ &&
+         canonical_slots_ == inOther.canonical_slots_;
+}
+
 bool SkinList::holdsEveryCandidate() const {
   const std::size_t count = canonical_pairs_.size();
   if (partner_positions_.size() != count || canonical_slots_.size() != count ||
@@ -306,10 +348,12 @@ void SkinList::keepBoxIndexes(const BoxColumns& inBoxes) {
   const IndexOfId index_of(inBoxes.ids);
   resizeDiscarding(canonical_slots_, count);
   resizeDiscarding(partner_positions_, count);
-  for (std::size_t k = 0; k < count; ++k) {
-    canonical_slots_[k] = index_of(canonical_pairs_[k].a);
-    partner_positions_[k] = index_of(canonical_pairs_[k].b);
-  }
+  runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) {
+      canonical_slots_[k] = index_of(canonical_pairs_[k].a);
+      partner_positions_[k] = index_of(canonical_pairs_[k].b);
+    }
+  });
 }
 
 // The boxes that have candidates, sorted by their inflated lower bound's sort key along the
@@ -320,24 +364,39 @@ void SkinList::keepSpatialOrder() {
   const std::size_t count = canonical_pairs_.size();
   Buffer<uint8_t>& has_candidates = scratch_.has_candidates;
   has_candidates.assign(n, 0);
-  for (std::size_t k = 0; k < count; ++k)
-    has_candidates[canonical_slots_[k]] = has_candidates[partner_positions_[k]] = 1;
+  uint8_t* has = has_candidates.data();
+  // Units of candidates may mark the same box: each mark is a relaxed atomic store of the same
+  // value, so the marks are the same whichever unit writes last.
+  runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) {
+      __atomic_store_n(has + canonical_slots_[k], uint8_t{1}, __ATOMIC_RELAXED);
+      __atomic_store_n(has + partner_positions_[k], uint8_t{1}, __ATOMIC_RELAXED);
+    }
+  });
   Buffer<uint32_t>& members = scratch_.members;
   members.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (has_candidates[i]) members.push_back(static_cast<uint32_t>(i));
+  appendItemsWhere(
+      WorkUnits{n}, [&](std::size_t inBox) { return has[inBox] != 0; }, members);
   const auto spatial_count = static_cast<uint32_t>(members.size());
   const int axis = widestAxis(reference_, members);
   Buffer<uint32_t>& keys = scratch_.keys;
   Buffer<uint32_t>& order = scratch_.order;
   resizeDiscarding(keys, spatial_count);
   resizeDiscarding(order, spatial_count);
-  for (uint32_t j = 0; j < spatial_count; ++j) keys[j] = lowKey(reference_.lo[axis][members[j]]);
-  radixIndexSort(keys.data(), spatial_count, order.data());
+  const double* low = reference_.lo[axis].data();
+  runOverItems(WorkUnits{spatial_count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t j = inBegin; j < inEnd; ++j) keys[j] = lowKey(low[members[j]]);
+  });
+  indexesByKey(keys.data(), spatial_count, order.data());
   resizeDiscarding(position_of_, n);
-  std::fill(position_of_.begin(), position_of_.end(), spatial_count);
-  for (uint32_t position = 0; position < spatial_count; ++position)
-    position_of_[members[order[position]]] = position;
+  runOverItems(WorkUnits{n}, [&](std::size_t inBegin, std::size_t inEnd) {
+    std::fill(position_of_.begin() + static_cast<std::ptrdiff_t>(inBegin),
+              position_of_.begin() + static_cast<std::ptrdiff_t>(inEnd), spatial_count);
+  });
+  runOverItems(WorkUnits{spatial_count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t position = inBegin; position < inEnd; ++position)
+      position_of_[members[order[position]]] = static_cast<uint32_t>(position);
+  });
   spatial_count_ = spatial_count;
 }
 
@@ -345,6 +404,11 @@ void SkinList::keepSpatialOrder() {
 // place, then one scatter puts each partner at its candidate's place (in a scratch list of the
 // candidates' size, the only one adopt() needs) and leaves the place in the candidate's slot
 // entry, which the slots' own scatter then reads.
+//
+// On several threads the counts and the places are taken with atomic additions, so the order
+// of a run's candidates depends on the threads until sortRunsByPartner() sorts each run by
+// partner: a run's partners differ (the candidates are distinct pairs), so the sorted runs, and
+// the slots they carry, are the same for any thread count. One thread counts without atomics.
 void SkinList::keepSpatialCandidates() {
   const std::size_t count = canonical_pairs_.size();
   const std::size_t spatial_count = spatial_count_;
@@ -352,27 +416,53 @@ void SkinList::keepSpatialCandidates() {
   uint32_t* partner_of = partner_positions_.data();
   resizeDiscarding(run_begin_, spatial_count + 1);
   std::fill(run_begin_.begin(), run_begin_.end(), 0u);
-  for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t a = position_of_[first_of[k]];
-    const uint32_t b = position_of_[partner_of[k]];
-    first_of[k] = std::min(a, b);
-    partner_of[k] = std::max(a, b);
-    ++run_begin_[first_of[k] + 1];
-  }
-  for (std::size_t first = 0; first < spatial_count; ++first)
-    run_begin_[first + 1] += run_begin_[first];
+  uint32_t* run_count = run_begin_.data() + 1;
+  const bool shared = passThreads() > 1;
+  const WorkUnits units{count};
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) {
+      const uint32_t a = position_of_[first_of[k]];
+      const uint32_t b = position_of_[partner_of[k]];
+      first_of[k] = std::min(a, b);
+      partner_of[k] = std::max(a, b);
+      if (shared)
+        __atomic_fetch_add(run_count + first_of[k], 1u, __ATOMIC_RELAXED);
+      else
+        ++run_count[first_of[k]];
+    }
+  });
+  prefixSumInUnits(run_count, spatial_count);
   Buffer<uint32_t>& fill = scratch_.fill;  // by first position: its next candidate's place
-  fill.assign(run_begin_.begin(), run_begin_.end() - 1);
+  resizeDiscarding(fill, spatial_count);
+  runOverItems(WorkUnits{spatial_count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    std::copy(run_begin_.begin() + static_cast<std::ptrdiff_t>(inBegin),
+              run_begin_.begin() + static_cast<std::ptrdiff_t>(inEnd),
+              fill.begin() + static_cast<std::ptrdiff_t>(inBegin));
+  });
   Buffer<uint32_t>& placed = scratch_.members;  // reused: the members are sorted already
   resizeDiscarding(placed, count);
-  for (std::size_t k = 0; k < count; ++k) {
-    const uint32_t place = fill[first_of[k]]++;
-    placed[place] = partner_of[k];
-    first_of[k] = place;  // from here on: candidate k's place
-  }
-  std::copy(placed.begin(), placed.end(), partner_positions_.begin());
-  for (std::size_t k = 0; k < count; ++k) placed[first_of[k]] = static_cast<uint32_t>(k);
-  std::copy(placed.begin(), placed.end(), canonical_slots_.begin());
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) {
+      const uint32_t place =
+          shared ? __atomic_fetch_add(fill.data() + first_of[k], 1u, __ATOMIC_RELAXED)
+                 : fill[first_of[k]]++;
+      placed[place] = partner_of[k];
+      first_of[k] = place;  // from here on: candidate k's place
+    }
+  });
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+    std::copy(placed.begin() + static_cast<std::ptrdiff_t>(inBegin),
+              placed.begin() + static_cast<std::ptrdiff_t>(inEnd),
+              partner_positions_.begin() + static_cast<std::ptrdiff_t>(inBegin));
+  });
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t k = inBegin; k < inEnd; ++k) placed[first_of[k]] = static_cast<uint32_t>(k);
+  });
+  runOverItems(units, [&](std::size_t inBegin, std::size_t inEnd) {
+    std::copy(placed.begin() + static_cast<std::ptrdiff_t>(inBegin),
+              placed.begin() + static_cast<std::ptrdiff_t>(inEnd),
+              canonical_slots_.begin() + static_cast<std::ptrdiff_t>(inBegin));
+  });
 }
 
 // Each run of one first position sorted by partner, its slots carried along: runs hold a few
@@ -380,32 +470,34 @@ void SkinList::keepSpatialCandidates() {
 // words).
 void SkinList::sortRunsByPartner() {
   constexpr uint32_t kShortRun = 32;
-  std::vector<uint64_t> packed;
-  for (uint32_t first = 0; first < spatial_count_; ++first) {
-    const uint32_t begin = run_begin_[first], end = run_begin_[first + 1];
-    uint32_t* partner = partner_positions_.data();
-    uint32_t* slot = canonical_slots_.data();
-    if (end - begin <= kShortRun) {
-      for (uint32_t k = begin + 1; k < end; ++k) {
-        const uint32_t key = partner[k], carried = slot[k];
-        uint32_t j = k;
-        for (; j > begin && partner[j - 1] > key; --j) {
-          partner[j] = partner[j - 1];
-          slot[j] = slot[j - 1];
+  uint32_t* partner = partner_positions_.data();
+  uint32_t* slot = canonical_slots_.data();
+  runOverItems(WorkUnits{spatial_count_}, [&](std::size_t inBegin, std::size_t inEnd) {
+    std::vector<uint64_t> packed;
+    for (std::size_t first = inBegin; first < inEnd; ++first) {
+      const uint32_t begin = run_begin_[first], end = run_begin_[first + 1];
+      if (end - begin <= kShortRun) {
+        for (uint32_t k = begin + 1; k < end; ++k) {
+          const uint32_t key = partner[k], carried = slot[k];
+          uint32_t j = k;
+          for (; j > begin && partner[j - 1] > key; --j) {
+            partner[j] = partner[j - 1];
+            slot[j] = slot[j - 1];
+          }
+          partner[j] = key;
+          slot[j] = carried;
         }
-        partner[j] = key;
-        slot[j] = carried;
+        continue;
       }
-      continue;
+      packed.clear();
+      for (uint32_t k = begin; k < end; ++k) packed.push_back(uint64_t{partner[k]} << 32 | slot[k]);
+      std::sort(packed.begin(), packed.end());
+      for (uint32_t k = begin; k < end; ++k) {
+        partner[k] = static_cast<uint32_t>(packed[k - begin] >> 32);
+        slot[k] = static_cast<uint32_t>(packed[k - begin]);
+      }
     }
-    packed.clear();
-    for (uint32_t k = begin; k < end; ++k) packed.push_back(uint64_t{partner[k]} << 32 | slot[k]);
-    std::sort(packed.begin(), packed.end());
-    for (uint32_t k = begin; k < end; ++k) {
-      partner[k] = static_cast<uint32_t>(packed[k - begin] >> 32);
-      slot[k] = static_cast<uint32_t>(packed[k - begin]);
-    }
-  }
+  });
 }
 
 bool SkinList::gather(const BoxColumns& inBoxes) {

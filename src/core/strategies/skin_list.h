@@ -96,6 +96,9 @@ class SkinList {
   bool valid() const { return valid_; }
   /// Number of candidate pairs kept.
   std::size_t candidates() const { return canonical_pairs_.size(); }
+  /// True when inOther keeps the same candidates laid out the same way (spatial order, runs,
+  /// partners and slots): tests check with it that the thread count changes nothing.
+  bool sameCandidates(const SkinList& inOther) const;
   /// Forgets the candidates (the next frame sweeps).
   void clear() { valid_ = frame_gathered_ = false; }
 

@@ -73,6 +73,8 @@ class SkinReuse {
 
   /// True while a successor is built or ready (for tests).
   bool buildingSuccessor() const { return next_.steps > 0; }
+  /// The kept candidates (for tests).
+  const SkinList& keptCandidates() const { return kept_; }
   /// Times a ready successor took over from the kept candidates (for tests).
   std::size_t successorsTaken() const { return successors_taken_; }
 
@@ -123,7 +125,7 @@ class SkinReuse {
     Buffer<uint32_t> slab_members;  // positions of the slab's boxes
     BoxColumns slab_boxes;          // one slab's boxes and those before it that reach into it
     SmallFrameWorkspace kernel;
-    PairSortScratch sort;
+    Buffer<uint32_t> slab_by_id;  // the slab's boxes by real id (the kernel's ids: their ranks)
   } next_;
   std::size_t successors_taken_ = 0;
   // The smallest skin whose grown sweep went over the candidate budget, and at how many
