@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/assert.h"
+#include "core/runner/memory_policy.h"
 #include "core/runner/phase_timer.h"
 #include "core/sweep/axis_spread.h"
 #include "core/sweep/radix_sort.h"
@@ -48,6 +49,16 @@ constexpr int kSuccessorSlackFrames = 1;
 constexpr int kAdoptSteps = 2;
 constexpr int kAdoptPartsPerStep = (SkinList::kAdoptParts + kAdoptSteps - 1) / kAdoptSteps;
 
+// Bytes of boxes' columns (capacities).
+std::size_t columnBytes(const BoxColumns& inBoxes) {
+  std::size_t bytes =
+      (inBoxes.ids.capacity() + inBoxes.groups.capacity() + inBoxes.masks.capacity()) *
+      sizeof(uint32_t);
+  for (int axis = 0; axis < 3; ++axis)
+    bytes += (inBoxes.lo[axis].capacity() + inBoxes.hi[axis].capacity()) * sizeof(double);
+  return bytes;
+}
+
 }  // namespace
 
 void SkinReuse::startFrame(const FrameDelta& inDelta) {
@@ -72,13 +83,18 @@ bool SkinReuse::coversFrame(const BoxColumns& inSwept, FrameReport& ioReport) {
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer pass_timer(times_.ms_pass);
   if (kept_.gather(inSwept)) return true;
-  if (!next_.ready || !next_.list.gather(inSwept)) return false;
+  if (!next_.ready) return false;
+  // The kept candidates no longer cover the frame: whichever answers it (the successor, or a
+  // sweep that replaces them), they answer no other. Given back before the successor's first
+  // pass sizes its buffers, so the two lists' passes are never resident together.
+  kept_.releaseCandidates();
+  if (!next_.list.gather(inSwept)) return false;
   // The successor covers the frame (its own containment check): it takes over.
   std::swap(kept_, next_.list);
   skin_ = next_.skin;
   kept_age_ = next_.age;
   ++successors_taken_;
-  abandonSuccessor();
+  recycleSuccessor();
   return true;
 }
 
@@ -126,11 +142,73 @@ void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, FrameReport& ioReport, 
   answerFromCandidates(ioReport, ioPairs);
 }
 
+// Given up (a sweep or a small frame forgets the kept candidates, or its candidates went over
+// the budget): every buffer goes, so that none is held through the frames that follow.
 void SkinReuse::abandonSuccessor() {
-  next_.list.clear();
-  next_.steps = 0;
-  next_.ready = false;
-  next_.found.clear();
+  const bool built = next_.steps > 0;
+  next_ = Successor();
+  if (built) returnFreedHeapPages();  // its pair lists (and the replaced candidates'), in the heap
+}
+
+// Taken over: its list holds the replaced candidates' grown boxes (their candidates already
+// given back), whose columns the next snapshot reuses; every other buffer goes.
+void SkinReuse::recycleSuccessor() {
+  SkinList replaced = std::move(next_.list);
+  next_ = Successor();
+  next_.list = std::move(replaced);
+  returnFreedHeapPages();  // the replaced candidates' pair list, freed into the heap
+}
+
+// After the last slab: the order, the slab's buffers, the kernel's workspace and the sorting
+// scratch are dead; given back before the adoption sizes the candidates' arrays.
+void SkinReuse::releaseSlabWork() {
+  Buffer<uint32_t>().swap(next_.order);
+  Buffer<double>().swap(next_.high_in_order);
+  PairList().swap(next_.slab_pairs);
+  Buffer<uint32_t>().swap(next_.slab_members);
+  next_.slab_boxes = BoxColumns();
+  next_.kernel = SmallFrameWorkspace();
+  next_.sort = PairSortScratch();
+  returnFreedHeapPages();  // the slab's pair lists, freed into the heap
+}
+
+// inSlabPairs (canonical, none in found) merged into found in place, from the back: no second
+// list of all the candidates found. found is reserved for the candidates the slabs still to
+// come are expected to add (as many a slab as so far), so that it is reallocated about once.
+void SkinReuse::mergeSlabPairs(const PairList& inSlabPairs) {
+  PairList& found = next_.found;
+  const std::size_t before = found.size();
+  const std::size_t after = before + inSlabPairs.size();
+  if (after > found.capacity()) {
+    const auto swept = static_cast<std::size_t>(next_.steps);  // slabs swept with this one
+    const std::size_t expected = after * static_cast<std::size_t>(next_.slabs) / swept;
+    found.reserve(expected + expected / 8);
+    // Made resident in one call, not a fault a page as the pairs arrive (buffers.h).
+    populatePages(found.data() + before, (found.capacity() - before) * sizeof(IdPair));
+  }
+  found.resize(after);
+  std::size_t from_found = before;
+  std::size_t from_slab = inSlabPairs.size();
+  for (std::size_t to = after; from_slab > 0;) {
+    if (from_found > 0 && inSlabPairs[from_slab - 1] < found[from_found - 1])
+      found[--to] = found[--from_found];
+    else
+      found[--to] = inSlabPairs[--from_slab];
+  }
+}
+
+SkinReuse::SuccessorMemoryUse SkinReuse::successorMemoryUse() const {
+  SuccessorMemoryUse use;
+  use.list = next_.list.memoryUse();
+  use.found = next_.found.capacity() * sizeof(IdPair);
+  use.order =
+      next_.order.capacity() * sizeof(uint32_t) + next_.high_in_order.capacity() * sizeof(double);
+  use.slab = next_.slab_pairs.capacity() * sizeof(IdPair) +
+             next_.slab_members.capacity() * sizeof(uint32_t) + columnBytes(next_.slab_boxes);
+  use.kernel = next_.kernel.bytesHeld();
+  use.sort = next_.sort.pairs.capacity() * sizeof(IdPair) +
+             next_.sort.offsets.capacity() * sizeof(uint32_t);
+  return use;
 }
 
 // The plan's skin s lets a list live L = s / (2 motion) frames from its snapshot. Building a
@@ -158,6 +236,7 @@ void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, FrameReport& ioRepor
   } else if (next_.steps <= next_.slabs) {
     sweepSuccessorSlab();
   } else {
+    if (next_.steps == next_.slabs + 1) releaseSlabWork();
     adoptSuccessor();
   }
 }
@@ -245,10 +324,7 @@ void SkinReuse::sweepSuccessorSlab() {
   }
   pairs.resize(kept);
   sortPairsCanonical(pairs, next_.sort);
-  next_.merged.resize(next_.found.size() + pairs.size());
-  std::merge(next_.found.begin(), next_.found.end(), pairs.begin(), pairs.end(),
-             next_.merged.begin());
-  next_.found.swap(next_.merged);
+  mergeSlabPairs(pairs);
   ++next_.steps;
 }
 
