@@ -147,7 +147,7 @@ void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, FrameReport& ioReport, 
 void SkinReuse::abandonSuccessor() {
   const bool built = next_.steps > 0;
   next_ = Successor();
-  if (built) returnFreedHeapPages();  // its pair lists (and the replaced candidates'), in the heap
+  if (built) returnFreedHeapPages();  // its pair lists, freed into the heap
 }
 
 // Taken over: its list holds the replaced candidates' grown boxes (their candidates already

@@ -75,8 +75,6 @@ class SkinReuse {
   bool buildingSuccessor() const { return next_.steps > 0; }
   /// Times a ready successor took over from the kept candidates (for tests).
   std::size_t successorsTaken() const { return successors_taken_; }
-  /// True when a successor is adopted and waits to take over (for tests).
-  bool successorReady() const { return next_.ready; }
 
   /// Bytes the successor holds (capacities), by part: for the memory experiment
   /// (bench/exp_memory.cpp) and tests. Its slab sweep's buffers (order, slab, kernel, sort) are
@@ -135,17 +133,18 @@ class SkinReuse {
   // candidate arrays are the build's memory peak; when it takes over, all but the replaced
   // candidates' grown boxes, whose columns the next snapshot reuses (recycleSuccessor).
   struct Successor {
-    SkinList list;                  // the snapshot's grown boxes, then its candidates
-    double skin = 0.0;              // the skin it was grown by
-    int age = 0;                    // frames since its snapshot
-    int slabs = 0;                  // slabs of its sweep
-    int steps = 0;                  // steps taken; 0: none being built
-    bool ready = false;             // adopted: it may take over
-    int axis = 0;                   // the axis of its order
-    Buffer<uint32_t> order;         // box indexes by grown low end on that axis
-    Buffer<double> high_in_order;   // their grown high ends on it, in that order
-    PairList found;                 // candidates found so far, canonical (merged in place)
-    PairList slab_pairs;            // one slab's
+    SkinList list;                 // the snapshot's grown boxes, then its candidates
+    double skin = 0.0;             // the skin it was grown by
+    int age = 0;                   // frames since its snapshot
+    int slabs = 0;                 // slabs of its sweep
+    int steps = 0;                 // steps taken; 0: none being built
+    bool ready = false;            // adopted: it may take over
+    int axis = 0;                  // the axis of its order
+    Buffer<uint32_t> order;        // box indexes by grown low end on that axis
+    Buffer<double> high_in_order;  // their grown high ends on it, in that order
+    PairList found;                // candidates found so far, canonical (merged in place)
+    PairList slab_pairs;           // one slab's
+
     Buffer<uint32_t> slab_members;  // positions of the slab's boxes
     BoxColumns slab_boxes;          // one slab's boxes and those before it that reach into it
     SmallFrameWorkspace kernel;
