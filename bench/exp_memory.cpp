@@ -14,8 +14,14 @@
 // engine's chosen skin runs them: the history (the engine's copy of the frame and its change
 // flags), the sweep's working buffers (keys, ranks, candidate ranges, sort and pairing scratch:
 // the resident growth of one plain sweep beyond its pair list), one pair list, the grown boxes,
-// the kept candidates, a kept-candidate pass's buffers and the skin's sorting scratch. Capacities
-// where the engine's part can tell them (history, skin), resident growth for the sweep.
+// the kept candidates, a kept-candidate pass's buffers and the skin's sorting scratch; the
+// small-frame kernel's workspace on the grown boxes (the grown sweep of two threads or fewer);
+// then the successor that the kept-candidate frames build a step a frame, beside the kept
+// candidates it will replace: at the slab step where it held most, its grown boxes, the
+// candidates its slabs found, its order, one slab's buffers, the slab kernel's workspace and
+// the slab's ids; at the adoption step where it held most, its candidates and adoption scratch
+// (each phase's total includes its grown boxes). Capacities where the engine's part can tell them
+// (history, skin, kernel, successor), resident growth for the sweep.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -29,6 +35,8 @@
 #include "bench_scenes.h"
 #include "core/frame/frame_history.h"
 #include "core/strategies/skin_list.h"
+#include "core/strategies/skin_reuse.h"
+#include "core/strategies/small_frame.h"
 #include "core/sweep/axis_spread.h"
 #include "core/sweep/sweep_and_prune.h"
 #include "engine_runner.h"
@@ -69,6 +77,50 @@ double chosenSkin(const sap_broadphase::SceneConfig& inScene, int inThreads) {
   return skin;
 }
 
+/// What a successor held at its largest step, while its slabs were swept and while it was
+/// adopted (all zero if it never took over).
+struct LargestSuccessor {
+  sap_broadphase::SkinReuse::SuccessorMemoryUse sweeping;
+  sap_broadphase::SkinReuse::SuccessorMemoryUse adopting;
+};
+
+/// The successor of kept candidates grown by inSkin from ioHistory's loaded frame, built over
+/// the frames of ioSimulator that follow (kept-candidate frames, as the engine runs them) until it
+/// takes over.
+LargestSuccessor largestSuccessor(sap_broadphase::SceneSimulator& ioSimulator,
+                                  sap_broadphase::FrameHistory& ioHistory, double inSkin) {
+  using namespace sap_broadphase;
+  constexpr int kMostFrames = 400;
+  SkinReuse skin;
+  FrameReport report;
+  PairList pairs;
+  {
+    const BoxColumns& boxes = ioHistory.loaded();
+    const BoxColumns& grown = skin.grow(boxes, inSkin, report);
+    FrameSpread grown_spread(grown);
+    SmallFrameWorkspace kernel;
+    pairSmallFrame(grown, grown_spread, kernel, pairs);
+    skin.keepAndAnswer(boxes, report, pairs);
+  }
+  ioHistory.remember();
+  LargestSuccessor largest;
+  std::optional<ValidationError> problem;
+  for (int frame = 0; frame < kMostFrames && skin.successorsTaken() == 0; ++frame) {
+    ioSimulator.step();
+    const FrameDelta& delta = ioHistory.load(ioSimulator.boxes(), problem);
+    skin.startFrame(delta);
+    if (!skin.coversFrame(ioHistory.loaded(), report)) return LargestSuccessor();
+    skin.answerFromCandidates(report, pairs);
+    skin.advanceSuccessor(ioHistory.loaded(), report);
+    const SkinReuse::SuccessorMemoryUse use = skin.successorMemoryUse();
+    // Adopting once the slabs' candidates are the list's: the adoption's arrays are sized.
+    auto& phase = use.list.candidates > 0 ? largest.adopting : largest.sweeping;
+    if (use.total() > phase.total()) phase = use;
+    ioHistory.remember();
+  }
+  return skin.successorsTaken() > 0 ? largest : LargestSuccessor();
+}
+
 /// One row per structure of the parts table.
 void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& ioTable) {
   using namespace sap_broadphase;
@@ -99,9 +151,19 @@ void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& 
     sweep.run(grown, grown_spread, FramePath::kParallel, report, pairs);
   }
   const std::size_t candidates = pairs.size();
+  SmallFrameWorkspace kernel;
+  {
+    FrameSpread grown_spread(grown);
+    PairList kernel_pairs;
+    pairSmallFrame(grown, grown_spread, kernel, kernel_pairs);
+  }
+  const std::size_t kernel_bytes = kernel.bytesHeld();
+  kernel = SmallFrameWorkspace();
   kept.adopt(boxes, std::move(pairs));
   if (kept.gather(boxes)) kept.collectGathered(pairs);
   const SkinList::MemoryUse skin = kept.memoryUse();
+  kept = SkinList();
+  const LargestSuccessor successor = largestSuccessor(simulator, history, inSkin);
   const auto row = [&](const std::string& inPart, std::size_t inBytes, const std::string& inHow) {
     ioTable.addRow({fmtSize(n), fmt(inScene.density, 2), fmt(inSkin, 3), fmtCount(frame_pairs),
                     fmtCount(candidates), inPart, fmtCount(inBytes), perBox(inBytes, n), inHow});
@@ -113,6 +175,21 @@ void addParts(const sap_broadphase::SceneConfig& inScene, double inSkin, Table& 
   row("kept_candidates", skin.candidates, "capacity");
   row("pass_buffers", skin.pass, "capacity");
   row("skin_scratch", skin.scratch, "capacity");
+  row("small_frame_kernel", kernel_bytes, "capacity");
+  const std::string sweeping = "capacity at its largest slab step";
+  const SkinReuse::SuccessorMemoryUse& slabs = successor.sweeping;
+  row("successor_grown_boxes", slabs.list.reference, sweeping);
+  row("successor_found", slabs.found, sweeping);
+  row("successor_order", slabs.order, sweeping);
+  row("successor_slab", slabs.slab, sweeping);
+  row("successor_slab_kernel", slabs.kernel, sweeping);
+  row("successor_slab_ids", slabs.slab_ids, sweeping);
+  row("successor_sweeping_total", slabs.total(), sweeping);
+  const std::string adopting = "capacity at its largest adoption step";
+  const SkinReuse::SuccessorMemoryUse& adoption = successor.adopting;
+  row("successor_candidates", adoption.list.candidates, adopting);
+  row("successor_adopt_scratch", adoption.list.scratch, adopting);
+  row("successor_adopting_total", adoption.total(), adopting);
 }
 
 /// The peak memory of one contender's steady frames, measured in a process of its own.

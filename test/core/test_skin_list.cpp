@@ -253,5 +253,30 @@ TEST(SkinList, KeptAgainAfterEachSweepMatchesOracle) {
   }
 }
 
+// releaseCandidates() gives back the candidates and a pass's buffers but keeps the grown
+// boxes' columns, which the next inflate() reuses; the list answers nothing until the next
+// adopt(), then exactly.
+TEST(SkinList, ReleasedCandidatesKeepTheGrownBoxesForTheNextInflate) {
+  const BoxColumns boxes = columnsOf(test_support::randomBoxes(2000, 25.0, 3.0, 7));
+  SkinList list;
+  keepCandidates(list, boxes, 0.5);
+  expectExactForAllThreadCounts(list, boxes, "kept");
+  const SkinList::MemoryUse kept = list.memoryUse();
+  ASSERT_GT(kept.candidates, 0u);
+  ASSERT_GT(kept.pass, 0u);
+  list.releaseCandidates();
+  EXPECT_FALSE(list.valid());
+  EXPECT_EQ(list.candidates(), 0u);
+  EXPECT_FALSE(list.covers(boxes));
+  const SkinList::MemoryUse released = list.memoryUse();
+  EXPECT_EQ(released.candidates, 0u);
+  EXPECT_EQ(released.pass, 0u);
+  EXPECT_EQ(released.reference, kept.reference);
+  const BoxColumns moved = columnsOf(test_support::randomBoxes(2000, 25.0, 3.0, 8));
+  keepCandidates(list, moved, 0.5);
+  EXPECT_EQ(list.memoryUse().reference, kept.reference) << "the same columns, reused";
+  expectExactForAllThreadCounts(list, moved, "kept after a release");
+}
+
 }  // namespace
 }  // namespace sap_broadphase

@@ -210,6 +210,66 @@ TEST(SkinReuse, SuccessorsAreTheSameForAnyThreadCount) {
   EXPECT_LT(swept_frames, 8);
 }
 
+// The successor's memory through its build: its slab sweep's buffers are held from its snapshot
+// to its last slab only (none during the adoption, whose candidate arrays are the build's
+// peak), and once it has taken over only the grown boxes' columns of the candidates it replaced
+// (the next snapshot's), until the next snapshot; nothing once it is given up.
+TEST(SkinReuse, SuccessorGivesBackItsSlabWorkBeforeAdoptingAndAllOfItWhenItTakesOver) {
+  constexpr double kMotion = 0.01;
+  const ThreadsScope two(2);
+  BoxColumns boxes = columnsOf(test_support::randomBoxes(3000, 40.0, 1.5, 41));
+  test_support::TestRandom random(17);
+  std::vector<double> velocity(3 * boxes.size());
+  for (double& v : velocity) v = random.between(-kMotion, kMotion);
+  SkinReuse skin;
+  FrameReport report;
+  PairList pairs = bruteForcePairs(skin.grow(boxes, kSkin, report));
+  skin.keepAndAnswer(boxes, report, pairs);
+  EXPECT_EQ(skin.successorMemoryUse().total(), 0u) << "no successor yet";
+  FrameDelta delta;
+  delta.relation = FrameRelation::kSameIds;
+  delta.max_displacement = kMotion;
+  int slab_frames = 0, adopting_frames = 0, frames_after_takeover = 0;
+  for (int frame = 1; frame <= 80; ++frame) {
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      for (int axis = 0; axis < 3; ++axis) {
+        boxes.lo[axis][i] += velocity[3 * i + axis];
+        boxes.hi[axis][i] += velocity[3 * i + axis];
+      }
+    }
+    const std::size_t taken = skin.successorsTaken();
+    skin.startFrame(delta);
+    ASSERT_TRUE(skin.coversFrame(boxes, report)) << "frame " << frame;
+    if (skin.successorsTaken() > taken) {
+      ++frames_after_takeover;
+      // Only the replaced candidates' grown boxes, for the next snapshot.
+      const SkinReuse::SuccessorMemoryUse left = skin.successorMemoryUse();
+      EXPECT_EQ(left.list.candidates + left.list.pass, 0u) << "frame " << frame;
+      EXPECT_EQ(left.found + left.order + left.slab + left.kernel + left.slab_ids, 0u)
+          << "frame " << frame;
+      EXPECT_GT(skin.keptMemoryUse().candidates, 0u) << "frame " << frame;
+    }
+    skin.answerFromCandidates(report, pairs);
+    ASSERT_EQ(pairs, bruteForcePairs(boxes)) << "frame " << frame;
+    skin.advanceSuccessor(boxes, report);
+    const SkinReuse::SuccessorMemoryUse use = skin.successorMemoryUse();
+    if (use.found > 0 && use.list.candidates == 0) {
+      ++slab_frames;  // slabs swept: the order is held for the next
+      EXPECT_GT(use.order, 0u) << "frame " << frame;
+    }
+    if (use.list.candidates > 0) {
+      ++adopting_frames;
+      EXPECT_EQ(use.found, 0u) << "frame " << frame << ": taken by the list, not copied";
+      EXPECT_EQ(use.order + use.slab + use.kernel + use.slab_ids, 0u) << "frame " << frame;
+    }
+  }
+  EXPECT_GT(slab_frames, 0);
+  EXPECT_GT(adopting_frames, 0);
+  EXPECT_GT(frames_after_takeover, 0);
+  skin.forget();
+  EXPECT_EQ(skin.successorMemoryUse().total(), 0u);
+}
+
 TEST(SkinReuse, MotionIsTheLargestDisplacementOfTheRecentWindow) {
   SkinReuse skin;
   FrameDelta delta;

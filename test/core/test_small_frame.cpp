@@ -45,6 +45,23 @@ void expectGridMatches(const BoxColumns& inBoxes, const std::string& inLabel) {
   }
 }
 
+// bytesHeld() counts the workspace's buffers: none when fresh, some once a frame sized them,
+// the same when a frame of the same boxes reuses them.
+TEST(SmallFrameWorkspace, BytesHeldCountsItsBuffers) {
+  const BoxColumns boxes = columnsOf(test_support::randomBoxes(3000, 40.0, 1.5, 5));
+  SmallFrameWorkspace work;
+  EXPECT_EQ(work.bytesHeld(), 0u);
+  PairList pairs;
+  const ThreadsScope two(2);
+  pairSmallFrame(boxes, work, pairs);
+  const std::size_t held = work.bytesHeld();
+  EXPECT_GE(held, boxes.size() * 6 * sizeof(float)) << "at least the boxes' rounded bounds";
+  pairSmallFrame(boxes, work, pairs);
+  EXPECT_EQ(work.bytesHeld(), held);
+  work = SmallFrameWorkspace();
+  EXPECT_EQ(work.bytesHeld(), 0u);
+}
+
 TEST(SmallFrameGrid, RandomScenesOfManyCellCounts) {
   const auto per_cell = static_cast<std::size_t>(tuning::kSmallFrameBoxesPerCell);
   for (std::size_t n : {4 * per_cell + 100, 9 * per_cell + 100, 40 * per_cell}) {

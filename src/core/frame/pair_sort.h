@@ -81,6 +81,8 @@ class PairChunks {
   std::size_t size() const {
     return used_chunks_ == 0 ? 0 : (used_chunks_ - 1) * kChunkPairs + fill_;
   }
+  /// Bytes of the chunks held (used or kept for reuse).
+  std::size_t bytesHeld() const { return chunks_.size() * kChunkPairs * sizeof(IdPair); }
   /// Calls inVisit(pair) for every pair, in insertion order.
   template <typename Visit>
   void forEach(Visit&& inVisit) const {

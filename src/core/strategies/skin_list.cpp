@@ -201,6 +201,7 @@ void SkinList::releaseCandidates() {
   Buffer<BoundsRecord>().swap(gathered_);
   Buffer<uint64_t>().swap(verdicts_);
   spatial_count_ = 0;
+  valid_ = frame_gathered_ = false;
 }
 
 SkinList::MemoryUse SkinList::memoryUse() const {

@@ -101,6 +101,9 @@ class SkinList {
   bool sameCandidates(const SkinList& inOther) const;
   /// Forgets the candidates (the next frame sweeps).
   void clear() { valid_ = frame_gathered_ = false; }
+  /// Forgets the candidates and gives back their memory and a pass's, keeping the grown boxes'
+  /// columns for the next inflate() to reuse.
+  void releaseCandidates();
 
   /// Bytes held (capacities), by part: for the memory experiment (bench/exp_memory.cpp).
   struct MemoryUse {
@@ -115,7 +118,6 @@ class SkinList {
   bool sameCounts(const BoxColumns& inBoxes) const;
   bool sameIdsAndFilters(const BoxColumns& inBoxes, std::size_t inBegin, std::size_t inEnd) const;
   bool holdsEveryCandidate() const;
-  void releaseCandidates();
   std::size_t scratchBytes() const;
   void keepBoxIndexes(const BoxColumns& inBoxes);
   void keepSpatialOrder();

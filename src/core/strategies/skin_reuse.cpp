@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/assert.h"
+#include "core/runner/memory_policy.h"
 #include "core/runner/phase_timer.h"
 #include "core/runner/work_units.h"
 #include "core/strategies/ordered_units.h"
@@ -81,6 +82,16 @@ LowEndSpread lowEndSpread(const BoxColumns& inBoxes, std::size_t inBegin, std::s
   return spread;
 }
 
+// Bytes of boxes' columns (capacities).
+std::size_t columnBytes(const BoxColumns& inBoxes) {
+  std::size_t bytes =
+      (inBoxes.ids.capacity() + inBoxes.groups.capacity() + inBoxes.masks.capacity()) *
+      sizeof(uint32_t);
+  for (int axis = 0; axis < 3; ++axis)
+    bytes += (inBoxes.lo[axis].capacity() + inBoxes.hi[axis].capacity()) * sizeof(double);
+  return bytes;
+}
+
 }  // namespace
 
 void SkinReuse::startFrame(const FrameDelta& inDelta) {
@@ -105,13 +116,18 @@ bool SkinReuse::coversFrame(const BoxColumns& inSwept, FrameReport& ioReport) {
   PhaseTimer timer(ioReport.ms_skin);
   PhaseTimer pass_timer(times_.ms_pass);
   if (kept_.gather(inSwept)) return true;
-  if (!next_.ready || !next_.list.gather(inSwept)) return false;
+  if (!next_.ready) return false;
+  // The kept candidates no longer cover the frame: whichever answers it (the successor, or a
+  // sweep that replaces them), they answer no other. Given back before the successor's first
+  // pass sizes its buffers, so the two lists' passes are never resident together.
+  kept_.releaseCandidates();
+  if (!next_.list.gather(inSwept)) return false;
   // The successor covers the frame (its own containment check): it takes over.
   std::swap(kept_, next_.list);
   skin_ = next_.skin;
   kept_age_ = next_.age;
   ++successors_taken_;
-  abandonSuccessor();
+  recycleSuccessor();
   return true;
 }
 
@@ -159,11 +175,75 @@ void SkinReuse::keepAndAnswer(const BoxColumns& inSwept, FrameReport& ioReport, 
   answerFromCandidates(ioReport, ioPairs);
 }
 
+// Given up (a sweep or a small frame forgets the kept candidates, or its candidates went over
+// the budget): every buffer goes, so that none is held through the frames that follow.
 void SkinReuse::abandonSuccessor() {
-  next_.list.clear();
-  next_.steps = 0;
-  next_.ready = false;
-  next_.found.clear();
+  const bool built = next_.steps > 0;
+  next_ = Successor();
+  if (built) returnFreedHeapPages();  // its pair lists, freed into the heap
+}
+
+// Taken over: its list holds the replaced candidates' grown boxes (their candidates already
+// given back), whose columns the next snapshot reuses; every other buffer goes.
+void SkinReuse::recycleSuccessor() {
+  SkinList replaced = std::move(next_.list);
+  next_ = Successor();
+  next_.list = std::move(replaced);
+}
+
+// After the last slab: the order, the slab's buffers, the kernel's workspace and the sorting
+// scratch are dead; given back before the adoption sizes the candidates' arrays.
+void SkinReuse::releaseSlabWork() {
+  Buffer<uint32_t>().swap(next_.order);
+  Buffer<double>().swap(next_.high_in_order);
+  PairList().swap(next_.slab_pairs);
+  Buffer<uint32_t>().swap(next_.slab_members);
+  next_.slab_boxes = BoxColumns();
+  next_.kernel = SmallFrameWorkspace();
+  Buffer<uint32_t>().swap(next_.slab_by_id);
+  // The slab's pair lists, freed into the heap: out of the resident set before the adoption's
+  // arrays join it (measured at 2^17, d = 0.35: 10 bytes a box off the peak). Not done when the
+  // successor takes over, which is no peak: there it only made the next lists fault again.
+  returnFreedHeapPages();
+}
+
+// inSlabPairs (canonical, none in found) merged into found in place, from the back: no second
+// list of all the candidates found. found is reserved for the candidates the slabs still to
+// come are expected to add (as many a slab as so far), so that it is reallocated about once.
+void SkinReuse::mergeSlabPairs(const PairList& inSlabPairs) {
+  PairList& found = next_.found;
+  const std::size_t before = found.size();
+  const std::size_t after = before + inSlabPairs.size();
+  if (after > found.capacity()) {
+    const auto swept = static_cast<std::size_t>(next_.steps);  // slabs swept with this one
+    const std::size_t expected = after * static_cast<std::size_t>(next_.slabs) / swept;
+    found.reserve(expected + expected / 8);
+  }
+  // This slab's part made resident in one call, not a fault a page as it is written (buffers.h);
+  // the parts of the slabs to come, when they come, so that no one slab's frame pays for all.
+  populatePages(found.data() + before, (after - before) * sizeof(IdPair));
+  found.resize(after);
+  std::size_t from_found = before;
+  std::size_t from_slab = inSlabPairs.size();
+  for (std::size_t to = after; from_slab > 0;) {
+    if (from_found > 0 && inSlabPairs[from_slab - 1] < found[from_found - 1])
+      found[--to] = found[--from_found];
+    else
+      found[--to] = inSlabPairs[--from_slab];
+  }
+}
+
+SkinReuse::SuccessorMemoryUse SkinReuse::successorMemoryUse() const {
+  SuccessorMemoryUse use;
+  use.list = next_.list.memoryUse();
+  use.found = next_.found.capacity() * sizeof(IdPair);
+  use.order =
+      next_.order.capacity() * sizeof(uint32_t) + next_.high_in_order.capacity() * sizeof(double);
+  use.slab = next_.slab_pairs.capacity() * sizeof(IdPair) +
+             next_.slab_members.capacity() * sizeof(uint32_t) + columnBytes(next_.slab_boxes);
+  use.kernel = next_.kernel.bytesHeld();
+  use.slab_ids = next_.slab_by_id.capacity() * sizeof(uint32_t);
+  return use;
 }
 
 // The plan's skin s lets a list live L = s / (2 motion) frames from its snapshot. Building a
@@ -191,6 +271,7 @@ void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, FrameReport& ioRepor
   } else if (next_.steps <= next_.slabs) {
     sweepSuccessorSlab();
   } else {
+    if (next_.steps == next_.slabs + 1) releaseSlabWork();
     adoptSuccessor();
   }
 }
@@ -343,8 +424,7 @@ void SkinReuse::sweepSuccessorSlab() {
   }
   pairs.resize(kept);
   SAP_ASSERT(isCanonical(pairs), "a slab's pairs out of canonical order after the ranks");
-  mergeInUnits(next_.found, pairs, next_.merged);
-  next_.found.swap(next_.merged);
+  mergeSlabPairs(pairs);
   ++next_.steps;
 }
 

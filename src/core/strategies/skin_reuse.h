@@ -78,6 +78,25 @@ class SkinReuse {
   /// Times a ready successor took over from the kept candidates (for tests).
   std::size_t successorsTaken() const { return successors_taken_; }
 
+  /// Bytes the successor holds (capacities), by part: for the memory experiment
+  /// (bench/exp_memory.cpp) and tests. Its slab sweep's buffers (order, slab, kernel, slab ids) are
+  /// held from its snapshot to its last slab only, the rest until it takes over or is given up.
+  struct SuccessorMemoryUse {
+    SkinList::MemoryUse list;  ///< its grown boxes, then its candidates (SkinList's parts)
+    std::size_t found = 0;     ///< the candidates its slabs found so far
+    std::size_t order = 0;     ///< box order and grown high ends along its sort axis
+    std::size_t slab = 0;      ///< one slab's boxes, positions and pairs
+    std::size_t kernel = 0;    ///< the small-frame kernel's workspace that sweeps a slab
+    std::size_t slab_ids = 0;  ///< the slab's boxes by real id (the kernel's ids are their ranks)
+    std::size_t total() const {
+      return list.reference + list.candidates + list.pass + list.scratch + found + order + slab +
+             kernel + slab_ids;
+    }
+  };
+  SuccessorMemoryUse successorMemoryUse() const;
+  /// Bytes the kept candidates hold, by part (SkinList::memoryUse).
+  SkinList::MemoryUse keptMemoryUse() const { return kept_.memoryUse(); }
+
   /// What the plan weighs.
   bool hasCandidates() const { return kept_.valid(); }
   double skin() const { return skin_; }
@@ -95,6 +114,9 @@ class SkinReuse {
   void learnPassCosts(double inMilliseconds, double inBoxes);
   void keepNoCandidates(const BoxColumns& inSwept, FrameReport& ioReport, PairList& ioPairs);
   void abandonSuccessor();
+  void recycleSuccessor();
+  void releaseSlabWork();
+  void mergeSlabPairs(const PairList& inSlabPairs);
   void snapshotSuccessor(const BoxColumns& inSwept, double inSkin, int inSlabs);
   void sweepSuccessorSlab();
   void adoptSuccessor();
@@ -109,6 +131,9 @@ class SkinReuse {
   // boxes and sorts it by grown low end on one axis; steps 2..slabs+1 sweep one slab of that
   // order each, keeping the pairs whose later box (in the order) lies in the slab; the last
   // step adopts them. Ready, they wait for the kept candidates to stop covering a frame.
+  // The buffers of the slab sweep are given back before the adoption (releaseSlabWork), whose
+  // candidate arrays are the build's memory peak; when it takes over, all but the replaced
+  // candidates' grown boxes, whose columns the next snapshot reuses (recycleSuccessor).
   struct Successor {
     SkinList list;                 // the snapshot's grown boxes, then its candidates
     double skin = 0.0;             // the skin it was grown by
@@ -119,9 +144,9 @@ class SkinReuse {
     int axis = 0;                  // the axis of its order
     Buffer<uint32_t> order;        // box indexes by grown low end on that axis
     Buffer<double> high_in_order;  // their grown high ends on it, in that order
-    PairList found;                // candidates found so far, canonical
+    PairList found;                // candidates found so far, canonical (merged in place)
     PairList slab_pairs;           // one slab's
-    PairList merged;
+
     Buffer<uint32_t> slab_members;  // positions of the slab's boxes
     BoxColumns slab_boxes;          // one slab's boxes and those before it that reach into it
     SmallFrameWorkspace kernel;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "core/assert.h"
 #include "core/runner/buffers.h"
@@ -474,6 +475,19 @@ void pairWith(const BoxColumns& inBoxes, FrameSpread& ioSpread, SmallFrameWorksp
 }
 
 }  // namespace
+
+std::size_t SmallFrameWorkspace::bytesHeld() const {
+  const auto bytesOf = [](const auto& inVector) {
+    return inVector.capacity() * sizeof(typename std::decay_t<decltype(inVector)>::value_type);
+  };
+  std::size_t bytes = bytesOf(order) + bytesOf(scratch) + bytesOf(bounds) + bytesOf(box_of) +
+                      bytesOf(cell_start) + bytesOf(cell_range) + bytesOf(unit_cell_count) +
+                      bytesOf(unit_first_cell) + bytesOf(pairs_per_worker) +
+                      bytesOf(pair_scratch.pairs) + bytesOf(pair_scratch.offsets);
+  for (int axis = 0; axis < 3; ++axis) bytes += bytesOf(lo[axis]) + bytesOf(hi[axis]);
+  for (const PairChunks& pairs : pairs_per_worker) bytes += pairs.bytesHeld();
+  return bytes;
+}
 
 int chooseSmallFrameAxis(FrameSpread& ioSpread) {
   int best_axis = 0;

@@ -48,6 +48,9 @@ struct SmallFrameWorkspace {
   /// workers throw TooManyPairs.
   std::size_t max_pairs = SIZE_MAX;
   uint32_t grid_cells = 1;  ///< cells of the last frame's grid (1: one sweep of all boxes)
+
+  /// Bytes held (capacities): for the memory experiment (bench/exp_memory.cpp).
+  std::size_t bytesHeld() const;
 };
 
 /// The sweep axis of a small frame: the one whose mean box extent is smallest relative to the
