@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/runner/buffers.h"
@@ -13,6 +14,22 @@
 #include "core/sweep/radix_sort.h"
 
 namespace sap_broadphase {
+
+/// The lowest and highest of some values on each axis (e.g. the low ends of some boxes), combined
+/// over units in any grouping with the same result.
+struct AxisRanges {
+  double low[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                   std::numeric_limits<double>::infinity()};
+  double high[3] = {-std::numeric_limits<double>::infinity(),
+                    -std::numeric_limits<double>::infinity(),
+                    -std::numeric_limits<double>::infinity()};
+  void add(const AxisRanges& inOther) {
+    for (int axis = 0; axis < 3; ++axis) {
+      low[axis] = std::min(low[axis], inOther.low[axis]);
+      high[axis] = std::max(high[axis], inOther.high[axis]);
+    }
+  }
+};
 
 /// The items i of inUnits for which inKeep(i) holds, in increasing order, appended to ioOut:
 /// each unit counts its items, then writes them behind those of the units before it (inKeep

@@ -124,29 +124,13 @@ class IndexOfId {
   bool dense_ = true;
 };
 
-/// The lowest and highest finite lower bound on each axis of some boxes, combined over units in
-/// any grouping with the same result.
-struct FiniteLowSpread {
-  double low[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                   std::numeric_limits<double>::infinity()};
-  double high[3] = {-std::numeric_limits<double>::infinity(),
-                    -std::numeric_limits<double>::infinity(),
-                    -std::numeric_limits<double>::infinity()};
-  void add(const FiniteLowSpread& inOther) {
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = std::min(low[axis], inOther.low[axis]);
-      high[axis] = std::max(high[axis], inOther.high[axis]);
-    }
-  }
-};
-
 /// The axis along which the finite lower bounds of inMembers spread widest: sorting along it
 /// puts the fewest boxes between a box and its partners.
 int widestAxis(const BoxColumns& inBoxes, const Buffer<uint32_t>& inMembers) {
-  const FiniteLowSpread spread = reduceOverItems(
-      WorkUnits{inMembers.size()}, FiniteLowSpread(),
+  const AxisRanges spread = reduceOverItems(
+      WorkUnits{inMembers.size()}, AxisRanges(),
       [&](std::size_t inBegin, std::size_t inEnd) {
-        FiniteLowSpread part;
+        AxisRanges part;
         for (int axis = 0; axis < 3; ++axis) {
           const double* low = inBoxes.lo[axis].data();
           for (std::size_t j = inBegin; j < inEnd; ++j) {
@@ -158,7 +142,7 @@ int widestAxis(const BoxColumns& inBoxes, const Buffer<uint32_t>& inMembers) {
         }
         return part;
       },
-      [](FiniteLowSpread& ioAll, const FiniteLowSpread& inPart) { ioAll.add(inPart); });
+      [](AxisRanges& ioAll, const AxisRanges& inPart) { ioAll.add(inPart); });
   int widest = 0;
   double widest_spread = -1.0;
   for (int axis = 0; axis < 3; ++axis) {

@@ -54,24 +54,8 @@ constexpr int kSuccessorSlackFrames = 1;
 constexpr int kAdoptSteps = 2;
 constexpr int kAdoptPartsPerStep = (SkinList::kAdoptParts + kAdoptSteps - 1) / kAdoptSteps;
 
-// The lowest and highest grown low end on each axis of a range of boxes (the successor's
-// choice of axis), combined over units in any grouping with the same result.
-struct LowEndSpread {
-  double low[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                   std::numeric_limits<double>::infinity()};
-  double high[3] = {-std::numeric_limits<double>::infinity(),
-                    -std::numeric_limits<double>::infinity(),
-                    -std::numeric_limits<double>::infinity()};
-  void add(const LowEndSpread& inOther) {
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = std::min(low[axis], inOther.low[axis]);
-      high[axis] = std::max(high[axis], inOther.high[axis]);
-    }
-  }
-};
-
-LowEndSpread lowEndSpread(const BoxColumns& inBoxes, std::size_t inBegin, std::size_t inEnd) {
-  LowEndSpread spread;
+AxisRanges lowEndSpread(const BoxColumns& inBoxes, std::size_t inBegin, std::size_t inEnd) {
+  AxisRanges spread;
   for (int axis = 0; axis < 3; ++axis) {
     const double* low = inBoxes.lo[axis].data();
     for (std::size_t i = inBegin; i < inEnd; ++i) {
@@ -289,10 +273,10 @@ void SkinReuse::snapshotSuccessor(const BoxColumns& inSwept, double inSkin, int 
   const BoxColumns& grown = next_.list.inflate(inSwept, inSkin);
   const std::size_t n = grown.size();
   const WorkUnits units{n};
-  const LowEndSpread spread = reduceOverItems(
-      units, LowEndSpread(),
+  const AxisRanges spread = reduceOverItems(
+      units, AxisRanges(),
       [&](std::size_t inBegin, std::size_t inEnd) { return lowEndSpread(grown, inBegin, inEnd); },
-      [](LowEndSpread& ioAll, const LowEndSpread& inPart) { ioAll.add(inPart); });
+      [](AxisRanges& ioAll, const AxisRanges& inPart) { ioAll.add(inPart); });
   int axis = 0;
   double widest = -1.0;
   for (int a = 0; a < 3; ++a) {
