@@ -3,11 +3,12 @@
 // memory.csv: the peak of the default engine in steady use (uniform scene moving 1 % of a mean
 // edge a frame, enough frames for the kept candidates to be rebuilt at least once), against the
 // target of 120 bytes per box plus 8 per pair, and beside it PhysX's PABP (on the same threads)
-// and ABP over the same frames when PhysX is built. Each contender runs in a forked process of
-// its own that makes the scene and then resets its peak resident set (VmHWM, through
-// /proc/self/clear_refs), so the growth during the frames is the contender's own: the engine's
-// buffers and pair output; PhysX's structures, the input arrays it reads (float bounds, groups,
-// distances, handles) and the found and lost pairs it reports, no pair set accumulated from them.
+// and ABP over the same frames when PhysX is built (up to 2^20 boxes). Each contender runs in a
+// forked process of its own that makes the scene and then resets its peak resident set (VmHWM,
+// through /proc/self/clear_refs), so the growth during the frames is the contender's own: the
+// engine's buffers and pair output; PhysX's structures, the input arrays it reads (float bounds,
+// groups, distances, handles) and the found and lost pairs it reports, no pair set accumulated from
+// them.
 //
 // memory_parts.csv: bytes per box of each structure the default holds, measured on the same
 // scene with the engine's parts run one after the other on one thread, as a sweep frame with the
@@ -257,8 +258,13 @@ SteadyPeak peakInChild(const sap_broadphase::SceneConfig& inScene, Frames&& inFr
 
 /// A peer's steady frames keeping no pair set (Peer::stepKeepingNoPairs), in a child of its own;
 /// not run (ran false) without the peer.
+/// Most boxes PhysX's contenders are measured at: at 2^23 their 40 frames took 8-10 minutes a
+/// contender and density on the 2-core VM (the scene's steps included), four times the rest of
+/// `bench.sh --all`'s memory runs; above it their columns read "-".
+constexpr std::size_t kMostPeerBoxes = std::size_t{1} << 20;
+
 SteadyPeak peerPeak(Peer* ioPeer, const sap_broadphase::SceneConfig& inScene, int inFrames) {
-  if (!ioPeer) return SteadyPeak();
+  if (!ioPeer || inScene.n > kMostPeerBoxes) return SteadyPeak();
   return peakInChild(inScene, [&](sap_broadphase::SceneSimulator& ioSimulator, SteadyPeak&) {
     ioPeer->begin();
     for (int f = 0; f < inFrames; ++f) {

@@ -147,8 +147,9 @@ run_in_folder busy_2p17 busy "${mid_busy[@]}"
 run_in_folder busy_2p20 busy "${big_busy[@]}"
 run_in_folder peers_2p17 peers "${big_peers[@]}"
 [ "$quick" -eq 1 ] || "$bin/sap_bench" --out "$out" -e distributed --max-n 2^20 "${bench_args[@]}"
-# Memory at 2^23 (8.4 million boxes; a few GB a contender, one after the other, about 5
-# minutes): the size where users are bound by memory rather than time.
+# Memory at 2^23 (8.4 million boxes, a few GB; about 5 minutes): the size where users are bound
+# by memory rather than time. The engine only: PhysX's contenders are measured up to 2^20
+# (bench/exp_memory.cpp, kMostPeerBoxes).
 [ "$quick" -eq 1 ] || run_in_folder memory_2p23 memory --sizes 2^23
 if [ -n "$physx" ]; then
   run_in_folder physx_sizes sizes "${physx_small[@]}" --threads 2
