@@ -7,10 +7,10 @@
 #                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/,
 #                              memory_2p23/, physx_sizes/ when PhysX is named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
-#                              used; into bench/results/<machine>/ with machine.txt (about 45
-#                              minutes on an idle 2-core machine with PhysX, estimated from each
-#                              part's time: two fifths of it peers, peers_2p17/ and coherence, a
-#                              tenth the busy runs; --experiments runs some). The default.
+#                              used; into bench/results/<machine>/ with machine.txt (about 40
+#                              minutes on an idle 2-core machine with PhysX, measured: a third of
+#                              it peers, peers_2p17/ and coherence, a tenth the busy runs;
+#                              --experiments runs some). The default.
 #   scripts/bench.sh --quick   the same, smallest sizes, a few frames and runs, no ROS and no
 #                              microbenchmarks (under a minute); into build/bench_quick/<machine>/.
 #                              The test command runs it as a smoke test (scripts/test_no_ros.sh).
