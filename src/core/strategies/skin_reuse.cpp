@@ -76,6 +76,53 @@ std::size_t columnBytes(const BoxColumns& inBoxes) {
   return bytes;
 }
 
+// inBoxes' ids replaced by their ranks among them (the kernel's ids for a slab): outById lists
+// the boxes by id, outIdOfRank (inBoxes.size() long) the real id of each rank.
+void replaceIdsByRanks(BoxColumns& ioBoxes, Buffer<uint32_t>& outById,
+                       Buffer<uint32_t>& outIdOfRank) {
+  const std::size_t count = ioBoxes.size();
+  resizeDiscarding(outById, count);
+  indexesByKey(ioBoxes.ids.data(), count, outById.data());
+  runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t rank = inBegin; rank < inEnd; ++rank)
+      outIdOfRank[rank] = ioBoxes.ids[outById[rank]];
+  });
+  runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
+    for (std::size_t rank = inBegin; rank < inEnd; ++rank)
+      ioBoxes.ids[outById[rank]] = static_cast<uint32_t>(rank);
+  });
+}
+
+// A slab's pairs of ranks (ioPairs) back to ids, in order, without those of two boxes before
+// the slab (the first inReachers boxes of the slab: their pairs belong to an earlier slab).
+// Each unit compacts its kept pairs to the front of its own range; the ranges are then closed
+// up in unit order (a copy, not a pass that grows the list and zeroes it).
+void keepSlabPairsAsIds(const Buffer<uint32_t>& inBoxOfRank, std::size_t inReachers,
+                        const Buffer<uint32_t>& inIdOfRank, PairList& ioPairs) {
+  const auto earlier = [&](const IdPair& inPair) {
+    return inBoxOfRank[inPair.a] < inReachers && inBoxOfRank[inPair.b] < inReachers;
+  };
+  const WorkUnits units{ioPairs.size()};
+  std::vector<std::size_t> kept_of_unit(units.count(), 0);
+  runUnits(units.count(), [&](std::size_t inUnit) {
+    IdPair* out = ioPairs.data() + units.begin(inUnit);
+    for (std::size_t k = units.begin(inUnit); k < units.end(inUnit); ++k) {
+      const IdPair pair = ioPairs[k];
+      if (!earlier(pair)) *out++ = IdPair{inIdOfRank[pair.a], inIdOfRank[pair.b]};
+    }
+    kept_of_unit[inUnit] = static_cast<std::size_t>(out - (ioPairs.data() + units.begin(inUnit)));
+  });
+  std::size_t kept = 0;
+  for (std::size_t unit = 0; unit < units.count(); ++unit) {
+    const auto from = ioPairs.begin() + static_cast<std::ptrdiff_t>(units.begin(unit));
+    if (kept != units.begin(unit))
+      std::copy(from, from + static_cast<std::ptrdiff_t>(kept_of_unit[unit]),
+                ioPairs.begin() + static_cast<std::ptrdiff_t>(kept));
+    kept += kept_of_unit[unit];
+  }
+  ioPairs.resize(kept);
+}
+
 }  // namespace
 
 void SkinReuse::startFrame(const FrameDelta& inDelta) {
@@ -363,50 +410,13 @@ void SkinReuse::sweepSuccessorSlab() {
       }
     }
   });
-  // The slab's boxes by real id; the kernel's ids become their ranks, and the members' list
-  // (read above for the last time) holds the real id of each rank.
-  Buffer<uint32_t>& by_id = next_.slab_by_id;
-  resizeDiscarding(by_id, count);
-  indexesByKey(boxes.ids.data(), count, by_id.data());
+  // The members' list (read above for the last time) becomes the real id of each rank.
   Buffer<uint32_t>& id_of_rank = members;
-  runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
-    for (std::size_t rank = inBegin; rank < inEnd; ++rank)
-      id_of_rank[rank] = boxes.ids[by_id[rank]];
-  });
-  runOverItems(WorkUnits{count}, [&](std::size_t inBegin, std::size_t inEnd) {
-    for (std::size_t rank = inBegin; rank < inEnd; ++rank)
-      boxes.ids[by_id[rank]] = static_cast<uint32_t>(rank);
-  });
+  replaceIdsByRanks(boxes, next_.slab_by_id, id_of_rank);
   PairList& pairs = next_.slab_pairs;
   pairs.clear();
   if (count >= 2) pairSmallFrame(boxes, next_.kernel, pairs);
-  // Ranks back to ids, in order; pairs of two boxes before the slab belong to an earlier slab.
-  const uint32_t* box_of_rank = by_id.data();
-  const auto earlier = [&](const IdPair& inPair) {
-    return box_of_rank[inPair.a] < reachers && box_of_rank[inPair.b] < reachers;
-  };
-  // Each unit compacts its kept pairs, as ids, to the front of its own range; the ranges are
-  // then closed up in unit order (a copy, not a pass that grows the list and zeroes it).
-  const WorkUnits pair_units{pairs.size()};
-  std::vector<std::size_t> kept_of_unit(pair_units.count(), 0);
-  runUnits(pair_units.count(), [&](std::size_t inUnit) {
-    IdPair* out = pairs.data() + pair_units.begin(inUnit);
-    for (std::size_t k = pair_units.begin(inUnit); k < pair_units.end(inUnit); ++k) {
-      const IdPair pair = pairs[k];
-      if (!earlier(pair)) *out++ = IdPair{id_of_rank[pair.a], id_of_rank[pair.b]};
-    }
-    kept_of_unit[inUnit] =
-        static_cast<std::size_t>(out - (pairs.data() + pair_units.begin(inUnit)));
-  });
-  std::size_t kept = 0;
-  for (std::size_t unit = 0; unit < pair_units.count(); ++unit) {
-    const auto from = pairs.begin() + static_cast<std::ptrdiff_t>(pair_units.begin(unit));
-    if (kept != pair_units.begin(unit))
-      std::copy(from, from + static_cast<std::ptrdiff_t>(kept_of_unit[unit]),
-                pairs.begin() + static_cast<std::ptrdiff_t>(kept));
-    kept += kept_of_unit[unit];
-  }
-  pairs.resize(kept);
+  keepSlabPairsAsIds(next_.slab_by_id, reachers, id_of_rank, pairs);
   SAP_ASSERT(isCanonical(pairs), "a slab's pairs out of canonical order after the ranks");
   mergeSlabPairs(pairs);
   ++next_.steps;
