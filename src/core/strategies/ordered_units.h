@@ -102,38 +102,4 @@ inline void indexesByKey(const uint32_t* inKeys, std::size_t inCount, uint32_t* 
   });
 }
 
-/// Where the first inOutputs elements of std::merge(inA, inB) come from: the count taken from
-/// inA (the rest from inB). std::merge takes inA's element first on a tie, so inA[i] lands at
-/// i plus the count of inB's elements below it, which grows with i: a binary search finds the
-/// first element of inA that lands at inOutputs or later.
-template <class List>
-std::size_t mergeTakenFromFirst(const List& inA, const List& inB, std::size_t inOutputs) {
-  std::size_t low = inOutputs > inB.size() ? inOutputs - inB.size() : 0;
-  std::size_t high = std::min(inOutputs, inA.size());
-  while (low < high) {
-    const std::size_t middle = low + (high - low) / 2;
-    const auto below = static_cast<std::size_t>(
-        std::lower_bound(inB.begin(), inB.end(), inA[middle]) - inB.begin());
-    if (middle + below >= inOutputs)
-      high = middle;
-    else
-      low = middle + 1;
-  }
-  return low;
-}
-
-/// std::merge(inA, inB) into outMerged (replaced), the output cut into units that each find
-/// where they start in both lists and merge their share: the same list for any thread count.
-template <class List>
-void mergeInUnits(const List& inA, const List& inB, List& outMerged) {
-  const std::size_t total = inA.size() + inB.size();
-  resizeDiscarding(outMerged, total);
-  runOverItems(WorkUnits{total}, [&](std::size_t inBegin, std::size_t inEnd) {
-    const std::size_t a_begin = mergeTakenFromFirst(inA, inB, inBegin);
-    const std::size_t a_end = mergeTakenFromFirst(inA, inB, inEnd);
-    std::merge(inA.begin() + a_begin, inA.begin() + a_end, inB.begin() + (inBegin - a_begin),
-               inB.begin() + (inEnd - a_end), outMerged.begin() + inBegin);
-  });
-}
-
 }  // namespace sap_broadphase
