@@ -82,7 +82,7 @@ endif()
 # The per-frame flow: the plan on its own, the work-unit runner, then every path and combination of skips,
 # declared scenery, the automatic skin and large-world coordinates against the oracle.
 sap_add_gtest(test_frame_flow
-  test/core/test_frame_plan.cpp
+  test/core/test_frame_plan.cpp test/core/test_skin_audit.cpp
   test/core/test_work_units.cpp
   test/core/test_frame_flow.cpp
   test/core/test_support.cpp

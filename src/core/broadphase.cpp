@@ -27,6 +27,7 @@
 #include "core/runner/phase_timer.h"
 #include "core/runner/work_units.h"
 #include "core/strategies/frame_query.h"
+#include "core/strategies/skin_audit.h"
 #include "core/strategies/skin_reuse.h"
 #include "core/strategies/small_frame.h"
 #include "core/strategies/static_index.h"
@@ -45,6 +46,7 @@ struct Broadphase::Impl {
   FrameHistory history;               // the last frame, and what changed since
   SweepAndPrune sweep;                // the paper's sweep, with its partition bounds and axes
   SkinReuse skin;                     // kept candidates, motion and learnt costs
+  SkinAudit skin_audit;               // whether the automatic skin's frames pay, measured
   StaticIndex scenery;                // boxes declared static (setStaticBoxes)
   FrameQuery world;                   // box queries against the last frame (the history's copy)
   PairList pairs;                     // the frame's one canonical pair list
@@ -118,6 +120,7 @@ FramePlan Broadphase::Impl::plan(const BoxColumns& inBoxes, const FrameDelta& in
   inputs.kept_skin = skin.skin();
   inputs.motion = skin.recentMotion();
   inputs.costs = skin.costs();
+  inputs.skin_audit_allows = skin_audit.allowsSkin();
   inputs.kept_covers = planConsidersKeptCandidates(inputs) && skin.coversFrame(inBoxes, report);
   PhaseTimer timer(report.ms_plan);
   const FramePlan plan = planFrame(inputs);
@@ -255,6 +258,7 @@ Broadphase& Broadphase::operator=(Broadphase&&) noexcept = default;
 // that may pair, as the history now holds them. Runs in the frame's scope.
 void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inDelta) {
   skin.startFrame(inDelta);
+  const Clock::time_point work_start = Clock::now();
   const FramePlan frame_plan = plan(inBoxes, inDelta);
   FrameSpread spread(inBoxes);  // measured once, by the first part that needs it
   const bool reused = frame_plan.path == FramePath::kReused;
@@ -267,8 +271,10 @@ void Broadphase::Impl::runFrame(const BoxColumns& inBoxes, const FrameDelta& inD
     execute(frame_plan, spread);
     checkPairCount(pairs.size());  // the paths the bound does not stop as they go
     if (!config.skin) {            // the costs only feed the automatic skin's choice
+      const double ms_work = millisecondsSince(work_start);
       PhaseTimer timer(report.ms_plan);
       skin.learn(frame_plan, spread, pairs.size(), report);
+      skin_audit.record(frame_plan, inDelta, inBoxes.size(), ms_work);
     }
   }
   if (!reused) addSceneryPairs(inBoxes);

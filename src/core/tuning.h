@@ -168,6 +168,13 @@ constexpr double kSkinCostMargin = 1.1;
 constexpr int kMotionWindow = 4;
 /// Smallest frame for which a skin is considered: below it a sweep costs microseconds.
 constexpr std::size_t kMinSkinBoxes = 1024;
+/// The measured check of the automatic skin (skin_audit.h): frames answered with a skin whose
+/// mean cost is weighed against the plain frames', and the plain frames of the first probation
+/// after the skin's frames cost more (each further failure doubles it, up to the longest). A
+/// window spans a few cycles of kept candidates (about 17 frames each at 1 % motion).
+constexpr int kSkinAuditFrames = 16;
+constexpr int kSkinAuditFirstProbation = 32;
+constexpr int kSkinAuditLongestProbation = 1024;
 /// Until a pass has been measured: nanoseconds per kept candidate and per box (containment
 /// check and gather) of a pass on one thread, conservative.
 constexpr double kInitialNsPerCandidate = 10.0;

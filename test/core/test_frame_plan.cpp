@@ -159,6 +159,26 @@ TEST(FramePlan, SmallFramesAndUnmeasuredCostsTakeNoSkin) {
   EXPECT_EQ(planFrame(inputs).skin_choice, SkinChoice::kNotWorthIt);
 }
 
+// A probation of the skin audit (skin_audit.h): the automatic skin is neither chosen nor
+// answered from kept candidates; a fixed skin is the user's and stays.
+TEST(FramePlan, AuditProbationTurnsTheAutomaticSkinOffOnly) {
+  BroadphaseConfig config;
+  PlanInputs inputs = coherentFrame(config);
+  ASSERT_GT(planFrame(inputs).sweep_skin, 0.0);
+  inputs.skin_audit_allows = false;
+  FramePlan plan = planFrame(inputs);
+  EXPECT_EQ(plan.sweep_skin, 0.0);
+  EXPECT_EQ(plan.skin_choice, SkinChoice::kNotWorthIt);
+  inputs.kept_candidates = inputs.kept_covers = true;
+  EXPECT_FALSE(planConsidersKeptCandidates(inputs));
+  EXPECT_NE(planFrame(inputs).path, FramePath::kSkin);
+  config.skin = 0.3;
+  EXPECT_TRUE(planConsidersKeptCandidates(inputs));
+  plan = planFrame(inputs);
+  EXPECT_EQ(plan.path, FramePath::kSkin);
+  EXPECT_EQ(plan.skin_choice, SkinChoice::kFixed);
+}
+
 TEST(FramePlan, FixedSkinAndSkinOffAreObeyed) {
   BroadphaseConfig config;
   config.skin = 0.3;

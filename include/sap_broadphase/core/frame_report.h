@@ -37,7 +37,8 @@ enum class SkinChoice : uint8_t {
   kKept,        ///< automatic: every box still inside the skin of the last sweep
   kChosen,      ///< automatic: a new skin chosen from the measured motion and costs
   kTooFast,     ///< automatic: at the measured motion no skin beats a plain sweep
-  kNotWorthIt,  ///< automatic: frame too small or too static for a skin to pay
+  kNotWorthIt,  ///< automatic: frame too small or too static for a skin to pay, or the
+                ///< skin's frames measured dearer than plain ones (a probation)
   kOverBudget,  ///< the skin's grown sweep found more candidates than the memory budget
                 ///< (kMaxKeptCandidatesPerBox): none kept, the frame's pairs tested exactly
 };

@@ -63,6 +63,8 @@ void chooseAutomaticSkin(const PlanInputs& inInputs, FramePlan& ioPlan) {
     ioPlan.skin_choice = SkinChoice::kFirstFrame;
   } else if (!inInputs.delta.sameIds()) {
     ioPlan.skin_choice = SkinChoice::kIdsChanged;
+  } else if (!inInputs.skin_audit_allows) {
+    ioPlan.skin_choice = SkinChoice::kNotWorthIt;
   } else {
     ioPlan.sweep_skin =
         chooseSkin(inInputs.motion, inInputs.boxes, inInputs.costs, ioPlan.skin_choice);
@@ -150,7 +152,9 @@ bool reusesLastPairs(const BroadphaseConfig& inConfig, const FrameDelta& inDelta
 bool planConsidersKeptCandidates(const PlanInputs& inInputs) {
   const BroadphaseConfig& config = *inInputs.config;
   const bool skin_off = config.skin && *config.skin == 0.0;
-  return inInputs.boxes >= 2 && config.method != Method::kBruteForce &&
+  const bool skin_fixed = config.skin && *config.skin > 0.0;
+  return inInputs.boxes >= 2 && (skin_fixed || inInputs.skin_audit_allows) &&
+         config.method != Method::kBruteForce &&
          !reusesLastPairs(config, inInputs.delta, inInputs.last_pairs_valid) && !skin_off &&
          inInputs.kept_candidates && inInputs.delta.sameIds() && !inInputs.delta.filters_changed;
 }

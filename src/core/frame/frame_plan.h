@@ -59,6 +59,8 @@ struct PlanInputs {
                                   ///< only when planConsidersKeptCandidates)
   double kept_skin = 0.0;         ///< the skin of that list
   double motion = 0.0;            ///< per-frame motion: recent largest displacement
+  bool skin_audit_allows = true;  ///< the automatic skin has not measured dearer than plain
+                                  ///< frames (skin_audit.h)
   SkinCosts costs;
 };
 
