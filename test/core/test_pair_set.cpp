@@ -115,7 +115,7 @@ TEST(PairSet, MovedChunksKeepTheirPairsAndTheSourceHoldsNone) {
 
 TEST(PairSet, ResizingAPairListKeepsOrDiscardsAsAsked) {
   PairList pairs = {{1, 2}, {3, 4}};
-  resizeResident(pairs, 100000);  // grows past the capacity: the first pairs stay
+  pairs.resize(100000);  // grows past the capacity: the first pairs stay
   ASSERT_EQ(pairs.size(), 100000u);
   EXPECT_EQ(pairs[0], (IdPair{1, 2}));
   EXPECT_EQ(pairs[1], (IdPair{3, 4}));

@@ -167,13 +167,13 @@ void BoxColumns::reserve(std::size_t inCount) {
 }
 
 void BoxColumns::resize(std::size_t inCount, bool inFiltered) {
-  resizeResident(ids, inCount);
+  ids.resize(inCount);
   for (int axis = 0; axis < 3; ++axis) {
     resizeDiscarding(lo[axis], inCount);
     resizeDiscarding(hi[axis], inCount);
   }
-  resizeResident(groups, inFiltered ? inCount : 0);
-  resizeResident(masks, inFiltered ? inCount : 0);
+  groups.resize(inFiltered ? inCount : 0);
+  masks.resize(inFiltered ? inCount : 0);
 }
 
 void BoxColumns::add(uint32_t inId, const double inMin[3], const double inMax[3]) {

@@ -215,7 +215,7 @@ void copyBlock(const RecordBlock& inBlock, bool inFiltered, std::size_t inBegin,
 FramePass compareAndCopyBlocks(const FrameReader& inFrame, BoxColumns& ioLast,
                                std::vector<uint8_t>& outUnchanged) {
   const std::size_t n = inFrame.size();
-  resizeResident(outUnchanged, n);
+  outUnchanged.resize(n);
   const UnitChanges changes = reduceOverItems(
       WorkUnits{n}, UnitChanges{},
       [&](std::size_t inBegin, std::size_t inEnd) {

@@ -28,17 +28,19 @@ constexpr std::size_t kCacheLineBytes = 64;
 ///   advised as huge pages (THP in madvise mode): a first touch faults 2 MiB at a time instead
 ///   of 4 KiB, the random accesses of the scatters and gathers miss the TLB far less, and a
 ///   freed buffer leaves the resident set at once (never kept in the heap);
-/// - buffers between kPopulateBytes and a huge page are mapped with their pages populated
-///   (Linux): one system call instead of a page fault per 4 KiB, which a virtual machine makes
-///   costly (a fresh engine's first frame at 2^14 boxes faulted some 600 pages);
+/// - smaller buffers come from the heap, so that a fresh engine in a process that ran one before
+///   reuses the heap's resident pages. Measured on the 2-core VM (2^14 and 2^17 boxes, d = 0.05
+///   and 0.35, alternating in one run): as mappings of their own with their pages populated
+///   (MAP_POPULATE, MADV_POPULATE_WRITE), a fresh engine's frame in a warm process cost 1.9 warm
+///   plain frames at 2^14 (every fresh engine's buffers were zeroed pages again); from the heap,
+///   1.2; populating heap pages, resident or not, was slower than letting them fault (2^17:
+///   9.0-13.6 against 9.6-16.5 ms) and no faster on a fresh process's first frame;
 /// - types aligned beyond what operator new guarantees (a cache-line record) get their
 ///   alignment.
 template <typename T>
 struct BufferAllocator {
   using value_type = T;
   static constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
-  static constexpr std::size_t kPopulateBytes = std::size_t{64} << 10;
-  static constexpr std::size_t kPageBytes = 4096;
 
   BufferAllocator() = default;
   template <typename U>
@@ -46,19 +48,13 @@ struct BufferAllocator {
 
   T* allocate(std::size_t inCount) {
     const std::size_t bytes = inCount * sizeof(T);
-#if defined(__linux__) && defined(MAP_POPULATE)
-    if (bytes >= kPopulateBytes && bytes < kHugePageBytes) {
-      void* memory = mmap(nullptr, pageRounded(bytes), PROT_READ | PROT_WRITE,
-                          MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
-      if (memory == MAP_FAILED) throw std::bad_alloc();
-      return static_cast<T*>(memory);
-    }
-#endif
     if (bytes < kHugePageBytes) {
+      T* memory;
       if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
-        return static_cast<T*>(::operator new (bytes, std::align_val_t{alignof(T)}));
+        memory = static_cast<T*>(::operator new (bytes, std::align_val_t{alignof(T)}));
       else
-        return static_cast<T*>(::operator new(bytes));
+        memory = static_cast<T*>(::operator new(bytes));
+      return memory;
     }
     const std::size_t rounded = hugeRounded(bytes);
 #if defined(__linux__)
@@ -87,12 +83,6 @@ struct BufferAllocator {
   }
   void deallocate(T* inMemory, std::size_t inCount) {
     const std::size_t bytes = inCount * sizeof(T);
-#if defined(__linux__) && defined(MAP_POPULATE)
-    if (bytes >= kPopulateBytes && bytes < kHugePageBytes) {
-      munmap(inMemory, pageRounded(bytes));
-      return;
-    }
-#endif
     if (bytes >= kHugePageBytes) {
 #if defined(__linux__)
       munmap(inMemory, hugeRounded(bytes));
@@ -107,9 +97,6 @@ struct BufferAllocator {
   }
   static std::size_t hugeRounded(std::size_t inBytes) {
     return (inBytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
-  }
-  static std::size_t pageRounded(std::size_t inBytes) {
-    return (inBytes + kPageBytes - 1) / kPageBytes * kPageBytes;
   }
   /// Default-initialises (no zeroing); explicit values are constructed as usual.
   template <typename U, typename... Args>
@@ -133,52 +120,17 @@ struct BufferAllocator {
 template <typename T>
 using Buffer = std::vector<T, BufferAllocator<T>>;
 
-/// Makes the whole pages of [inBegin, inBegin + inBytes) resident in one system call (Linux
-/// 5.14+, MADV_POPULATE_WRITE) when the range spans BufferAllocator's populate size or more:
-/// fresh memory about to be written in full then takes no page fault a 4 KiB page, which a
-/// virtual machine makes costly. Advice only: where the kernel declines, the writes fault as
-/// before. Huge-page buffers are left to fault 2 MiB at a time, each thread its own pages.
-inline void populatePages(void* inBegin, std::size_t inBytes) {
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-  constexpr std::size_t kPage = BufferAllocator<char>::kPageBytes;
-  if (inBytes < BufferAllocator<char>::kPopulateBytes) return;
-  const auto begin = reinterpret_cast<std::uintptr_t>(inBegin);
-  const std::uintptr_t first = (begin + kPage - 1) / kPage * kPage;
-  const std::uintptr_t last = (begin + inBytes) / kPage * kPage;
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
-#else
-  (void)inBegin;
-  (void)inBytes;
-#endif
-}
-
 /// Makes ioBuffer hold inSize elements whose old contents do not matter. Growing frees the old
 /// storage before allocating the new, so the two are never resident together (a plain resize
 /// copies and keeps both for a moment), and leaves an eighth of headroom so that a frame
-/// slightly larger than the last does not allocate again. Fresh storage of a std::allocator
-/// vector (a PairList: resize zeroes it) has the pages it is about to hold made resident in
-/// one call first, so the zeroing does not fault page by page.
+/// slightly larger than the last does not allocate again.
 template <typename T, typename Allocator>
 void resizeDiscarding(std::vector<T, Allocator>& ioBuffer, std::size_t inSize) {
   if (inSize > ioBuffer.capacity()) {
     std::vector<T, Allocator>().swap(ioBuffer);
     ioBuffer.reserve(inSize + inSize / 8);
-    if constexpr (std::is_same_v<Allocator, std::allocator<T>>)
-      populatePages(ioBuffer.data(), inSize * sizeof(T));
   }
   ioBuffer.resize(inSize);
-}
-
-/// Resizes ioVector to inSize, keeping its elements. Growth past the capacity has the pages of
-/// the new elements made resident in one call first (populatePages), so that the zeroing of a
-/// std::vector's fresh elements does not fault page by page.
-template <typename T, typename Allocator>
-void resizeResident(std::vector<T, Allocator>& ioVector, std::size_t inSize) {
-  if (inSize > ioVector.capacity()) {
-    ioVector.reserve(inSize);
-    populatePages(ioVector.data() + ioVector.size(), (inSize - ioVector.size()) * sizeof(T));
-  }
-  ioVector.resize(inSize);
 }
 
 /// True when the two vectors hold the same elements, byte for byte (so -0.0 differs from 0.0).

@@ -250,9 +250,6 @@ void SkinReuse::mergeSlabPairs(const PairList& inSlabPairs) {
     const std::size_t expected = after * static_cast<std::size_t>(next_.slabs) / swept;
     found.reserve(expected + expected / 8);
   }
-  // This slab's part made resident in one call, not a fault a page as it is written (buffers.h);
-  // the parts of the slabs to come, when they come, so that no one slab's frame pays for all.
-  populatePages(found.data() + before, (after - before) * sizeof(IdPair));
   found.resize(after);
   std::size_t from_found = before;
   std::size_t from_slab = inSlabPairs.size();
