@@ -33,18 +33,22 @@ void measureExtents(FrameSpread& ioSpread, SkinCosts& ioCosts) {
   }
 }
 
-// The most slabs a successor's sweep is cut into: past this, a slab's fixed costs (the
-// kernel's grid, the boxes before the slab that reach into it) outweigh what it spreads.
+// A successor's sweep is cut into the fewest slabs that keep each within
+// kMostSuccessorSlabBoxes boxes, and at least kFewestSuccessorSlabs: its frames of building are
+// then few, so that most frames of a cycle are a kept-candidate pass alone (the median frame),
+// and its skin, grown by the motion of those frames, stays close to the plan's (fewer
+// candidates for every pass). An earlier version spread the build over the whole cycle (as many
+// slabs as its life allowed, at least 3): every steady frame then held a step, and the
+// successor's skin was about twice the plan's. Measured on the 2-core VM (uniform, 1 % motion,
+// 2 threads, 300 frames, both versions alternating in one run, medians of 3-4 runs): p50 at
+// 2^12 0.112 -> 0.083 ms (d = 0.05) and 0.345 -> 0.318 (d = 0.35); 2^14 0.50 -> 0.31 and 1.42
+// -> 1.35; 2^17 4.0 -> 2.1 and 8.9 -> 8.4; 2^20 29.6 -> 19 and 87 -> 83 (40 frames). p99 rose
+// where a slab is half a grown sweep: 2^12 d = 0.35 0.50 -> 0.62 ms, 2^14 d = 0.35 1.83 -> 2.41;
+// elsewhere within the noise. Peak RSS at 2^20 rose 18 % (d = 0.05) and 9 % (d = 0.35): a slab's
+// kernel workspace covers half the boxes.
+constexpr std::size_t kMostSuccessorSlabBoxes = std::size_t{1} << 19;
+constexpr int kFewestSuccessorSlabs = 2;
 constexpr int kMostSuccessorSlabs = 16;
-// The fewest: a grown sweep costs 2-3 plain frames of the same boxes (its candidates are
-// several times the pairs), so a slab of a third of it stays near one plain frame. With a skin
-// that lives 8 frames (1 % motion, the automatic skin) a cycle otherwise had room for 2 slabs
-// only, each 1.5-2x a plain frame: the steady 99th percentile. Measured (uniform, 2 threads,
-// 201 frames, both settings in one run on the 2-core VM, load 2): p99 at 2^12 d = 0.35 1.18 -> 0.59
-// ms, 2^14 5.4 -> 2.6 ms, 2^17 d = 0.05 14.6 -> 9.6 ms, the mean frame unchanged within 5 %; the
-// median rises where it was a frame with no building (2^14 d = 0.35 1.05 -> 1.55 ms), since the
-// same work now covers more frames of the cycle.
-constexpr int kFewestSuccessorSlabs = 3;
 // Frames between the successor's adoption and the frame the kept candidates are expected to
 // stop covering: the motion measured is the recent largest, not a bound.
 constexpr int kSuccessorSlackFrames = 1;
@@ -278,22 +282,19 @@ SkinReuse::SuccessorMemoryUse SkinReuse::successorMemoryUse() const {
 // successor takes W = 1 + slabs + kAdoptSteps frames (snapshot, slabs, adoption), and it takes
 // over when the kept candidates stop covering, W + slack frames after its snapshot: so it is
 // grown by s plus the motion of those frames, and then lives L frames more, as the plan meant.
-// Each cycle of L frames thus holds one build. The slabs take what the snapshot, the adoption
-// and the slack leave of it (at most kMostSuccessorSlabs), so that a slab is as small a part of
-// a grown sweep as the cycle allows, and at least kFewestSuccessorSlabs (a short cycle then
-// starts its build earlier and grows it by more); the successor's skin is then up to about
-// twice the plan's.
+// Each cycle of L frames thus holds one build, started as late as it can be; a cycle shorter
+// than the build starts it at once and grows it by more.
 void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, FrameReport& ioReport) {
   if (next_.ready || planned_skin_ <= 0.0 || !kept_.valid()) return;
   PhaseTimer timer(ioReport.ms_skin);
   if (next_.steps == 0) {
     const double motion = recentMotion();
     if (!(motion > 0.0)) return;  // nothing moves: the kept candidates last
-    const double life = planned_skin_ / (2.0 * motion);
-    const double fixed_frames = 1.0 + kAdoptSteps + kSuccessorSlackFrames;
-    const int slabs = static_cast<int>(std::clamp(
-        life - fixed_frames, double{kFewestSuccessorSlabs}, double{kMostSuccessorSlabs}));
-    const double lead_frames = slabs + fixed_frames;
+    const std::size_t by_size =
+        (inSwept.size() + kMostSuccessorSlabBoxes - 1) / kMostSuccessorSlabBoxes;
+    const int slabs = static_cast<int>(std::clamp<std::size_t>(
+        by_size, std::size_t{kFewestSuccessorSlabs}, std::size_t{kMostSuccessorSlabs}));
+    const double lead_frames = slabs + 1.0 + kAdoptSteps + kSuccessorSlackFrames;
     if (kept_age_ + lead_frames < skin_ / (2.0 * motion)) return;  // not due yet
     snapshotSuccessor(inSwept, planned_skin_ + 2.0 * motion * lead_frames, slabs);
   } else if (next_.steps <= next_.slabs) {
