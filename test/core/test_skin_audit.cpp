@@ -28,11 +28,12 @@ void recordPlain(SkinAudit& ioAudit, double inMilliseconds) {
                  inMilliseconds);
 }
 
-// A window of frames answered with a skin: a grown sweep, then kept-candidate passes.
+// A window of frames answered with a skin: a grown sweep (not weighed after plain frames: the
+// skin's entry), then a window of kept-candidate passes.
 void recordSkinWindow(SkinAudit& ioAudit, double inMilliseconds) {
   const FrameDelta moved = deltaOf(FrameRelation::kSameIds);
   ioAudit.record(planOf(FramePath::kSmallFrame, 0.5), moved, kBoxes, inMilliseconds);
-  for (int frame = 1; frame < tuning::kSkinAuditFrames; ++frame)
+  for (int frame = 0; frame < tuning::kSkinAuditFrames; ++frame)
     ioAudit.record(planOf(FramePath::kSkin, 0.0), moved, kBoxes, inMilliseconds);
 }
 
@@ -78,6 +79,21 @@ TEST(SkinAudit, ProbationAfterDearerSkinFramesGrowsUpToTheLongest) {
   recordSkinWindow(audit, 0.5);
   EXPECT_TRUE(audit.allowsSkin());
   EXPECT_EQ(audit.nextProbation(), tuning::kSkinAuditFirstProbation);
+}
+
+TEST(SkinAudit, TheGrownSweepThatStartsASkinIsNotWeighed) {
+  SkinAudit audit;
+  recordPlain(audit, 1.0);
+  const FrameDelta moved = deltaOf(FrameRelation::kSameIds);
+  // An entry sweep of 30 plain frames, then passes at half a plain frame: the skin pays.
+  audit.record(planOf(FramePath::kSmallFrame, 0.5), moved, kBoxes, 30.0);
+  for (int frame = 0; frame < tuning::kSkinAuditFrames; ++frame)
+    audit.record(planOf(FramePath::kSkin, 0.0), moved, kBoxes, 0.5);
+  EXPECT_TRUE(audit.allowsSkin());
+  // A grown sweep while the skin lives (its candidates ran out) is part of its cost.
+  for (int frame = 0; frame < tuning::kSkinAuditFrames; ++frame)
+    audit.record(planOf(FramePath::kSmallFrame, 0.5), moved, kBoxes, 1.5);
+  EXPECT_FALSE(audit.allowsSkin());
 }
 
 TEST(SkinAudit, WeighsCostsPerBox) {

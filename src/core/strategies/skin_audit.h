@@ -9,7 +9,8 @@
 // retried after each probation).
 //
 // The audit weighs what the frames cost: the mean, a box, of the frames a skin answered (grown
-// sweeps, kept-candidate passes and the successor's steps together, over kSkinAuditFrames)
+// sweeps, kept-candidate passes and the successor's steps together, over kSkinAuditFrames; not
+// the grown sweep that starts a skin after plain frames, paid once for all the frames it answers)
 // against the plain frames' cost a box. When the skin's frames cost more, the skin is off for a
 // probation of plain frames, which refreshes the plain cost, doubled each time the skin fails
 // again; then the model may choose a skin again.
@@ -43,7 +44,8 @@ class SkinAudit {
 
   double plain_ns_per_box_ = 0.0;  // smoothed; 0: no plain frame measured yet
   double skin_ns_per_box_sum_ = 0.0;
-  int skin_frames_ = 0;  // in the window being gathered
+  int skin_frames_ = 0;     // in the window being gathered
+  bool skin_live_ = false;  // the last plain or skin frame was a skin's
   int probation_left_ = 0;
   int next_probation_ = tuning::kSkinAuditFirstProbation;
 };
