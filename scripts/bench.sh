@@ -5,7 +5,8 @@
 #                              each), memory in a process of its own, the Python module's
 #                              script when the module is built, sap_microbench, the runs of
 #                              their own folders (busy_2p17/, busy_2p20/, peers_2p17/,
-#                              memory_2p23/, physx_sizes/ when PhysX is named), MPI ranks of this machine, and the runs
+#                              memory_2p23/, physx_sizes/ and physx_2p20/ when PhysX is
+#                              named), MPI ranks of this machine, and the runs
 #                              through ROS (scripts/bench_ros.sh) when the catkin workspace is
 #                              used; into bench/results/<machine>/ with machine.txt (about 40
 #                              minutes on an idle 2-core machine with PhysX, measured: a third of
@@ -129,14 +130,14 @@ peers_frames=(--frames 4)
 # Runs of their own, each in a folder the page names: the busy machine at 2^17 and at 2^20
 # (fewer frames), the peers at 2^17, MPI ranks of this machine (not in --quick), and, when
 # PhysX is named (--physx; with --bin, the PhysX that sap_bench was built with), the size sweep
-# beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17). No 2^20 sweep of 20 frames beside
-# PhysX: the page reads none of it (its 2^20 rows are sizes.csv's).
+# beside PhysX's ABP and PABP (200 steady frames, 2^12-2^17) and at 2^20 (20 steady frames:
+# sizes.csv's 3 hold the first cycle's build, not the steady state).
 if [ "$quick" -eq 1 ]; then
   mid_busy=(--sizes 2^10 --frames 3); big_busy=(--sizes 2^12 --frames 3); big_peers=(--max-n 2^12)
-  physx_small=(--sizes 2^10 --frames 3)
+  physx_small=(--sizes 2^10 --frames 3); physx_big=(--sizes 2^11 --frames 3)
 else
   mid_busy=(--sizes 2^17); big_busy=(--sizes 2^20 --frames 20); big_peers=(--max-n 2^17)
-  physx_small=(--sizes 2^12,2^14,2^17 --frames 201)
+  physx_small=(--sizes 2^12,2^14,2^17 --frames 201); physx_big=(--sizes 2^20 --frames 21)
 fi
 run_in_folder() {  # folder experiment sap_bench-arguments...
   local folder="$out/$1" experiment=$2; shift 2
@@ -153,6 +154,7 @@ run_in_folder peers_2p17 peers "${big_peers[@]}"
 [ "$quick" -eq 1 ] || run_in_folder memory_2p23 memory --sizes 2^23
 if [ -n "$physx" ]; then
   run_in_folder physx_sizes sizes "${physx_small[@]}" --threads 2
+  run_in_folder physx_2p20 sizes "${physx_big[@]}" --threads 2
 else
   echo "bench.sh: no PhysX named (--physx DIR): no physx_sizes/"
 fi
