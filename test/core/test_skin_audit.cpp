@@ -90,6 +90,13 @@ TEST(SkinAudit, TheGrownSweepThatStartsASkinIsNotWeighed) {
   for (int frame = 0; frame < tuning::kSkinAuditFrames; ++frame)
     audit.record(planOf(FramePath::kSkin, 0.0), moved, kBoxes, 0.5);
   EXPECT_TRUE(audit.allowsSkin());
+  // A frame of new ids ends the skin (its candidates are forgotten): the next grown sweep is
+  // an entry again.
+  audit.record(planOf(FramePath::kSmallFrame, 0.0), deltaOf(FrameRelation::kOtherIds), kBoxes, 1.0);
+  audit.record(planOf(FramePath::kSmallFrame, 0.5), moved, kBoxes, 30.0);
+  for (int frame = 0; frame < tuning::kSkinAuditFrames; ++frame)
+    audit.record(planOf(FramePath::kSkin, 0.0), moved, kBoxes, 0.5);
+  EXPECT_TRUE(audit.allowsSkin());
   // A grown sweep while the skin lives (its candidates ran out) is part of its cost.
   for (int frame = 0; frame < tuning::kSkinAuditFrames; ++frame)
     audit.record(planOf(FramePath::kSmallFrame, 0.5), moved, kBoxes, 1.5);

@@ -26,9 +26,16 @@ void SkinAudit::record(const FramePlan& inPlan, const FrameDelta& inDelta, std::
                        double inMilliseconds) {
   if (inBoxes == 0) return;
   const double ns_per_box = inMilliseconds * 1e6 / static_cast<double>(inBoxes);
-  switch (kindOf(inPlan, inDelta)) {
+  const FrameKind kind = kindOf(inPlan, inDelta);
+  // The grown sweep that starts a skin after frames without one is its entry, paid once for
+  // the many frames it answers: weighed in a window of 16 frames, it made the skin look dearer
+  // than plain frames where it pays (2^17, d = 0.05: probations in 4 runs of 6). A frame that
+  // finds its pairs without a skin ends a skin; a reused frame leaves it as it was.
+  const bool entry = kind == FrameKind::kWithSkin && !skin_live_;
+  if (inPlan.path == FramePath::kSkin || findsAllPairs(inPlan.path))
+    skin_live_ = kind == FrameKind::kWithSkin;
+  switch (kind) {
     case FrameKind::kPlain:
-      skin_live_ = false;
       plain_ns_per_box_ =
           plain_ns_per_box_ > 0.0
               ? plain_ns_per_box_ + tuning::kCostSmoothing * (ns_per_box - plain_ns_per_box_)
@@ -37,13 +44,7 @@ void SkinAudit::record(const FramePlan& inPlan, const FrameDelta& inDelta, std::
       break;
     case FrameKind::kWithSkin:
       SAP_ASSERT(probation_left_ == 0, "a skin's frame during the skin's probation");
-      // The grown sweep that starts a skin after plain frames is its entry, paid once for the
-      // many frames it answers: counted in a window of 16 frames, it made the skin look dearer
-      // than plain frames where it pays (2^17, d = 0.05: probations in 4 runs of 6).
-      if (!skin_live_) {
-        skin_live_ = true;
-        if (inPlan.path != FramePath::kSkin) break;
-      }
+      if (entry && inPlan.path != FramePath::kSkin) break;
       skin_ns_per_box_sum_ += ns_per_box;
       if (++skin_frames_ == tuning::kSkinAuditFrames) judgeSkin();
       break;
