@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -143,6 +144,32 @@ TEST(PairSet, HugePageBuffersAreAlignedWritableAndFreed) {
   resizeDiscarding(buffer, count);
   buffer.back() = 7;
   EXPECT_EQ(buffer.back(), 7u);
+}
+
+// Blocks from BufferCache at every edge of its size classes: each holds what was asked for (an
+// overrun corrupts the heap: the asserts build checks the class's size, the sanitizers the
+// writes), is aligned for a cache-line record, and comes back to the next buffer of its class.
+TEST(PairSet, CachedBuffersHoldWhatWasAskedForAtEveryClassEdge) {
+  using Allocator = BufferAllocator<unsigned char>;
+  std::vector<std::size_t> sizes = {BufferCache::kSmallestBytes - 1, BufferCache::kLargestBytes,
+                                    BufferCache::kLargestBytes + 1};
+  for (std::size_t edge = BufferCache::kSmallestBytes; edge <= BufferCache::kLargestBytes;
+       edge *= 2) {
+    for (std::size_t offset : {std::size_t{0}, std::size_t{1}, std::size_t{64}})
+      sizes.insert(sizes.end(), {edge - offset, edge + offset});
+  }
+  for (int round = 0; round < 2; ++round) {  // the second round takes the kept blocks
+    for (std::size_t bytes : sizes) {
+      unsigned char* memory = Allocator().allocate(bytes);
+      ASSERT_NE(memory, nullptr) << bytes;
+      if (BufferCache::serves(bytes)) {
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(memory) % BufferCache::kAlignment, 0u) << bytes;
+      }
+      std::memset(memory, 0xA5, bytes);
+      EXPECT_EQ(memory[bytes - 1], 0xA5) << bytes;
+      Allocator().deallocate(memory, bytes);
+    }
+  }
 }
 
 TEST(PairSet, SortMatchesStdSortForDenseAndSparseIds) {

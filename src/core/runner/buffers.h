@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/assert.h"
+
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
@@ -42,7 +44,9 @@ class BufferCache {
   /// A block of at least inBytes (a size served), aligned to kAlignment: a kept one of its class
   /// if any, else a new one of the class's size.
   static void* take(std::size_t inBytes) {
+    SAP_ASSERT(serves(inBytes), "a block the cache does not serve");
     const int size_class = classOf(inBytes);
+    SAP_ASSERT(classBytes(size_class) >= inBytes, "a block smaller than asked for");
     BufferCache& cache = instance();
     {
       const std::lock_guard<std::mutex> lock(cache.mutex_);
@@ -79,10 +83,8 @@ class BufferCache {
     while ((kSmallestBytes << (size_class + 1)) < inBytes) ++size_class;
     return size_class;
   }
-  static std::size_t classBytes(int inClass) {
-    // The largest class stops short of a huge page by a cache line.
-    return inClass + 1 < kClasses ? kSmallestBytes << (inClass + 1) : kLargestBytes - kAlignment;
-  }
+  // A class holds the sizes above half its block and up to its block.
+  static std::size_t classBytes(int inClass) { return kSmallestBytes << (inClass + 1); }
   // Never destroyed: buffers of static objects may be given back after exit's destructors ran.
   static BufferCache& instance() {
     static BufferCache* cache = new BufferCache;
