@@ -1,6 +1,7 @@
 #include "core/strategies/skin_reuse.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <limits>
 #include <numeric>
@@ -290,11 +291,17 @@ void SkinReuse::advanceSuccessor(const BoxColumns& inSwept, FrameReport& ioRepor
   if (next_.steps == 0) {
     const double motion = recentMotion();
     if (!(motion > 0.0)) return;  // nothing moves: the kept candidates last
-    const std::size_t by_size =
-        (inSwept.size() + kMostSuccessorSlabBoxes - 1) / kMostSuccessorSlabBoxes;
-    const int slabs = static_cast<int>(std::clamp<std::size_t>(
-        by_size, std::size_t{kFewestSuccessorSlabs}, std::size_t{kMostSuccessorSlabs}));
-    const double lead_frames = slabs + 1.0 + kAdoptSteps + kSuccessorSlackFrames;
+    // Never more slabs than the cycle has room for: a longer build grows the successor by the
+    // motion of more frames, past the candidate budget at 2^23 boxes (it was given up, and a
+    // grown sweep ran instead, 3-4 times in 40 frames).
+    const double fixed_frames = 1.0 + kAdoptSteps + kSuccessorSlackFrames;
+    const double room = std::clamp(planned_skin_ / (2.0 * motion) - fixed_frames,
+                                   double{kFewestSuccessorSlabs}, double{kMostSuccessorSlabs});
+    const double by_size = std::ceil(static_cast<double>(inSwept.size()) /
+                                     static_cast<double>(kMostSuccessorSlabBoxes));
+    const int slabs =
+        static_cast<int>(std::clamp(by_size, double{kFewestSuccessorSlabs}, std::floor(room)));
+    const double lead_frames = slabs + fixed_frames;
     if (kept_age_ + lead_frames < skin_ / (2.0 * motion)) return;  // not due yet
     snapshotSuccessor(inSwept, planned_skin_ + 2.0 * motion * lead_frames, slabs);
   } else if (next_.steps <= next_.slabs) {
