@@ -39,9 +39,8 @@ class PairBudget {
 
 /// Pairs appended in fixed-size chunks, the pairing threads' output: growing never copies
 /// (a vector's doubling would keep old and new storage resident together) and clear() keeps
-/// the chunks for the next frame. A chunk is a BufferAllocator allocation: its pages are made
-/// resident in one call when it is made (the thread that fills it makes it), not faulted one
-/// 4 KiB page at a time as the pairs arrive.
+/// the chunks for the next frame. A chunk is a BufferAllocator allocation (64 KiB: a block of
+/// BufferCache, so a fresh engine's chunks are resident where an engine ran before).
 class PairChunks {
  public:
   static constexpr std::size_t kChunkPairs = tuning::kPairChunkPairs;

@@ -62,6 +62,7 @@ class BufferCache {
   }
   /// Gives back a block take(inBytes) returned: kept while the cache has room, else freed.
   static void give(void* inBlock, std::size_t inBytes) {
+    SAP_ASSERT(serves(inBytes), "a block the cache did not serve");
     const int size_class = classOf(inBytes);
     BufferCache& cache = instance();
     {
@@ -76,15 +77,16 @@ class BufferCache {
   }
 
  private:
-  static constexpr int kClasses = 5;  // 64-128 KiB, ..., 1-2 MiB
+  static constexpr int kClasses = 6;  // blocks of 64 KiB, 128 KiB, ..., 2 MiB
 
+  // A class holds the sizes above half its block and up to its block (the first, 64 KiB
+  // exactly: a pair chunk's size).
   static int classOf(std::size_t inBytes) {
     int size_class = 0;
-    while ((kSmallestBytes << (size_class + 1)) < inBytes) ++size_class;
+    while ((kSmallestBytes << size_class) < inBytes) ++size_class;
     return size_class;
   }
-  // A class holds the sizes above half its block and up to its block.
-  static std::size_t classBytes(int inClass) { return kSmallestBytes << (inClass + 1); }
+  static std::size_t classBytes(int inClass) { return kSmallestBytes << inClass; }
   // Never destroyed: buffers of static objects may be given back after exit's destructors ran.
   static BufferCache& instance() {
     static BufferCache* cache = new BufferCache;
